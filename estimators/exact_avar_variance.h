@@ -1,0 +1,24 @@
+#pragma once
+// Exact covariance structure of the Allan-variance estimator for Gaussian noise with a known
+// (generalised) autocovariance (THEORY.md §2.1). The Allan difference is a lag-m second
+// difference of the integrated record (the phase), so every covariance follows from the phase
+// variogram V(k) = E[(Y_{t+k} - Y_t)^2] = k R(0) + 2 sum_{j=1}^{k-1} (k - j) R(j): O(N) per m.
+#include <cstdint>
+#include <span>
+
+#include "sim/avar_theory.h"
+
+namespace allanlab::estimators {
+
+struct AvarMoments {
+  double mean = 0.0;      // E[AVAR_hat(m)]
+  double variance = 0.0;  // Var(AVAR_hat(m)), Isserlis (Gaussian noise)
+  double edf() const { return variance > 0.0 ? 2.0 * mean * mean / variance : 0.0; }
+};
+
+// `autocovariance[j]`, j = 0..N+2m-1 (generalised: additive constants cancel).
+// Precondition: 1 <= m <= N/2.
+AvarMoments ExactAvarMoments(std::span<const double> autocovariance, std::int64_t m,
+                             const sim::RecordShape& shape);
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,58 @@
+#pragma once
+// Exact expected Allan variance of discrete-time processes (THEORY.md §0 and §1d).
+// Shared by every noise term so that one quadratic-form recipe covers them all.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+
+namespace allanlab::sim {
+
+// Which Allan estimator's expectation is asked for. For stationary-increment noise both have the
+// same expectation; they differ for processes started from a zero state (Kasdin flicker) and for
+// deterministic signals.
+enum class AvarEstimatorKind { kOverlapping, kNonOverlapping };
+
+// The record an expectation refers to: N samples and the estimator applied to them.
+struct RecordShape {
+  std::int64_t num_samples = 0;
+  AvarEstimatorKind estimator = AvarEstimatorKind::kOverlapping;
+};
+
+// Start indices t of the Allan differences (ybar_{t+m} - ybar_t) the estimator averages over:
+// all t in [0, N-2m] (overlapping) or t = 0, m, 2m, ... with t + 2m <= N (non-overlapping).
+struct AllanStarts {
+  std::int64_t count = 0;   // number of differences averaged
+  std::int64_t stride = 1;  // spacing of the start indices
+};
+AllanStarts AllanDifferenceStarts(std::int64_t m, const RecordShape& shape);
+
+// Weight a(j) of lag j in the Allan quadratic form: 2m-3j for 0<=j<=m, -(2m-j) for m<j<2m.
+double AllanLagWeight(std::int64_t m, std::int64_t j);
+
+// AVAR(m) = (1/(2 m^2)) sum_{|j|<2m} a(|j|) R(j)   (THEORY.md §0).
+// `autocovariance[j]` is the (generalised) autocovariance at lag j >= 0, in rate^2; it needs at
+// least 2m entries. Additive constants in R cancel, so generalised autocovariances of random
+// walk and flicker work as they are.
+double AvarFromAutocovariance(std::int64_t m, std::span<const double> autocovariance);
+
+// Exact E[AVAR_hat(m)] of y_k = sum_v p_{k+offset-v} w_v, w iid with variance `innovation_var`,
+// for a causal impulse response p started from a zero state `offset` samples before y_0
+// (THEORY.md §1d, finite-record recipe). `cumulative_p[v] = sum_{k<=v} p_k` must cover indices
+// up to offset + N - 1.
+double FiniteRecordAvar(std::span<const double> cumulative_p, double innovation_var,
+                        std::int64_t m, std::int64_t offset, const RecordShape& shape);
+
+// Checks 1 <= m and 2m <= N; writes the reason otherwise.
+bool IsValidAveragingFactor(std::int64_t m, const RecordShape& shape, std::string* why);
+
+}  // namespace allanlab::sim
+
+namespace allanlab::sim {
+
+// Exact estimator value (1/(2 T)) sum_t D_t^2 for a deterministic signal y whose Allan differences
+// D_t vanish outside starts t in [t_lo, t_hi] (a step, a transient). `y(k)` is sample k, O(m + span).
+double DeterministicAvar(const std::function<double(std::int64_t)>& y, std::int64_t t_lo,
+                         std::int64_t t_hi, std::int64_t m, const RecordShape& shape);
+
+}  // namespace allanlab::sim

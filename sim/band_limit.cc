@@ -1,0 +1,130 @@
+#include "sim/band_limit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace allanlab::sim {
+
+bool BandLimit::IsValid(double output_rate_hz, std::string* why) const {
+  auto fail = [&](const std::string& msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!enabled()) return true;
+  if (!std::isfinite(cutoff_hz) || cutoff_hz <= 0.0) {
+    return fail("band-limit cutoff fc must be a finite number > 0 Hz");
+  }
+  if (oversampling < 1 || oversampling > 256) {
+    return fail("band-limit oversampling must be an integer in [1, 256], got " +
+                std::to_string(oversampling));
+  }
+  const double internal_nyquist = 0.5 * oversampling * output_rate_hz;
+  if (cutoff_hz >= internal_nyquist) {
+    std::ostringstream os;
+    os << "band-limit cutoff fc = " << cutoff_hz << " Hz is not below the Nyquist frequency "
+       << internal_nyquist << " Hz of the internal rate (" << oversampling << " x " << output_rate_hz
+       << " Hz)";
+    return fail(os.str());
+  }
+  return true;
+}
+
+Biquad DesignLowPass(LowPassKind kind, double cutoff_hz, double internal_rate_hz) {
+  Biquad f;
+  if (kind == LowPassKind::kFirstOrder) {
+    const double a = std::exp(-2.0 * std::numbers::pi * cutoff_hz / internal_rate_hz);
+    f.b0 = 1.0 - a;
+    f.a1 = -a;
+  } else if (kind == LowPassKind::kButterworth2) {
+    const double k = std::tan(std::numbers::pi * cutoff_hz / internal_rate_hz);
+    const double norm = 1.0 / (1.0 + std::numbers::sqrt2 * k + k * k);
+    f.b0 = k * k * norm;
+    f.b1 = 2.0 * f.b0;
+    f.b2 = f.b0;
+    f.a1 = 2.0 * (k * k - 1.0) * norm;
+    f.a2 = (1.0 - std::numbers::sqrt2 * k + k * k) * norm;
+  }
+  return f;
+}
+
+BandLimitChain::BandLimitChain(const BandLimit& limit, double output_rate_hz) : limit_(limit) {
+  const int l = limit_.oversampling;
+  const double internal_rate_hz = output_rate_hz * l;
+  internal_period_s_ = 1.0 / internal_rate_hz;
+  design_ = DesignLowPass(limit_.kind, limit_.cutoff_hz, internal_rate_hz);
+
+  // Impulse response of the filter until it has decayed to 1e-18 of its peak for a full
+  // output period (the poles are inside the unit circle, so the envelope decays).
+  std::vector<double> g;
+  Biquad f = design_;
+  double peak = 0.0;
+  int quiet = 0;
+  for (std::int64_t n = 0; n < (std::int64_t{1} << 26); ++n) {
+    const double v = f.Step(n == 0 ? 1.0 : 0.0);
+    g.push_back(v);
+    peak = std::max(peak, std::abs(v));
+    quiet = std::abs(v) < 1e-18 * peak ? quiet + 1 : 0;
+    if (quiet > 2 * l + 4) break;
+  }
+  if (limit_.sampling == OutputSampling::kAverage) {
+    std::vector<double> avg(g.size() + l - 1, 0.0);
+    for (std::size_t n = 0; n < g.size(); ++n) {
+      for (int i = 0; i < l; ++i) avg[n + i] += g[n] / l;
+    }
+    g = std::move(avg);
+  }
+  internal_response_ = g;
+
+  const std::size_t taps = (g.size() + l - 1) / l;
+  held_response_.assign(taps, 0.0);
+  for (std::size_t n = 0; n < g.size(); ++n) held_response_[n / l] += g[n];
+  held_autocorrelation_.assign(taps, 0.0);
+  for (std::size_t d = 0; d < taps; ++d) {
+    for (std::size_t a = 0; a + d < taps; ++a) {
+      held_autocorrelation_[d] += held_response_[a] * held_response_[a + d];
+    }
+  }
+  burn_in_samples_ = static_cast<std::int64_t>(taps) + 1;
+}
+
+std::complex<double> BandLimitChain::WidebandGain(double f_hz) const {
+  const double w = 2.0 * std::numbers::pi * f_hz * internal_period_s_;
+  std::complex<double> sum = 0.0;
+  for (std::size_t n = 0; n < internal_response_.size(); ++n) {
+    sum += internal_response_[n] * std::polar(1.0, -w * static_cast<double>(n));
+  }
+  return sum;
+}
+
+std::vector<double> BandLimitChain::WhiteOutputAutocovariance(double internal_variance,
+                                                              std::int64_t lags) const {
+  const auto& g = internal_response_;
+  const std::int64_t l = limit_.oversampling;
+  std::vector<double> r(static_cast<std::size_t>(lags), 0.0);
+  for (std::int64_t j = 0; j < lags; ++j) {
+    const std::int64_t shift = j * l;
+    if (shift >= static_cast<std::int64_t>(g.size())) break;
+    long double s = 0.0L;
+    for (std::size_t n = 0; n + shift < g.size(); ++n) s += g[n] * g[n + shift];
+    r[j] = static_cast<double>(internal_variance * s);
+  }
+  return r;
+}
+
+std::vector<double> BandLimitChain::HeldOutputAutocovariance(const std::vector<double>& r_in,
+                                                             std::int64_t lags) const {
+  const auto& rq = held_autocorrelation_;
+  const std::int64_t taps = static_cast<std::int64_t>(rq.size());
+  auto rx = [&](std::int64_t j) { return r_in[static_cast<std::size_t>(j < 0 ? -j : j)]; };
+  std::vector<double> r(static_cast<std::size_t>(lags));
+  for (std::int64_t j = 0; j < lags; ++j) {
+    long double s = rq[0] * static_cast<long double>(rx(j));
+    for (std::int64_t d = 1; d < taps; ++d) s += rq[d] * static_cast<long double>(rx(j + d) + rx(j - d));
+    r[j] = static_cast<double>(s);
+  }
+  return r;
+}
+
+}  // namespace allanlab::sim

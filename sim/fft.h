@@ -1,0 +1,39 @@
+#pragma once
+// Thin, thread-safe use of FFTW for real convolutions. Plans are made once per size under a lock
+// (FFTW's planner is not thread-safe) with FFTW_ESTIMATE (measured plans at 2^21 take minutes),
+// then executed through the new-array interface, which is safe from many threads at once.
+#include <complex>
+#include <cstddef>
+#include <memory>
+
+namespace allanlab::sim {
+
+// An FFTW-aligned buffer of doubles (aligned like fftw_malloc, so cached plans apply to it).
+class FftBuffer {
+ public:
+  explicit FftBuffer(std::size_t size);
+  ~FftBuffer();
+  FftBuffer(const FftBuffer&) = delete;
+  FftBuffer& operator=(const FftBuffer&) = delete;
+  FftBuffer(FftBuffer&& other) noexcept;
+  FftBuffer& operator=(FftBuffer&& other) noexcept;
+  double* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  std::complex<double>* complex_data() const {
+    return reinterpret_cast<std::complex<double>*>(data_);
+  }
+
+ private:
+  double* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+// The smallest size >= n of the form 2^a 3^b 5^c 7^d (fast for FFTW).
+std::size_t GoodFftSize(std::size_t n);
+
+// In-place real <-> half-complex transforms of length n on a buffer of n + 2 doubles.
+// Inverse is unnormalised (FFTW convention): Inverse(Forward(x)) = n x.
+void ForwardRealFft(std::size_t n, FftBuffer& buffer);
+void InverseRealFft(std::size_t n, FftBuffer& buffer);
+
+}  // namespace allanlab::sim

@@ -1,0 +1,45 @@
+#pragma once
+// Bias instability (IEEE Std 952, coefficient B): flicker (1/f) rate noise synthesised by the
+// Kasdin-Walter fractional-difference filter with alpha = 1, y = (1 - z^-1)^{-1/2} w, by FFT
+// convolution from a zero initial state (Kasdin & Walter 1992; THEORY.md §1d).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sim/avar_theory.h"
+#include "sim/term_common.h"
+
+namespace allanlab::sim {
+
+struct FlickerNoise {
+  static constexpr std::string_view kId = "bias_instability";
+  static constexpr SignalPath kPath = SignalPath::kHeld;
+
+  // B in rad/s (IEEE 952: ADEV floor = sqrt(2 ln2 / pi) B = 0.6643 B). With the Kasdin filter the
+  // innovation std equals B, whatever tau0 (one-sided PSD h_{-1} = B^2 / pi).
+  double bias_instability_rad_per_s = 0.0;
+
+  bool IsValid(std::string* why) const;
+  // y_n = sum_{k<=n} h_k w_{n-k}, h_0 = 1, h_k = h_{k-1} (k - 1/2) / k, w ~ N(0, B^2);
+  // y_{-1} = 0 (zero initial state), so the record has the finite-record deficit of §1d.
+  void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
+  // Generalised autocovariance R(k) = -(2 B^2 / pi) sum_{i=1}^{k} 1/(2i - 1) (stationary
+  // increments, i.e. without the start-up transient).
+  void FillAutocovariance(double tau0_s, std::span<double> r) const;
+  // Exact E[AVAR_hat(m)] for the generated record of shape.num_samples samples, including the
+  // +44 % excess at m = 1 and the finite-record deficit at large m (THEORY.md §1d).
+  double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
+  // Stationary-increment value (no finite-record deficit).
+  double StationaryAvar(std::int64_t m) const;
+  // IEEE 952 floor: (2 ln2 / pi) B^2.
+  double AsymptoticAvar(double tau_s) const;
+};
+
+// Kasdin-Walter coefficients h_0..h_{n-1} for alpha = 1.
+std::vector<double> KasdinCoefficients(std::int64_t n);
+// Running sums S(v) = sum_{k<=v} p_k.
+std::vector<double> CumulativeSum(std::span<const double> p);
+
+}  // namespace allanlab::sim

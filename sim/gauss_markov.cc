@@ -1,0 +1,66 @@
+#include "sim/gauss_markov.h"
+
+#include <cmath>
+#include <vector>
+
+#include <boost/random/normal_distribution.hpp>
+
+namespace allanlab::sim {
+
+double Ar1Avar(std::int64_t m, double phi, double variance) {
+  if (variance == 0.0) return 0.0;
+  const double log_phi = std::log(phi);
+  long double sum = 0.0L;  // lag 0 term of (phi^j - 1) is zero
+  for (std::int64_t j = 1; j < 2 * m; ++j) {
+    sum += 2.0L * AllanLagWeight(m, j) * std::expm1(static_cast<double>(j) * log_phi);
+  }
+  return static_cast<double>(variance * sum / (2.0L * m * m));
+}
+
+void FillAr1Autocovariance(double phi, double variance, std::span<double> r) {
+  const double log_phi = std::log(phi);
+  for (std::size_t j = 0; j < r.size(); ++j) {
+    r[j] = variance * std::expm1(static_cast<double>(j) * log_phi);
+  }
+}
+
+void AddAr1(Engine& engine, double phi, double std_dev, std::span<double> out) {
+  if (std_dev == 0.0) return;
+  boost::random::normal_distribution<double> normal(0.0, 1.0);
+  const double innovation_std = std_dev * std::sqrt(-std::expm1(2.0 * std::log(phi)));
+  double state = std_dev * normal(engine);
+  for (double& v : out) {
+    v += state;
+    state = phi * state + innovation_std * normal(engine);
+  }
+}
+
+bool GaussMarkov::IsValid(std::string* why) const {
+  return CheckNonNegative(sigma_rad_per_s, "gauss_markov sigma", why) &&
+         CheckPositive(correlation_time_s, "gauss_markov correlation time Tc", why);
+}
+
+void GaussMarkov::AddTo(Engine& engine, double tau0_s, std::span<double> rate) const {
+  AddAr1(engine, std::exp(-tau0_s / correlation_time_s), sigma_rad_per_s, rate);
+}
+
+void GaussMarkov::FillAutocovariance(double tau0_s, std::span<double> r) const {
+  FillAr1Autocovariance(std::exp(-tau0_s / correlation_time_s), sigma_rad_per_s * sigma_rad_per_s,
+                        r);
+}
+
+double GaussMarkov::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape&) const {
+  return Ar1Avar(m, std::exp(-tau0_s / correlation_time_s), sigma_rad_per_s * sigma_rad_per_s);
+}
+
+double GaussMarkov::AsymptoticAvar(double tau_s) const {
+  const double tc = correlation_time_s;
+  const double x = tau_s / tc;
+  // 3 - 4e^{-x} + e^{-2x} = 2x - x^3/3 + ... : use the series where the closed form cancels.
+  const double bracket = x < 1e-3 ? 2.0 * x * x * x / 3.0 - x * x * x * x / 2.0
+                                  : 2.0 * x - (3.0 - 4.0 * std::exp(-x) + std::exp(-2.0 * x));
+  // (2 s^2 Tc / tau)[1 - (1/(2x))(3 - 4e^-x + e^-2x)] = (s^2 / x^2) * bracket
+  return sigma_rad_per_s * sigma_rad_per_s * bracket / (x * x);
+}
+
+}  // namespace allanlab::sim

@@ -1,0 +1,270 @@
+#include "sim/sensor_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <type_traits>
+
+namespace allanlab::sim {
+namespace {
+
+template <typename T>
+concept HasAutocovariance = requires(const T& t, std::span<double> r) {
+  t.FillAutocovariance(1.0, r);
+};
+template <typename T>
+concept HasFirstIndex = requires(const T& t, Engine& e, std::span<double> r) {
+  t.AddTo(e, 1.0, r, std::int64_t{0});
+};
+
+// Expected AVAR of one term after the band-limit chain (THEORY.md §1g, generalised).
+struct ChainTheory {
+  const BandLimitChain& chain;
+  double tau0_s;
+  std::int64_t m;
+  const RecordShape& shape;
+
+  double operator()(const WhiteRateNoise& t) const {
+    const double internal_var = t.arw_rad_per_sqrt_s * t.arw_rad_per_sqrt_s /
+                                chain.internal_period_s();
+    return AvarFromAutocovariance(m, chain.WhiteOutputAutocovariance(internal_var, 2 * m));
+  }
+  double operator()(const Harmonic& t) const {
+    const std::complex<double> gain = chain.WidebandGain(t.frequency_hz);
+    std::optional<double> phase;
+    if (t.phase_rad) phase = *t.phase_rad + std::arg(gain);
+    return SampledSinusoidAvar(t.amplitude_rad_per_s * std::abs(gain), t.frequency_hz, tau0_s,
+                               phase, m, shape);
+  }
+  double operator()(const FlickerNoise& t) const {
+    // p = q * h: the Kasdin filter followed by the held-path filter, started B samples early.
+    const std::int64_t offset = chain.burn_in_samples();
+    const std::vector<double> h = KasdinCoefficients(shape.num_samples + offset);
+    const auto& q = chain.held_response();
+    std::vector<double> p(h.size(), 0.0);
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      for (std::size_t j = 0; j < q.size() && j <= i; ++j) p[i] += q[j] * h[i - j];
+    }
+    const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
+    return FiniteRecordAvar(CumulativeSum(p), b2, m, offset, shape);
+  }
+  double operator()(const ExponentialDrift& t) const {
+    return t.ExpectedAvar(m, tau0_s, shape, chain.held_response());
+  }
+  double operator()(const BiasStep& t) const {
+    return t.ExpectedAvar(m, tau0_s, shape, chain.held_response());
+  }
+  template <typename T>
+  double operator()(const T& t) const {
+    if constexpr (T::kPath == SignalPath::kDigital || std::is_same_v<T, RateRamp>) {
+      return t.ExpectedAvar(m, tau0_s, shape);  // after the filter, or filter-invariant
+    } else {
+      static_assert(HasAutocovariance<T>, "held stochastic terms need FillAutocovariance");
+      const std::int64_t lags = 2 * m;
+      std::vector<double> r_in(static_cast<std::size_t>(lags + chain.held_response().size()));
+      t.FillAutocovariance(tau0_s, r_in);
+      return AvarFromAutocovariance(m, chain.HeldOutputAutocovariance(r_in, lags));
+    }
+  }
+};
+
+}  // namespace
+
+bool SensorModel::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
+    return fail("sample rate must be a finite number > 0 Hz");
+  }
+  if (!std::isfinite(bias_rad_per_s)) return fail("bias must be finite");
+  const double tau0 = 1.0 / sample_rate_hz;
+  for (const NoiseTerm& term : terms) {
+    std::string reason;
+    const bool ok = std::visit([&](const auto& t) { return t.IsValid(&reason); }, term);
+    if (!ok) return fail(std::string(TermId(term)) + ": " + reason);
+    if (const auto* o = std::get_if<Outliers>(&term); o && o->rate_hz * tau0 > 1.0) {
+      std::ostringstream os;
+      os << "outliers: rate " << o->rate_hz << " Hz exceeds the sample rate " << sample_rate_hz
+         << " Hz (at most one spike per sample)";
+      return fail(os.str());
+    }
+  }
+  if (!band_limit.IsValid(sample_rate_hz, why)) return false;
+  if (angle_quantizer && !angle_quantizer->IsValid(why)) return false;
+  if (rate_quantizer && !rate_quantizer->IsValid(why)) return false;
+  return true;
+}
+
+std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t trial,
+                                          std::int64_t n) const {
+  const double tau0 = 1.0 / sample_rate_hz;
+  auto engine_for = [&](std::size_t i) { return MakeEngine(seed, trial, i); };
+  std::vector<double> out;
+  if (!band_limit.enabled()) {
+    out.assign(static_cast<std::size_t>(n), 0.0);
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      Engine engine = engine_for(i);
+      std::visit([&](const auto& t) { t.AddTo(engine, tau0, out); }, terms[i]);
+    }
+  } else {
+    const BandLimitChain chain(band_limit, sample_rate_hz);
+    const std::int64_t burn_in = chain.burn_in_samples();
+    const std::int64_t total = n + burn_in;
+    const int l = chain.oversampling();
+    const double tau_internal = chain.internal_period_s();
+    // Held terms at the output rate, starting burn_in samples before the record.
+    out.assign(static_cast<std::size_t>(total), 0.0);
+    std::vector<Engine> wide_engines;
+    std::vector<std::pair<const Harmonic*, double>> harmonics;
+    std::vector<const WhiteRateNoise*> whites;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      Engine engine = engine_for(i);
+      std::visit(
+          [&](const auto& t) {
+            using T = std::decay_t<decltype(t)>;
+            if constexpr (T::kPath != SignalPath::kHeld) {
+              if constexpr (std::is_same_v<T, Harmonic>) harmonics.emplace_back(&t, t.DrawPhase(engine));
+              if constexpr (std::is_same_v<T, WhiteRateNoise>) {
+                whites.push_back(&t);
+                wide_engines.push_back(engine);
+              }
+            } else if constexpr (HasFirstIndex<T>) {
+              t.AddTo(engine, tau0, out, -burn_in);
+            } else {
+              t.AddTo(engine, tau0, out);
+            }
+          },
+          terms[i]);
+    }
+    // Internal-rate chain, in chunks so the wideband buffer stays small; filtering in place is
+    // safe because output k - burn_in is written after input k has been read.
+    Biquad filter = chain.MakeFilter();
+    constexpr std::int64_t kChunk = 4096;
+    std::vector<double> wide(static_cast<std::size_t>(kChunk * l));
+    const bool average = band_limit.sampling == OutputSampling::kAverage;
+    for (std::int64_t k0 = 0; k0 < total; k0 += kChunk) {
+      const std::int64_t k1 = std::min(total, k0 + kChunk);
+      std::span<double> chunk(wide.data(), static_cast<std::size_t>((k1 - k0) * l));
+      std::fill(chunk.begin(), chunk.end(), 0.0);
+      for (std::size_t w = 0; w < whites.size(); ++w) {
+        whites[w]->AddTo(wide_engines[w], tau_internal, chunk);
+      }
+      for (const auto& [h, phase] : harmonics) {
+        h->AddSamples(phase, tau_internal, (k0 - burn_in - 1) * l + 1, chunk);
+      }
+      for (std::int64_t k = k0; k < k1; ++k) {
+        const double held = out[k];
+        const double* u = chunk.data() + (k - k0) * l;
+        double f = 0.0, acc = 0.0;
+        for (int i = 0; i < l; ++i) {
+          f = filter.Step(held + u[i]);
+          acc += f;
+        }
+        if (k >= burn_in) out[k - burn_in] = average ? acc / l : f;
+      }
+    }
+    out.resize(static_cast<std::size_t>(n));
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      std::visit(
+          [&](const auto& t) {
+            if constexpr (std::decay_t<decltype(t)>::kPath == SignalPath::kDigital) {
+              Engine engine = engine_for(i);
+              t.AddTo(engine, tau0, out);
+            }
+          },
+          terms[i]);
+    }
+  }
+  if (bias_rad_per_s != 0.0) {
+    for (double& v : out) v += bias_rad_per_s;
+  }
+  if (angle_quantizer) {
+    Engine engine = engine_for(kQuantizerStream);
+    angle_quantizer->Apply(engine, tau0, out);
+  }
+  if (rate_quantizer) rate_quantizer->Apply(out);
+  return out;
+}
+
+double SensorModel::ExpectedAvar(std::int64_t m, const RecordShape& shape) const {
+  const std::int64_t ms[] = {m};
+  return ExpectedAvar(ms, shape)[0];
+}
+
+std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
+                                              const RecordShape& shape) const {
+  const double tau0 = 1.0 / sample_rate_hz;
+  std::vector<double> result(ms.size(), 0.0);
+  std::optional<BandLimitChain> chain;
+  if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const std::int64_t m = ms[k];
+    double sum = 0.0;
+    for (const NoiseTerm& term : terms) {
+      if (chain) {
+        sum += std::visit(ChainTheory{*chain, tau0, m, shape}, term);
+      } else {
+        sum += std::visit([&](const auto& t) { return t.ExpectedAvar(m, tau0, shape); }, term);
+      }
+    }
+    if (angle_quantizer) sum += angle_quantizer->ApproximateAvar(static_cast<double>(m) * tau0);
+    if (rate_quantizer) sum += rate_quantizer->ApproximateAvar(m);
+    result[k] = sum;
+  }
+  return result;
+}
+
+std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const {
+  const double tau0 = 1.0 / sample_rate_hz;
+  std::vector<double> total(static_cast<std::size_t>(lags), 0.0);
+  std::optional<BandLimitChain> chain;
+  if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  for (const NoiseTerm& term : terms) {
+    std::visit(
+        [&](const auto& t) {
+          using T = std::decay_t<decltype(t)>;
+          if constexpr (HasAutocovariance<T>) {
+            std::vector<double> r(static_cast<std::size_t>(lags));
+            if (!chain || T::kPath == SignalPath::kDigital) {
+              t.FillAutocovariance(tau0, r);
+            } else if constexpr (std::is_same_v<T, WhiteRateNoise>) {
+              r = chain->WhiteOutputAutocovariance(
+                  t.arw_rad_per_sqrt_s * t.arw_rad_per_sqrt_s / chain->internal_period_s(), lags);
+            } else {
+              std::vector<double> r_in(r.size() + chain->held_response().size());
+              t.FillAutocovariance(tau0, r_in);
+              r = chain->HeldOutputAutocovariance(r_in, lags);
+            }
+            for (std::size_t j = 0; j < total.size(); ++j) total[j] += r[j];
+          }
+        },
+        term);
+  }
+  return total;
+}
+
+double SensorModel::AsymptoticAvar(double tau_s) const {
+  const double tau0 = 1.0 / sample_rate_hz;
+  double sum = 0.0;
+  const RecordShape long_record{std::int64_t{1} << 40, AvarEstimatorKind::kOverlapping};
+  for (const NoiseTerm& term : terms) {
+    sum += std::visit(
+        [&](const auto& t) -> double {
+          using T = std::decay_t<decltype(t)>;
+          if constexpr (std::is_same_v<T, Outliers>) {
+            return t.AsymptoticAvar(tau_s, tau0);
+          } else if constexpr (std::is_same_v<T, ExponentialDrift> || std::is_same_v<T, BiasStep>) {
+            (void)long_record;
+            return 0.0;  // transients have no tau-only asymptote
+          } else {
+            return t.AsymptoticAvar(tau_s);
+          }
+        },
+        term);
+  }
+  return sum;
+}
+
+}  // namespace allanlab::sim

@@ -1,0 +1,56 @@
+#pragma once
+// A gyro sensor model: a plain sum of noise terms, then the band-limit, then the output
+// quantizers, sampled at fs. It generates records and knows their exact expected Allan variance.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sim/avar_theory.h"
+#include "sim/band_limit.h"
+#include "sim/noise_term.h"
+#include "sim/output_quantizer.h"
+
+namespace allanlab::sim {
+
+struct SensorModel {
+  std::string name;
+  std::string description;
+  double sample_rate_hz = 100.0;  // output rate fs
+  double bias_rad_per_s = 0.0;    // constant turn-on bias (no effect on AVAR; matters to quantizers)
+  std::vector<NoiseTerm> terms;
+  BandLimit band_limit;
+  std::optional<AngleQuantizer> angle_quantizer;
+  std::optional<RateQuantizer> rate_quantizer;
+
+  // Every term valid, fs > 0, band-limit below the internal Nyquist frequency, outlier
+  // probability per sample <= 1.
+  bool IsValid(std::string* why) const;
+
+  // A record of n samples for (seed, trial). Term i draws from stream i of (seed, trial); the
+  // angle quantizer from stream kQuantizerStream. Bit-identical for the same arguments whatever
+  // the thread. Precondition: IsValid().
+  std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n) const;
+
+  // Exact E[AVAR_hat(m)] of Generate()'s records (rad/s)^2, band-limit and finite record
+  // included. With output quantizers the quantizers' share is the usual approximation (see
+  // output_quantizer.h) and ExpectedAvarIsExact() is false.
+  double ExpectedAvar(std::int64_t m, const RecordShape& shape) const;
+  // The same for a list of averaging factors (shares the per-term set-up work).
+  std::vector<double> ExpectedAvar(std::span<const std::int64_t> ms, const RecordShape& shape) const;
+  bool ExpectedAvarIsExact() const { return !angle_quantizer && !rate_quantizer; }
+
+  // Generalised autocovariance of the Gaussian (linear) part of the output at lags 0..lags-1,
+  // band-limit included, for exact estimator variances (THEORY.md §2.1). Flicker enters with its
+  // stationary-increment form (no start-up transient); deterministic terms, harmonics, outliers
+  // and quantizers are left out.
+  std::vector<double> GaussianAutocovariance(std::int64_t lags) const;
+
+  // Continuous IEEE 952 sum of the terms' asymptotes at tau (no band-limit, no quantizers).
+  double AsymptoticAvar(double tau_s) const;
+
+  static constexpr std::uint64_t kQuantizerStream = 1000;
+};
+
+}  // namespace allanlab::sim
