@@ -1,0 +1,56 @@
+#pragma once
+// An output file that appears whole or not at all. Everything is written to a temporary in the
+// destination's directory and renamed over the destination only by Commit(): a failed or
+// interrupted run never leaves a half-written file, and a file that existed before survives it.
+//
+//   AtomicFile out;
+//   if (!out.Open("trace.csv", &why)) return Fail(why);
+//   out.stream() << ...;
+//   if (!out.Commit(&why)) return Fail(why);   // the destructor discards an uncommitted file
+//
+// Commands writing several files open all of them first (so a bad path fails before any work is
+// done) and commit them last, one after the other.
+#include <fstream>
+#include <string>
+
+namespace allanlab::app {
+
+class AtomicFile {
+ public:
+  AtomicFile() = default;
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  AtomicFile(AtomicFile&& other) noexcept;
+  AtomicFile& operator=(AtomicFile&& other) noexcept;
+  ~AtomicFile();  // Discard()s unless committed.
+
+  // Creates an empty temporary "<path>.tmp.XXXXXX" next to `path` and opens stream() on it. Fails
+  // (with the path and the system's reason in *why) if the directory is missing or not writable,
+  // if `path` is a directory, or if `path` exists and is not writable. A symlink is followed, so
+  // the file it points to is replaced, not the link.
+  bool Open(const std::string& path, std::string* why);
+
+  // Binary stream on the temporary; valid from a successful Open() until Commit() or Discard().
+  std::ofstream& stream() { return stream_; }
+
+  const std::string& path() const { return path_; }
+  // The temporary's path, for writers that open the file themselves (e.g. a gnuplot child
+  // process). They must have closed it before Commit().
+  const std::string& temp_path() const { return temp_path_; }
+  bool is_open() const { return !temp_path_.empty(); }
+
+  // Closes the stream, fails if any write failed (disk full, ...), syncs the data to disk, gives
+  // the file the permissions of the file it replaces (or those of a new file under the umask) and
+  // renames it over path(). On failure the temporary is removed and path() is untouched.
+  bool Commit(std::string* why);
+
+  // Closes and removes the temporary; path() is untouched. Safe to call more than once.
+  void Discard();
+
+ private:
+  std::string path_;       // destination (symlinks resolved)
+  std::string temp_path_;  // empty when nothing is pending
+  std::ofstream stream_;
+};
+
+}  // namespace allanlab::app
