@@ -35,20 +35,19 @@ double FiniteRecordAvar(std::span<const double> cumulative_p, double innovation_
   const std::int64_t last_start = (starts.count - 1) * starts.stride;
   const std::int64_t e_max = offset + last_start + 2 * m - 1;
   auto s = [&](std::int64_t v) -> double { return v < 0 ? 0.0 : cumulative_p[v]; };
-  // G(L) = sum_{e<=L} g_e^2 with g_e = (S(e) - 2 S(e-m) + S(e-2m)) / m.
-  std::vector<long double> g_cumulative(static_cast<std::size_t>(e_max + 1));
-  long double acc = 0.0L;
+  // G(L) = sum_{e<=L} g_e^2 with g_e = (S(e) - 2 S(e-m) + S(e-2m)) / m, read at the estimator's
+  // end points L = offset + t + 2m - 1 in one pass.
+  long double g_cumulative = 0.0L, sum_at_ends = 0.0L;
+  std::int64_t next_end = offset + 2 * m - 1;
   for (std::int64_t e = 0; e <= e_max; ++e) {
     const double g = (s(e) - 2.0 * s(e - m) + s(e - 2 * m)) / static_cast<double>(m);
-    acc += static_cast<long double>(g) * g;
-    g_cumulative[e] = acc;
+    g_cumulative += static_cast<long double>(g) * g;
+    if (e == next_end) {
+      sum_at_ends += g_cumulative;
+      next_end += starts.stride;
+    }
   }
-  long double mean = 0.0L;
-  for (std::int64_t i = 0; i < starts.count; ++i) {
-    mean += g_cumulative[offset + i * starts.stride + 2 * m - 1];
-  }
-  mean /= static_cast<long double>(starts.count);
-  return static_cast<double>(0.5L * innovation_var * mean);
+  return static_cast<double>(0.5L * innovation_var * sum_at_ends / starts.count);
 }
 
 bool IsValidAveragingFactor(std::int64_t m, const RecordShape& shape, std::string* why) {

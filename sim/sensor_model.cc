@@ -17,26 +17,39 @@ concept HasFirstIndex = requires(const T& t, Engine& e, std::span<double> r) {
   t.AddTo(e, 1.0, r, std::int64_t{0});
 };
 
-// Expected AVAR of one term after the band-limit chain (THEORY.md §1g, generalised).
+// Expected AVAR of one term after the band-limit chain (THEORY.md §1g, generalised), at every
+// averaging factor of a list (set-up work such as the flicker impulse response is done once).
 struct ChainTheory {
   const BandLimitChain& chain;
   double tau0_s;
-  std::int64_t m;
+  std::span<const std::int64_t> ms;
   const RecordShape& shape;
 
-  double operator()(const WhiteRateNoise& t) const {
+  template <typename F>
+  std::vector<double> ForEachM(F&& avar_at) const {
+    std::vector<double> out;
+    out.reserve(ms.size());
+    for (std::int64_t m : ms) out.push_back(avar_at(m));
+    return out;
+  }
+
+  std::vector<double> operator()(const WhiteRateNoise& t) const {
     const double internal_var = t.arw_rad_per_sqrt_s * t.arw_rad_per_sqrt_s /
                                 chain.internal_period_s();
-    return AvarFromAutocovariance(m, chain.WhiteOutputAutocovariance(internal_var, 2 * m));
+    return ForEachM([&](std::int64_t m) {
+      return AvarFromAutocovariance(m, chain.WhiteOutputAutocovariance(internal_var, 2 * m));
+    });
   }
-  double operator()(const Harmonic& t) const {
+  std::vector<double> operator()(const Harmonic& t) const {
     const std::complex<double> gain = chain.WidebandGain(t.frequency_hz);
     std::optional<double> phase;
     if (t.phase_rad) phase = *t.phase_rad + std::arg(gain);
-    return SampledSinusoidAvar(t.amplitude_rad_per_s * std::abs(gain), t.frequency_hz, tau0_s,
-                               phase, m, shape);
+    return ForEachM([&](std::int64_t m) {
+      return SampledSinusoidAvar(t.amplitude_rad_per_s * std::abs(gain), t.frequency_hz, tau0_s,
+                                 phase, m, shape);
+    });
   }
-  double operator()(const FlickerNoise& t) const {
+  std::vector<double> operator()(const FlickerNoise& t) const {
     // p = q * h: the Kasdin filter followed by the held-path filter, started B samples early.
     const std::int64_t offset = chain.burn_in_samples();
     const std::vector<double> h = KasdinCoefficients(shape.num_samples + offset);
@@ -45,26 +58,53 @@ struct ChainTheory {
     for (std::size_t i = 0; i < h.size(); ++i) {
       for (std::size_t j = 0; j < q.size() && j <= i; ++j) p[i] += q[j] * h[i - j];
     }
+    const std::vector<double> cumulative = CumulativeSum(p);
     const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
-    return FiniteRecordAvar(CumulativeSum(p), b2, m, offset, shape);
+    return ForEachM(
+        [&](std::int64_t m) { return FiniteRecordAvar(cumulative, b2, m, offset, shape); });
   }
-  double operator()(const ExponentialDrift& t) const {
-    return t.ExpectedAvar(m, tau0_s, shape, chain.held_response());
+  std::vector<double> operator()(const ExponentialDrift& t) const {
+    return ForEachM(
+        [&](std::int64_t m) { return t.ExpectedAvar(m, tau0_s, shape, chain.held_response()); });
   }
-  double operator()(const BiasStep& t) const {
-    return t.ExpectedAvar(m, tau0_s, shape, chain.held_response());
+  std::vector<double> operator()(const BiasStep& t) const {
+    return ForEachM(
+        [&](std::int64_t m) { return t.ExpectedAvar(m, tau0_s, shape, chain.held_response()); });
   }
   template <typename T>
-  double operator()(const T& t) const {
+  std::vector<double> operator()(const T& t) const {
     if constexpr (T::kPath == SignalPath::kDigital || std::is_same_v<T, RateRamp>) {
-      return t.ExpectedAvar(m, tau0_s, shape);  // after the filter, or filter-invariant
+      // After the filter, or filter-invariant.
+      return ForEachM([&](std::int64_t m) { return t.ExpectedAvar(m, tau0_s, shape); });
     } else {
       static_assert(HasAutocovariance<T>, "held stochastic terms need FillAutocovariance");
-      const std::int64_t lags = 2 * m;
-      std::vector<double> r_in(static_cast<std::size_t>(lags + chain.held_response().size()));
-      t.FillAutocovariance(tau0_s, r_in);
-      return AvarFromAutocovariance(m, chain.HeldOutputAutocovariance(r_in, lags));
+      return ForEachM([&](std::int64_t m) {
+        std::vector<double> r_in(static_cast<std::size_t>(2 * m) + chain.held_response().size());
+        t.FillAutocovariance(tau0_s, r_in);
+        return AvarFromAutocovariance(m, chain.HeldOutputAutocovariance(r_in, 2 * m));
+      });
     }
+  }
+};
+
+// Without a band-limit every term's own exact theory applies.
+struct DirectTheory {
+  double tau0_s;
+  std::span<const std::int64_t> ms;
+  const RecordShape& shape;
+
+  std::vector<double> operator()(const FlickerNoise& t) const {
+    const std::vector<double> cumulative = CumulativeSum(KasdinCoefficients(shape.num_samples));
+    const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
+    std::vector<double> out;
+    for (std::int64_t m : ms) out.push_back(FiniteRecordAvar(cumulative, b2, m, 0, shape));
+    return out;
+  }
+  template <typename T>
+  std::vector<double> operator()(const T& t) const {
+    std::vector<double> out;
+    for (std::int64_t m : ms) out.push_back(t.ExpectedAvar(m, tau0_s, shape));
+    return out;
   }
 };
 
@@ -199,19 +239,14 @@ std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
   std::vector<double> result(ms.size(), 0.0);
   std::optional<BandLimitChain> chain;
   if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  for (const NoiseTerm& term : terms) {
+    const std::vector<double> part = chain ? std::visit(ChainTheory{*chain, tau0, ms, shape}, term)
+                                           : std::visit(DirectTheory{tau0, ms, shape}, term);
+    for (std::size_t k = 0; k < ms.size(); ++k) result[k] += part[k];
+  }
   for (std::size_t k = 0; k < ms.size(); ++k) {
-    const std::int64_t m = ms[k];
-    double sum = 0.0;
-    for (const NoiseTerm& term : terms) {
-      if (chain) {
-        sum += std::visit(ChainTheory{*chain, tau0, m, shape}, term);
-      } else {
-        sum += std::visit([&](const auto& t) { return t.ExpectedAvar(m, tau0, shape); }, term);
-      }
-    }
-    if (angle_quantizer) sum += angle_quantizer->ApproximateAvar(static_cast<double>(m) * tau0);
-    if (rate_quantizer) sum += rate_quantizer->ApproximateAvar(m);
-    result[k] = sum;
+    if (angle_quantizer) result[k] += angle_quantizer->ApproximateAvar(static_cast<double>(ms[k]) * tau0);
+    if (rate_quantizer) result[k] += rate_quantizer->ApproximateAvar(ms[k]);
   }
   return result;
 }

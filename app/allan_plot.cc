@@ -1,0 +1,275 @@
+#include "app/allan_plot.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "app/provenance.h"
+
+extern char** environ;
+
+namespace allanlab::app {
+namespace {
+
+constexpr const char* kGnuplot = "gnuplot";
+constexpr const char* kInstallHint =
+    "gnuplot not found on PATH; install it (e.g. apt-get install gnuplot-nox) or drop --plot";
+
+bool Fail(std::string* why, const std::string& message) {
+  if (why) *why = message;
+  return false;
+}
+
+// A scratch file in the system temp directory, removed when it goes out of scope.
+class ScratchFile {
+ public:
+  bool Create(std::string* why) {
+    std::error_code ec;
+    std::string templ = (std::filesystem::temp_directory_path(ec) / "allanlab-plot.XXXXXX").string();
+    if (ec) templ = "/tmp/allanlab-plot.XXXXXX";
+    std::vector<char> buffer(templ.begin(), templ.end());
+    buffer.push_back('\0');
+    fd_ = ::mkstemp(buffer.data());
+    if (fd_ < 0) return Fail(why, "cannot create a temporary file: " + std::string(std::strerror(errno)));
+    path_ = buffer.data();
+    return true;
+  }
+  ~ScratchFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!path_.empty()) std::remove(path_.c_str());
+  }
+  const std::string& path() const { return path_; }
+  int fd() const { return fd_; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+// gnuplot single-quoted strings take everything literally except '' for a quote.
+std::string Quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') out += '\'';
+    if (c == '\n' || c == '\r') c = ' ';
+    out += c;
+  }
+  return out + "'";
+}
+
+bool Plottable(double x, double y) { return std::isfinite(x) && std::isfinite(y) && x > 0 && y > 0; }
+
+std::string SlopeLabel(double slope) {
+  if (slope == 0.0) return "0";
+  const std::string sign = slope > 0 ? "+" : "-";
+  const double magnitude = std::abs(slope);
+  if (magnitude == std::round(magnitude)) return sign + ShortestDecimal(magnitude);
+  if (2 * magnitude == std::round(2 * magnitude)) {
+    return sign + ShortestDecimal(2 * magnitude) + "/2";
+  }
+  return sign + ShortestDecimal(magnitude);
+}
+
+const char* Color(std::size_t index) {
+  static const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                        "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  return kColors[index % (sizeof kColors / sizeof kColors[0])];
+}
+
+std::string Script(const AllanPlot& plot, const std::string& output_path) {
+  std::vector<const PlotSeries*> kept;
+  std::vector<std::vector<std::pair<double, double>>> points;
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = 0;
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = 0;
+  const std::vector<std::pair<double, double>>* guide_points = nullptr;
+  for (std::size_t s = 0; s < plot.series.size(); ++s) {
+    const PlotSeries& series = plot.series[s];
+    std::vector<std::pair<double, double>> valid;
+    for (std::size_t i = 0; i < std::min(series.x.size(), series.y.size()); ++i) {
+      if (!Plottable(series.x[i], series.y[i])) continue;
+      valid.emplace_back(series.x[i], series.y[i]);
+      x_lo = std::min(x_lo, series.x[i]);
+      x_hi = std::max(x_hi, series.x[i]);
+      y_lo = std::min(y_lo, series.y[i]);
+      y_hi = std::max(y_hi, series.y[i]);
+    }
+    if (valid.empty()) continue;
+    kept.push_back(&series);
+    points.push_back(std::move(valid));
+    if (static_cast<int>(s) == plot.guide_series) guide_points = &points.back();
+  }
+  // Guides must not stretch the axes, so the ranges come from the data alone.
+  if (x_hi <= x_lo) x_hi = x_lo * 2;
+  if (y_hi <= y_lo) y_hi = y_lo * 2;
+  std::ostringstream os;
+  os << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+     << "  set terminal pngcairo noenhanced size " << plot.width_px << "," << plot.height_px
+     << " font ',10'\n"
+     << "} else {\n"
+     << "  set terminal png noenhanced size " << plot.width_px << "," << plot.height_px << "\n"
+     << "}\n"
+     << "set output " << Quoted(output_path) << "\n"
+     << "set title " << Quoted(plot.title) << "\n"
+     << "set xlabel " << Quoted(plot.x_label) << "\n"
+     << "set ylabel " << Quoted(plot.y_label) << "\n"
+     << "set logscale xy\n"
+     << "set format x '%g'\nset format y '%g'\n"
+     << "set grid xtics ytics mxtics mytics lc rgb '#e8e8e8' lw 1\n"
+     << "set key top right opaque\n"
+     << "set samples 200\n"
+     << "set xrange [" << ShortestDecimal(x_lo / 1.5) << ":" << ShortestDecimal(x_hi * 1.5) << "]\n"
+     << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
+  for (std::size_t s = 0; s < points.size(); ++s) {
+    os << "$s" << s << " << EOD\n";
+    for (const auto& [x, y] : points[s]) os << ShortestDecimal(x) << " " << ShortestDecimal(y) << "\n";
+    os << "EOD\n";
+  }
+  std::vector<std::string> clauses;
+  if (guide_points) {
+    for (std::size_t g = 0; g < plot.slope_guides.size(); ++g) {
+      const double slope = plot.slope_guides[g];
+      // log y = c + slope log x with c the smallest intercept over the points: the line touches
+      // the curve at one point and stays below it elsewhere.
+      double best = std::numeric_limits<double>::infinity();
+      double touch_x = 0, touch_y = 0;
+      for (const auto& [x, y] : *guide_points) {
+        const double c = std::log(y) - slope * std::log(x);
+        if (c < best) {
+          best = c;
+          touch_x = x;
+          touch_y = y;
+        }
+      }
+      os << "g" << g << "(x) = " << ShortestDecimal(std::exp(best)) << " * x**("
+         << ShortestDecimal(slope) << ")\n";
+      os << "set label " << g + 1 << " " << Quoted(SlopeLabel(slope)) << " at "
+         << ShortestDecimal(touch_x) << "," << ShortestDecimal(touch_y / 1.35)
+         << " center textcolor rgb '#a0a0a0' font ',8'\n";
+      clauses.push_back("g" + std::to_string(g) + "(x) with lines lc rgb '#c8c8c8' dt 3 notitle");
+    }
+  }
+  for (std::size_t s = 0; s < kept.size(); ++s) {
+    std::string style;
+    switch (kept[s]->style) {
+      case PlotStyle::kPoints:
+        style = "with points pt 7 ps 1.1";
+        break;
+      case PlotStyle::kLine:
+        style = "with lines lw 2";
+        break;
+      case PlotStyle::kDashedLine:
+        style = "with lines lw 1.5 dt 2";
+        break;
+    }
+    clauses.push_back("$s" + std::to_string(s) + " using 1:2 " + style + " lc rgb '" + Color(s) +
+                      "' title " + Quoted(kept[s]->title));
+  }
+  os << "plot ";
+  for (std::size_t i = 0; i < clauses.size(); ++i) {
+    os << (i ? ", \\\n     " : "") << clauses[i];
+  }
+  os << "\nunset output\n";
+  return os.str();
+}
+
+// The first line of gnuplot's stderr that says what went wrong, for a one-line message.
+std::string FirstErrorLine(const std::string& log_path) {
+  std::ifstream log(log_path);
+  std::string line, first;
+  while (std::getline(log, line)) {
+    if (line.find_first_not_of(" \t^") == std::string::npos) continue;
+    if (first.empty()) first = line;
+    if (line.find("rror") != std::string::npos) return line;
+  }
+  return first.empty() ? "no message" : first;
+}
+
+}  // namespace
+
+bool FindGnuplot(std::string* why) {
+  const char* path = std::getenv("PATH");
+  std::string_view dirs = path ? path : "";
+  while (true) {
+    const std::size_t colon = dirs.find(':');
+    std::string dir(dirs.substr(0, colon));
+    if (dir.empty()) dir = ".";
+    const std::string candidate = dir + "/" + kGnuplot;
+    struct stat st;
+    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0) {
+      return true;
+    }
+    if (colon == std::string_view::npos) break;
+    dirs.remove_prefix(colon + 1);
+  }
+  return Fail(why, kInstallHint);
+}
+
+bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
+  if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
+  bool any = false;
+  for (const PlotSeries& s : plot.series) {
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) any |= Plottable(s.x[i], s.y[i]);
+  }
+  if (!any) return Fail(why, "nothing to plot: no positive, finite point in any series");
+  png->stream().close();
+
+  ScratchFile script, log;
+  if (!script.Create(why) || !log.Create(why)) return false;
+  const std::string text = Script(plot, png->temp_path());
+  if (::write(script.fd(), text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
+    return Fail(why, "cannot write the gnuplot script: " + std::string(std::strerror(errno)));
+  }
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, log.fd(), STDERR_FILENO);
+  std::string script_path = script.path();
+  std::string program = kGnuplot;
+  char* argv[] = {program.data(), script_path.data(), nullptr};
+  pid_t pid = 0;
+  const int spawn_error = ::posix_spawnp(&pid, kGnuplot, &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error == ENOENT) return Fail(why, kInstallHint);
+  if (spawn_error != 0) {
+    return Fail(why, "cannot run gnuplot: " + std::string(std::strerror(spawn_error)));
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return Fail(why, "lost the gnuplot process: " + std::string(std::strerror(errno)));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    // posix_spawnp may report a failed exec only through exit status 127.
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return Fail(why, kInstallHint);
+    return Fail(why, "gnuplot failed: " + FirstErrorLine(log.path()));
+  }
+  struct stat st;
+  if (::stat(png->temp_path().c_str(), &st) != 0 || st.st_size == 0) {
+    return Fail(why, "gnuplot wrote no image: " + FirstErrorLine(log.path()));
+  }
+  return true;
+}
+
+bool WriteAllanPlotPng(const AllanPlot& plot, const std::string& png_path, std::string* why) {
+  AtomicFile png;
+  return png.Open(png_path, why) && RenderAllanPlot(plot, &png, why) && png.Commit(why);
+}
+
+}  // namespace allanlab::app

@@ -1,0 +1,49 @@
+#pragma once
+// A log-log Allan diagram rendered to PNG by gnuplot: any number of series (points, lines, dashed
+// lines) plus faint slope guides. Reusable by every command that draws Allan curves.
+#include <string>
+#include <vector>
+
+#include "app/atomic_file.h"
+
+namespace allanlab::app {
+
+enum class PlotStyle { kPoints, kLine, kDashedLine };
+
+struct PlotSeries {
+  std::string title;  // key entry
+  PlotStyle style = PlotStyle::kLine;
+  std::vector<double> x;  // tau [s]
+  std::vector<double> y;  // same length as x, in the unit of AllanPlot::y_label
+};
+
+struct AllanPlot {
+  std::string title;
+  std::string x_label = "tau [s]";
+  std::string y_label = "Allan deviation [deg/h]";
+  // Drawn in order, later ones on top. Points that a log axis cannot show (<= 0, NaN, inf) are
+  // skipped; a series left empty is dropped.
+  std::vector<PlotSeries> series;
+  // Log-log slopes of the faint guide lines. Each guide is the line of that slope that touches
+  // series[guide_series] from below (the tangent of the slope method, IEEE 952 Annex C), so a
+  // guide hugs the curve where that noise type dominates. guide_series < 0: no guides.
+  std::vector<double> slope_guides = {-1.0, -0.5, 0.0, 0.5, 1.0};
+  int guide_series = 0;
+  int width_px = 900;
+  int height_px = 650;
+};
+
+// Checks that an executable `gnuplot` is on PATH, so that a command can refuse to start work it
+// could not finish. The message says how to get gnuplot.
+bool FindGnuplot(std::string* why);
+
+// Renders `plot` with gnuplot (pngcairo terminal when available, else png) into png->temp_path().
+// `png` must be open; the caller commits it (with the command's other outputs) or discards it.
+// Fails with gnuplot's first error line when gnuplot is missing, fails, or writes nothing.
+bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why);
+
+// RenderAllanPlot into a file of its own: on any failure, no file at `png_path` is created or
+// changed.
+bool WriteAllanPlotPng(const AllanPlot& plot, const std::string& png_path, std::string* why);
+
+}  // namespace allanlab::app
