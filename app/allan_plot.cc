@@ -40,12 +40,14 @@ class ScratchFile {
  public:
   bool Create(std::string* why) {
     std::error_code ec;
-    std::string templ = (std::filesystem::temp_directory_path(ec) / "allanlab-plot.XXXXXX").string();
+    std::string templ =
+        (std::filesystem::temp_directory_path(ec) / "allanlab-plot.XXXXXX").string();
     if (ec) templ = "/tmp/allanlab-plot.XXXXXX";
     std::vector<char> buffer(templ.begin(), templ.end());
     buffer.push_back('\0');
     fd_ = ::mkstemp(buffer.data());
-    if (fd_ < 0) return Fail(why, "cannot create a temporary file: " + std::string(std::strerror(errno)));
+    if (fd_ < 0)
+      return Fail(why, "cannot create a temporary file: " + std::string(std::strerror(errno)));
     path_ = buffer.data();
     return true;
   }
@@ -72,7 +74,9 @@ std::string Quoted(const std::string& text) {
   return out + "'";
 }
 
-bool Plottable(double x, double y) { return std::isfinite(x) && std::isfinite(y) && x > 0 && y > 0; }
+bool Plottable(double x, double y) {
+  return std::isfinite(x) && std::isfinite(y) && x > 0 && y > 0;
+}
 
 std::string SlopeLabel(double slope) {
   if (slope == 0.0) return "0";
@@ -96,7 +100,7 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   std::vector<std::vector<std::pair<double, double>>> points;
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = 0;
   double y_lo = std::numeric_limits<double>::infinity(), y_hi = 0;
-  const std::vector<std::pair<double, double>>* guide_points = nullptr;
+  int guide_index = -1;  // into points
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     const PlotSeries& series = plot.series[s];
     std::vector<std::pair<double, double>> valid;
@@ -111,7 +115,7 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
     if (valid.empty()) continue;
     kept.push_back(&series);
     points.push_back(std::move(valid));
-    if (static_cast<int>(s) == plot.guide_series) guide_points = &points.back();
+    if (static_cast<int>(s) == plot.guide_series) guide_index = static_cast<int>(points.size()) - 1;
   }
   // Guides must not stretch the axes, so the ranges come from the data alone.
   if (x_hi <= x_lo) x_hi = x_lo * 2;
@@ -136,18 +140,19 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
      << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
   for (std::size_t s = 0; s < points.size(); ++s) {
     os << "$s" << s << " << EOD\n";
-    for (const auto& [x, y] : points[s]) os << ShortestDecimal(x) << " " << ShortestDecimal(y) << "\n";
+    for (const auto& [x, y] : points[s])
+      os << ShortestDecimal(x) << " " << ShortestDecimal(y) << "\n";
     os << "EOD\n";
   }
   std::vector<std::string> clauses;
-  if (guide_points) {
+  if (guide_index >= 0) {
     for (std::size_t g = 0; g < plot.slope_guides.size(); ++g) {
       const double slope = plot.slope_guides[g];
       // log y = c + slope log x with c the smallest intercept over the points: the line touches
       // the curve at one point and stays below it elsewhere.
       double best = std::numeric_limits<double>::infinity();
       double touch_x = 0, touch_y = 0;
-      for (const auto& [x, y] : *guide_points) {
+      for (const auto& [x, y] : points[guide_index]) {
         const double c = std::log(y) - slope * std::log(x);
         if (c < best) {
           best = c;
@@ -157,10 +162,16 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
       }
       os << "g" << g << "(x) = " << ShortestDecimal(std::exp(best)) << " * x**("
          << ShortestDecimal(slope) << ")\n";
-      os << "set label " << g + 1 << " " << Quoted(SlopeLabel(slope)) << " at "
-         << ShortestDecimal(touch_x) << "," << ShortestDecimal(touch_y / 1.35)
-         << " center textcolor rgb '#a0a0a0' font ',8'\n";
-      clauses.push_back("g" + std::to_string(g) + "(x) with lines lc rgb '#c8c8c8' dt 3 notitle");
+      // Guides often share a touching point (a curve end), so each label sits on its own line a
+      // factor 3 in tau away from it, towards the inside of the plot, just under the line.
+      const double label_x = touch_x * 3 <= x_hi ? touch_x * 3 : touch_x / 3;
+      const double label_y = touch_y * std::pow(label_x / touch_x, slope) / 1.3;
+      if (label_y > y_lo / 2 && label_y < y_hi * 2) {
+        os << "set label " << g + 1 << " " << Quoted(SlopeLabel(slope)) << " at "
+           << ShortestDecimal(label_x) << "," << ShortestDecimal(label_y)
+           << " center textcolor rgb '#909090' font ',8'\n";
+      }
+      clauses.push_back("g" + std::to_string(g) + "(x) with lines lc rgb '#b8b8b8' dt 3 notitle");
     }
   }
   for (std::size_t s = 0; s < kept.size(); ++s) {
@@ -206,9 +217,11 @@ bool FindGnuplot(std::string* why) {
   std::string_view dirs = path ? path : "";
   while (true) {
     const std::size_t colon = dirs.find(':');
-    std::string dir(dirs.substr(0, colon));
-    if (dir.empty()) dir = ".";
-    const std::string candidate = dir + "/" + kGnuplot;
+    // An empty PATH entry means the current directory.
+    const std::filesystem::path dir = colon == 0 || dirs.empty()
+                                          ? std::filesystem::path(".")
+                                          : std::filesystem::path(dirs.substr(0, colon));
+    const std::string candidate = (dir / kGnuplot).string();
     struct stat st;
     if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
         ::access(candidate.c_str(), X_OK) == 0) {
@@ -224,7 +237,8 @@ bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
   if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
   bool any = false;
   for (const PlotSeries& s : plot.series) {
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) any |= Plottable(s.x[i], s.y[i]);
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
+      any |= Plottable(s.x[i], s.y[i]);
   }
   if (!any) return Fail(why, "nothing to plot: no positive, finite point in any series");
   png->stream().close();
@@ -253,7 +267,8 @@ bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
   }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return Fail(why, "lost the gnuplot process: " + std::string(std::strerror(errno)));
+    if (errno != EINTR)
+      return Fail(why, "lost the gnuplot process: " + std::string(std::strerror(errno)));
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     // posix_spawnp may report a failed exec only through exit status 127.

@@ -39,8 +39,8 @@ std::string QuotedCommandLine(int argc, const char* const* argv);
 // Newlines inside values become spaces so that each field stays on one comment line.
 std::string ProvenanceCommentLines(const Provenance& provenance);
 
-// The same content as a JSON object, in the same order (keys: command, version, git_sha, build_type, utc_date,
-// command_line, and every field).
+// The same content as a JSON object, in the same order (keys: command, version, git_sha,
+// build_type, utc_date, command_line, and every field).
 nlohmann::ordered_json ProvenanceJson(const Provenance& provenance);
 
 // Shortest decimal text that reads back to exactly `value` ("0.1", "1e-07", "nan").

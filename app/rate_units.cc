@@ -5,7 +5,8 @@
 namespace allanlab::app {
 
 bool ParseRateUnit(std::string_view text, RateUnit* unit, std::string* why) {
-  for (RateUnit candidate : {RateUnit::kDegPerSecond, RateUnit::kDegPerHour, RateUnit::kRadPerSecond}) {
+  for (RateUnit candidate :
+       {RateUnit::kDegPerSecond, RateUnit::kDegPerHour, RateUnit::kRadPerSecond}) {
     if (text == RateUnitName(candidate)) {
       *unit = candidate;
       return true;

@@ -1,0 +1,89 @@
+#include "app/allan_plot.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace allanlab::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ReadAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+AllanPlot WhiteNoisePlot() {
+  AllanPlot plot;
+  plot.title = "white noise, seed 'quoted'";
+  PlotSeries line{"exact", PlotStyle::kLine, {}, {}};
+  PlotSeries points{"simulated", PlotStyle::kPoints, {}, {}};
+  for (double tau = 0.01; tau < 100; tau *= 2) {
+    line.x.push_back(tau);
+    line.y.push_back(0.1 / std::sqrt(tau));
+    points.x.push_back(tau);
+    points.y.push_back(0.1 / std::sqrt(tau) * (1 + 0.05 * std::sin(tau)));
+  }
+  points.x.push_back(1.0);
+  points.y.push_back(0.0);  // not drawable on a log axis: skipped, not an error
+  plot.series = {line, points};
+  return plot;
+}
+
+class AllanPlotTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string templ = (fs::path(::testing::TempDir()) / "allan_plot_test.XXXXXX").string();
+    ASSERT_NE(::mkdtemp(templ.data()), nullptr);
+    dir_ = templ;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(AllanPlotTest, WritesAPng) {
+  std::string why;
+  if (!FindGnuplot(&why)) GTEST_SKIP() << why;
+  ASSERT_TRUE(WriteAllanPlotPng(WhiteNoisePlot(), (dir_ / "plot.png").string(), &why)) << why;
+  const std::string png = ReadAll(dir_ / "plot.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST_F(AllanPlotTest, MissingGnuplotFailsClearlyAndKeepsTheOldFile) {
+  { std::ofstream(dir_ / "plot.png") << "old"; }
+  const std::string saved_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", (dir_ / "empty_bin").string().c_str(), 1);
+  std::string find_why, write_why;
+  const bool found = FindGnuplot(&find_why);
+  const bool wrote = WriteAllanPlotPng(WhiteNoisePlot(), (dir_ / "plot.png").string(), &write_why);
+  ::setenv("PATH", saved_path.c_str(), 1);
+  EXPECT_FALSE(found);
+  EXPECT_NE(find_why.find("gnuplot"), std::string::npos) << find_why;
+  EXPECT_FALSE(wrote);
+  EXPECT_NE(write_why.find("gnuplot"), std::string::npos) << write_why;
+  EXPECT_EQ(ReadAll(dir_ / "plot.png"), "old");
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++entries;
+  EXPECT_EQ(entries, 1) << "a temporary was left behind";
+}
+
+TEST_F(AllanPlotTest, NothingDrawableIsAnErrorAndWritesNothing) {
+  AllanPlot plot;
+  plot.series = {PlotSeries{"empty", PlotStyle::kLine, {1.0, 2.0}, {0.0, -1.0}}};
+  std::string why;
+  EXPECT_FALSE(WriteAllanPlotPng(plot, (dir_ / "plot.png").string(), &why));
+  EXPECT_FALSE(why.empty());
+  EXPECT_FALSE(fs::exists(dir_ / "plot.png"));
+}
+
+}  // namespace
+}  // namespace allanlab::app
