@@ -5,11 +5,10 @@
 #include <ctime>
 #include <system_error>
 
+#include "allanlab_git_sha.h"  // generated at build time by cmake/GitSha.cmake
+
 #ifndef ALLANLAB_VERSION
 #define ALLANLAB_VERSION "unknown"
-#endif
-#ifndef ALLANLAB_GIT_SHA
-#define ALLANLAB_GIT_SHA "unknown"
 #endif
 #ifndef ALLANLAB_BUILD_TYPE
 #define ALLANLAB_BUILD_TYPE "unknown"

@@ -28,12 +28,14 @@ class FftBuffer {
   std::size_t size_ = 0;
 };
 
-// The smallest size >= n of the form 2^a 3^b 5^c 7^d (fast for FFTW).
+// The smallest size >= n of the form 2^a 3^b 5^c 7^d (fast for FFTW). Real transforms need an
+// even length: use 2 * GoodFftSize(m) for m >= n / 2.
 std::size_t GoodFftSize(std::size_t n);
 
-// In-place real <-> half-complex transforms of length n on a buffer of n + 2 doubles.
-// Inverse is unnormalised (FFTW convention): Inverse(Forward(x)) = n x.
-void ForwardRealFft(std::size_t n, FftBuffer& buffer);
-void InverseRealFft(std::size_t n, FftBuffer& buffer);
+// In-place real <-> half-complex transforms of even length n on n + 2 doubles at `data` (any
+// 16-byte-aligned allocation), laid out as FFTW's r2c: X_0..X_{n/2} as complex pairs. Inverse is
+// unnormalised (FFTW convention): Inverse(Forward(x)) = n x.
+void ForwardRealFft(std::size_t n, double* data);
+void InverseRealFft(std::size_t n, double* data);
 
 }  // namespace allanlab::sim

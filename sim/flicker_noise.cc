@@ -36,10 +36,11 @@ std::shared_ptr<const FftBuffer> KasdinSpectrum(std::size_t n, std::size_t fft_l
     }
   }
   auto buffer = std::make_shared<FftBuffer>(fft_length + 2);
-  const std::vector<double> h = KasdinCoefficients(static_cast<std::int64_t>(n));
-  std::fill(buffer->data(), buffer->data() + fft_length + 2, 0.0);
-  std::copy(h.begin(), h.end(), buffer->data());
-  ForwardRealFft(fft_length, *buffer);
+  double* h = buffer->data();  // Kasdin coefficients written in place: no second array
+  std::fill(h, h + fft_length + 2, 0.0);
+  h[0] = 1.0;
+  for (std::size_t k = 1; k < n; ++k) h[k] = h[k - 1] * (static_cast<double>(k) - 0.5) / k;
+  ForwardRealFft(fft_length, buffer->data());
   std::lock_guard<std::mutex> lock(mutex);
   cache.push_front({n, fft_length, buffer});
   if (cache.size() > kCapacity) cache.pop_back();
@@ -66,23 +67,35 @@ bool FlickerNoise::IsValid(std::string* why) const {
   return CheckNonNegative(bias_instability_rad_per_s, "bias instability B", why);
 }
 
-void FlickerNoise::AddTo(Engine& engine, double, std::span<double> rate) const {
-  const std::size_t n = rate.size();
-  if (n == 0 || bias_instability_rad_per_s == 0.0) return;
-  const std::size_t fft_length = GoodFftSize(2 * n);
+std::size_t FlickerNoise::WorkSize(std::size_t n) { return 2 * GoodFftSize(n) + 2; }
+
+void FlickerNoise::SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work) const {
+  if (n == 0) return;
+  if (bias_instability_rad_per_s == 0.0) {
+    std::fill(work.begin(), work.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
+    return;
+  }
+  const std::size_t fft_length = WorkSize(n) - 2;
   const auto spectrum = KasdinSpectrum(n, fft_length);
-  FftBuffer work(fft_length + 2);
   boost::random::normal_distribution<double> normal(0.0, 1.0);
   double* x = work.data();
   for (std::size_t i = 0; i < n; ++i) x[i] = normal(engine);
   std::fill(x + n, x + fft_length + 2, 0.0);
-  ForwardRealFft(fft_length, work);
-  std::complex<double>* w = work.complex_data();
+  ForwardRealFft(fft_length, x);
+  auto* w = reinterpret_cast<std::complex<double>*>(x);
   const std::complex<double>* h = spectrum->complex_data();
   for (std::size_t k = 0; k <= fft_length / 2; ++k) w[k] *= h[k];
-  InverseRealFft(fft_length, work);
+  InverseRealFft(fft_length, x);
   const double scale = bias_instability_rad_per_s / static_cast<double>(fft_length);
-  for (std::size_t i = 0; i < n; ++i) rate[i] += scale * x[i];
+  for (std::size_t i = 0; i < n; ++i) x[i] *= scale;
+}
+
+void FlickerNoise::AddTo(Engine& engine, double, std::span<double> rate) const {
+  const std::size_t n = rate.size();
+  if (n == 0 || bias_instability_rad_per_s == 0.0) return;
+  FftBuffer work(WorkSize(n));
+  SynthesizeInPlace(engine, n, std::span<double>(work.data(), work.size()));
+  for (std::size_t i = 0; i < n; ++i) rate[i] += work.data()[i];
 }
 
 void FlickerNoise::FillAutocovariance(double, std::span<double> r) const {

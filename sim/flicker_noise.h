@@ -25,6 +25,12 @@ struct FlickerNoise {
   // y_n = sum_{k<=n} h_k w_{n-k}, h_0 = 1, h_k = h_{k-1} (k - 1/2) / k, w ~ N(0, B^2);
   // y_{-1} = 0 (zero initial state), so the record has the finite-record deficit of §1d.
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
+  // Doubles a work buffer needs for SynthesizeInPlace of n samples.
+  static std::size_t WorkSize(std::size_t n);
+  // Writes (not adds) the n samples AddTo would add into work[0..n), using all of `work`
+  // (size >= WorkSize(n)) as FFT space: a caller that keeps the record in `work` needs no second
+  // record-sized buffer (this halves simulate's peak memory).
+  void SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work) const;
   // Generalised autocovariance R(k) = -(2 B^2 / pi) sum_{i=1}^{k} 1/(2i - 1) (stationary
   // increments, i.e. without the start-up transient).
   void FillAutocovariance(double tau0_s, std::span<double> r) const;

@@ -50,9 +50,10 @@ struct ChainTheory {
     });
   }
   std::vector<double> operator()(const FlickerNoise& t) const {
-    // p = q * h: the Kasdin filter followed by the held-path filter, started B samples early.
-    const std::int64_t offset = chain.burn_in_samples();
-    const std::vector<double> h = KasdinCoefficients(shape.num_samples + offset);
+    // p = q * h: the Kasdin filter (zero state before the first output sample) followed by the
+    // held-path filter.
+    const std::int64_t offset = 0;
+    const std::vector<double> h = KasdinCoefficients(shape.num_samples);
     const auto& q = chain.held_response();
     std::vector<double> p(h.size(), 0.0);
     for (std::size_t i = 0; i < h.size(); ++i) {
@@ -141,25 +142,44 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
                                           std::int64_t n) const {
   const double tau0 = 1.0 / sample_rate_hz;
   auto engine_for = [&](std::size_t i) { return MakeEngine(seed, trial, i); };
+  std::optional<BandLimitChain> chain;
+  if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  const std::int64_t burn_in = chain ? chain->burn_in_samples() : 0;
+  const std::int64_t total = n + burn_in;
+  // The record starts as the FFT work space of the first Kasdin flicker term (when there is one),
+  // so a whole simulation holds one record-sized buffer besides the cached filter spectrum.
+  // Flicker starts from its zero state at the first output sample (its burn-in samples are the
+  // zero state itself), which keeps its FFT length at 2n: a power of two when n is.
   std::vector<double> out;
-  if (!band_limit.enabled()) {
-    out.assign(static_cast<std::size_t>(n), 0.0);
+  std::size_t in_place_term = terms.size();
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (const auto* f = std::get_if<FlickerNoise>(&terms[i])) {
+      const auto samples = static_cast<std::size_t>(n);
+      out.resize(std::max(FlickerNoise::WorkSize(samples), static_cast<std::size_t>(total)));
+      Engine engine = engine_for(i);
+      f->SynthesizeInPlace(engine, samples, out);
+      std::copy_backward(out.begin(), out.begin() + n, out.begin() + total);
+      std::fill(out.begin(), out.begin() + burn_in, 0.0);
+      in_place_term = i;
+      break;
+    }
+  }
+  out.resize(static_cast<std::size_t>(total), 0.0);
+  if (!chain) {
     for (std::size_t i = 0; i < terms.size(); ++i) {
+      if (i == in_place_term) continue;
       Engine engine = engine_for(i);
       std::visit([&](const auto& t) { t.AddTo(engine, tau0, out); }, terms[i]);
     }
   } else {
-    const BandLimitChain chain(band_limit, sample_rate_hz);
-    const std::int64_t burn_in = chain.burn_in_samples();
-    const std::int64_t total = n + burn_in;
-    const int l = chain.oversampling();
-    const double tau_internal = chain.internal_period_s();
+    const int l = chain->oversampling();
+    const double tau_internal = chain->internal_period_s();
     // Held terms at the output rate, starting burn_in samples before the record.
-    out.assign(static_cast<std::size_t>(total), 0.0);
     std::vector<Engine> wide_engines;
     std::vector<std::pair<const Harmonic*, double>> harmonics;
     std::vector<const WhiteRateNoise*> whites;
     for (std::size_t i = 0; i < terms.size(); ++i) {
+      if (i == in_place_term) continue;
       Engine engine = engine_for(i);
       std::visit(
           [&](const auto& t) {
@@ -172,6 +192,8 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
               }
             } else if constexpr (HasFirstIndex<T>) {
               t.AddTo(engine, tau0, out, -burn_in);
+            } else if constexpr (std::is_same_v<T, FlickerNoise>) {
+              t.AddTo(engine, tau0, std::span<double>(out).subspan(burn_in));  // zero state at 0
             } else {
               t.AddTo(engine, tau0, out);
             }
@@ -180,7 +202,7 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     }
     // Internal-rate chain, in chunks so the wideband buffer stays small; filtering in place is
     // safe because output k - burn_in is written after input k has been read.
-    Biquad filter = chain.MakeFilter();
+    Biquad filter = chain->MakeFilter();
     constexpr std::int64_t kChunk = 4096;
     std::vector<double> wide(static_cast<std::size_t>(kChunk * l));
     const bool average = band_limit.sampling == OutputSampling::kAverage;
