@@ -51,7 +51,7 @@ class Twiddle {
     if (k % 512 == 0 || k != next_) {
       current_ = std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(k) / n_);
     } else {
-      current_ *= step_;
+      current_ = MulFinite(current_, step_);
     }
     next_ = k + 1;
     return current_;
@@ -101,11 +101,11 @@ void ForwardRealFft(std::size_t n, double* data) {
   x[0] = z0.real() + z0.imag();
   x[half] = z0.real() - z0.imag();
   Twiddle twiddle(n);
-  const std::complex<double> i(0.0, 1.0);
   for (std::size_t k = 1; k <= half / 2; ++k) {
     const std::complex<double> zk = x[k], zc = std::conj(x[half - k]);
     const std::complex<double> even = 0.5 * (zk + zc);
-    const std::complex<double> odd = twiddle(k) * (-0.5 * i) * (zk - zc);
+    const std::complex<double> d = zk - zc;  // odd = W^k (-i/2) d
+    const std::complex<double> odd = MulFinite(twiddle(k), {0.5 * d.imag(), -0.5 * d.real()});
     x[k] = even + odd;
     x[half - k] = std::conj(even - odd);
   }
@@ -117,13 +117,13 @@ void InverseRealFft(std::size_t n, double* data) {
   const double x0 = x[0].real(), xn = x[half].real();
   x[0] = std::complex<double>(x0 + xn, x0 - xn);
   Twiddle twiddle(n);
-  const std::complex<double> i(0.0, 1.0);
   for (std::size_t k = 1; k <= half / 2; ++k) {
     const std::complex<double> xk = x[k], xc = std::conj(x[half - k]);
     const std::complex<double> even = xk + xc;                        // 2 E_k
-    const std::complex<double> odd = std::conj(twiddle(k)) * (xk - xc);  // 2 O_k / ... (times i below)
-    x[k] = even + i * odd;
-    x[half - k] = std::conj(even - i * odd);
+    const std::complex<double> odd = MulFinite(std::conj(twiddle(k)), xk - xc);  // 2 W^k O_k / W^k
+    const std::complex<double> i_odd(-odd.imag(), odd.real());
+    x[k] = even + i_odd;
+    x[half - k] = std::conj(even - i_odd);
   }
   fftw_execute_dft(PlansFor(half, data).inverse, reinterpret_cast<fftw_complex*>(data),
                    reinterpret_cast<fftw_complex*>(data));

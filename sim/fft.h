@@ -28,6 +28,12 @@ class FftBuffer {
   std::size_t size_ = 0;
 };
 
+// a * b without the inf/NaN recovery of std::complex's operator* (a libgcc call per product
+// unless -fcx-limited-range): hot FFT loops multiply finite numbers only.
+inline std::complex<double> MulFinite(std::complex<double> a, std::complex<double> b) {
+  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+
 // The smallest size >= n of the form 2^a 3^b 5^c 7^d (fast for FFTW). Real transforms need an
 // even length: use 2 * GoodFftSize(m) for m >= n / 2.
 std::size_t GoodFftSize(std::size_t n);

@@ -84,7 +84,7 @@ void FlickerNoise::SynthesizeInPlace(Engine& engine, std::size_t n, std::span<do
   ForwardRealFft(fft_length, x);
   auto* w = reinterpret_cast<std::complex<double>*>(x);
   const std::complex<double>* h = spectrum->complex_data();
-  for (std::size_t k = 0; k <= fft_length / 2; ++k) w[k] *= h[k];
+  for (std::size_t k = 0; k <= fft_length / 2; ++k) w[k] = MulFinite(w[k], h[k]);
   InverseRealFft(fft_length, x);
   const double scale = bias_instability_rad_per_s / static_cast<double>(fft_length);
   for (std::size_t i = 0; i < n; ++i) x[i] *= scale;
