@@ -1,0 +1,66 @@
+#pragma once
+// Options and result of one Allan-family computation: what was asked and what was used.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "estimators/statistic.h"
+#include "estimators/tau_grid.h"
+
+namespace allanlab::estimators {
+
+enum class InputKind {
+  kRate,   // rate (frequency) samples, e.g. deg/s
+  kAngle,  // angle (phase) samples: N + 1 angles make N rates; rate = diff(angle) / tau0
+};
+
+enum class ConfidenceMethod {
+  kNone,
+  kSimple,          // seed paper / IEEE 952: sigma(delta)/sigma = 1/sqrt(2(K-1)), K clusters
+  kGreenhallRiley,  // EDF by Greenhall & Riley (2003), SP 1065 for TOTVAR; chi-square interval
+};
+
+struct AvarOptions {
+  Statistic statistic = Statistic::kAllanOverlapping;
+  TauGridOptions taus;
+  double sample_period_s = 1.0;  // tau0 [s], > 0
+  InputKind input = InputKind::kRate;
+  ConfidenceMethod confidence_method = ConfidenceMethod::kGreenhallRiley;
+  double confidence = 0.683;     // two-sided level of the interval, in (0, 1)
+  // Fewest terms (differences averaged) a tau must have to be reported; fewer => dropped.
+  std::int64_t min_terms = 1;
+  // Noise exponent alpha for the EDF: identified per tau when unset (alpha_fixed = false).
+  bool alpha_fixed = false;
+  int alpha = 0;  // S_y(f) ~ f^alpha, in {-2, -1, 0, 1, 2} (rate: white = 0, flicker = -1, ...)
+
+  bool IsValid(std::string* why) const;
+};
+
+struct AvarPoint {
+  std::int64_t m = 0;        // averaging factor
+  double tau_s = 0.0;        // m * tau0
+  double value = 0.0;        // the variance, in (input units)^2 ((angle units)^2 for kTime)
+  std::int64_t terms = 0;    // number of squared differences averaged
+  int alpha = 0;             // noise exponent used for the EDF
+  bool alpha_identified = false;  // false when fixed by the options or when identification failed
+  double edf = 0.0;          // equivalent degrees of freedom (0 when no interval)
+  double ci_low = 0.0;       // interval for the variance at options.confidence
+  double ci_high = 0.0;
+};
+
+struct DroppedTau {
+  double tau_s = 0.0;
+  std::int64_t m = 0;
+  std::string reason;
+};
+
+struct AvarSummary {
+  AvarOptions options;
+  std::int64_t num_samples = 0;  // rate samples used (angles - 1 for angle input)
+  std::vector<AvarPoint> points;
+  std::vector<DroppedTau> dropped;
+  bool ok = false;
+  std::string message;  // why !ok, or notes (e.g. "2 taus dropped")
+};
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,34 @@
+#pragma once
+// Equivalent degrees of freedom and confidence intervals of Allan-family estimates.
+#include <cstdint>
+
+#include "estimators/statistic.h"
+
+namespace allanlab::estimators {
+
+// Greenhall & Riley (2003 PTTI), "Uncertainty of stability variances based on finite
+// differences" (THEORY.md §2.4), as Stable32 and allantools implement it. alpha in -4..2,
+// d in {1, 2, 3}, m >= 1, n_phase = number of phase points (rate samples + 1).
+// Returns 0 when the inputs are outside the algorithm's domain (alpha + 2d <= 1).
+double GreenhallRileyEdf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
+                         bool modified);
+
+// TOTVAR EDF, NIST SP 1065 Table 7: b (T/tau) - c for alpha = 0, -1, -2 (T = record length).
+double TotalVarianceEdf(int alpha, double record_length_s, double tau_s);
+
+// EDF for a statistic at averaging factor m on n_rate rate samples (dispatches to the above).
+double StatisticEdf(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate, double tau0_s);
+
+// The seed paper's / IEEE 952 simple error: EDF = K - 1 for K non-overlapping clusters
+// (sigma(delta)/sigma = 1/sqrt(2(K-1))).
+double SimpleEdf(std::int64_t clusters);
+
+struct Interval {
+  double low = 0.0, high = 0.0;
+};
+// Two-sided chi-square interval for a variance estimate with `edf` degrees of freedom at
+// `confidence` (Stable32 convention, THEORY.md §2.4 item 5): [v edf/chi2_{1-p}, v edf/chi2_{p}],
+// p = (1 - confidence)/2.
+Interval ChiSquareInterval(double variance, double edf, double confidence);
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,20 @@
+#pragma once
+// Power-law noise identification per tau (Riley & Greenhall 2004, "Power law noise
+// identification using the lag 1 autocorrelation"; NIST SP 1065 §5.6), with the B1 ratio
+// (Barnes) as fallback when too few points remain. alpha: S_y(f) ~ f^alpha, rate as frequency.
+#include <cstdint>
+#include <span>
+
+namespace allanlab::estimators {
+
+struct NoiseId {
+  int alpha = 0;           // rounded exponent, clamped to [-2, 2]
+  bool identified = false;  // false if neither method could run
+  bool used_b1 = false;     // the B1 ratio fallback was used
+};
+
+// Identification at averaging factor m from rate samples (the lag-1 ACF of m-averaged, and if
+// needed differenced, rates). Needs at least about 30 averaged points for the ACF method.
+NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m);
+
+}  // namespace allanlab::estimators
