@@ -1,0 +1,34 @@
+#include "estimators/fit/avar_curve.h"
+
+#include <cmath>
+
+namespace allanlab::estimators {
+
+bool AvarCurve::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& msg) {
+    if (why) *why = msg;
+    return false;
+  };
+  if (!(std::isfinite(sample_period_s) && sample_period_s > 0.0)) {
+    return fail("curve: sample period must be > 0 s");
+  }
+  if (m.empty()) return fail("curve: no taus");
+  if (tau_s.size() != m.size() || avar.size() != m.size() ||
+      (!edf.empty() && edf.size() != m.size())) {
+    return fail("curve: m, tau, avar and edf sizes differ");
+  }
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    if (m[k] < 1 || (k > 0 && m[k] <= m[k - 1])) return fail("curve: m must be ascending and >= 1");
+    if (num_samples > 0 && 2 * m[k] > num_samples) return fail("curve: m above N/2");
+    if (!(std::isfinite(avar[k]) && avar[k] > 0.0)) {
+      return fail("curve: Allan variance at tau = " + std::to_string(tau_s[k]) +
+                  " s is not a finite positive number");
+    }
+    if (!edf.empty() && !(std::isfinite(edf[k]) && edf[k] > 0.0)) {
+      return fail("curve: EDF at tau = " + std::to_string(tau_s[k]) + " s is not positive");
+    }
+  }
+  return true;
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,26 @@
+#pragma once
+// An Allan-variance curve as the fits consume it: averaging factors, taus, values and EDFs of
+// one estimator on one record, in SI (rad/s)^2.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/avar_theory.h"
+
+namespace allanlab::estimators {
+
+struct AvarCurve {
+  double sample_period_s = 1.0;  // tau0
+  std::int64_t num_samples = 0;  // N of the record the curve came from
+  sim::AvarEstimatorKind estimator = sim::AvarEstimatorKind::kOverlapping;
+  std::vector<std::int64_t> m;   // ascending averaging factors
+  std::vector<double> tau_s;     // m * tau0
+  std::vector<double> avar;      // (rad/s)^2, > 0
+  std::vector<double> edf;       // equivalent degrees of freedom per tau (empty: unknown)
+
+  std::size_t size() const { return m.size(); }
+  // Sizes agree, m ascending and <= N/2, values finite and > 0, EDFs > 0 if given.
+  bool IsValid(std::string* why) const;
+};
+
+}  // namespace allanlab::estimators
