@@ -1,0 +1,37 @@
+#pragma once
+// Raw little-endian float32 or float64 samples, no header, decoded from byte chunks of any size
+// (a value split across two chunks is carried over).
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+
+namespace allanlab::app {
+
+enum class RawSampleType { kFloat32, kFloat64 };
+
+class RawSampleDecoder {
+ public:
+  // Called with each value and its 0-based index; returning false stops the decoding.
+  using ValueSink = std::function<bool(double value, std::int64_t index)>;
+
+  RawSampleDecoder(RawSampleType type, ValueSink sink);
+  // Returns false when the sink stopped.
+  bool Feed(std::span<const char> bytes);
+  // Fails when the byte count is not a multiple of the sample size (a truncated file).
+  bool Finish(std::string* why) const;
+  std::int64_t values() const { return index_; }
+  int sample_bytes() const { return size_; }
+
+ private:
+  bool Emit(const unsigned char* p);
+
+  RawSampleType type_;
+  int size_;
+  ValueSink sink_;
+  unsigned char carry_[8] = {};
+  int carried_ = 0;
+  std::int64_t index_ = 0;
+};
+
+}  // namespace allanlab::app

@@ -1,0 +1,262 @@
+#include "app/record_reader.h"
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "app/provenance.h"
+#include "app/raw_sample_decoder.h"
+#include "app/subcommand.h"
+#include "app/text_record_parser.h"
+
+namespace allanlab::app {
+namespace {
+
+constexpr std::size_t kChunkBytes = 1 << 18;
+
+// Non-finite values are collected over the whole file so that the message can say how many
+// there are, not just where the first one is.
+class NonFiniteLog {
+ public:
+  void Add(std::int64_t where) {
+    if (static_cast<int>(first_.size()) < kListedNonFinite) first_.push_back(where);
+    ++count_;
+  }
+  std::int64_t count() const { return count_; }
+  std::string Describe(const std::string& what, const std::string& unit_of_position) const {
+    std::string list;
+    for (std::size_t i = 0; i < first_.size(); ++i) {
+      list += (i ? ", " : "") + std::to_string(first_[i]);
+    }
+    return std::to_string(count_) + " non-finite value(s) (NaN, inf or missing) in " + what +
+           " at " + unit_of_position + " " + list + (count_ > kListedNonFinite ? ", ..." : "") +
+           "; remove them or pass --drop-nonfinite to skip them";
+  }
+
+ private:
+  std::vector<std::int64_t> first_;
+  std::int64_t count_ = 0;
+};
+
+class Reader {
+ public:
+  Reader(const RecordReaderOptions& options, const std::function<void(double)>& sink,
+         RecordInfo* info)
+      : o_(options), sink_(sink), info_(info) {}
+
+  bool Run(RecordError* error) {
+    *info_ = RecordInfo();
+    info_->path = o_.path;
+    info_->format = o_.format;
+    std::string why;
+    if (o_.format != RecordFormat::kText && !o_.rate_hz) {
+      return Usage(error, "raw " + std::string(RecordFormatName(o_.format)) +
+                              " samples carry no time: give the sample rate with --rate HZ");
+    }
+    std::unique_ptr<ByteSource> source;
+    if (!OpenByteSource(o_.path, &source, &why)) return Runtime(error, why);
+    info_->compression = source->compression();
+    const bool ok = o_.format == RecordFormat::kText ? ReadText(source.get(), error)
+                                                     : ReadRaw(source.get(), error);
+    if (!ok) return false;
+    return Conclude(error);
+  }
+
+ private:
+  bool Usage(RecordError* error, const std::string& message) {
+    *error = {kExitUsageError, message};
+    return false;
+  }
+  bool Runtime(RecordError* error, const std::string& message) {
+    *error = {kExitRuntimeError, message};
+    return false;
+  }
+  std::string In() const { return o_.path + ": "; }
+
+  // A non-finite row is dropped or logged; a finite one is passed on (until the first logged
+  // non-finite value: the record will fail, so the sink need not see more).
+  void Accept(double value, std::int64_t where) {
+    if (!std::isfinite(value)) {
+      if (o_.drop_nonfinite) {
+        ++info_->dropped_nonfinite;
+      } else {
+        nonfinite_.Add(where);
+      }
+      return;
+    }
+    ++info_->samples;
+    if (nonfinite_.count() == 0) sink_(value);
+  }
+
+  bool ReadText(ByteSource* source, RecordError* error) {
+    std::string stop;  // why the sink stopped the parser
+    bool stop_is_usage = false;
+    TextRecordParser* parser_ptr = nullptr;
+    TextRecordParser parser(o_.column, [&](const TextRow& row) {
+      if (info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0) {
+        // First data row: the columns are known, so a missing rate fails before the long read.
+        if (!row.has_time && !o_.rate_hz) {
+          stop_is_usage = true;
+          stop = "no time column (" + TimeColumnList() + ") in the " +
+                 (parser_ptr->has_header() ? "header" : "file (it has no header row)") +
+                 ": give the sample rate with --rate HZ";
+          return false;
+        }
+      }
+      if (row.has_time && o_.drop_nonfinite &&
+          (!std::isfinite(row.time) || !std::isfinite(row.value))) {
+        ++info_->dropped_nonfinite;
+        return true;
+      }
+      if (row.has_time && !steps_.Add(row.time, row.line, &stop)) return false;
+      Accept(row.value, row.line);
+      return true;
+    });
+    parser_ptr = &parser;
+    std::vector<char> chunk(kChunkBytes);
+    std::string why;
+    while (true) {
+      std::size_t got = 0;
+      if (!source->Read(chunk, &got, &why)) return Runtime(error, why);
+      const bool ok = got == 0 ? parser.Finish() : parser.Feed({chunk.data(), got});
+      if (!ok) {
+        if (parser.error().empty()) {
+          return stop_is_usage ? Usage(error, In() + stop) : Runtime(error, In() + stop);
+        }
+        return parser.error_is_usage() ? Usage(error, In() + parser.error())
+                                       : Runtime(error, In() + parser.error());
+      }
+      if (got == 0) break;
+    }
+    info_->has_header = parser.has_header();
+    info_->lines = parser.lines();
+    info_->column = parser.value_column();
+    info_->time_column = parser.time_column();
+    if (parser.data_rows() == 0) {
+      return Runtime(error, In() + "no data rows (" + std::to_string(parser.lines()) +
+                                " line(s) of comments, blank lines or header)");
+    }
+    if (nonfinite_.count() > 0) {
+      return Runtime(error, In() + nonfinite_.Describe("column " + info_->column, "line(s)"));
+    }
+    return true;
+  }
+
+  bool ReadRaw(ByteSource* source, RecordError* error) {
+    const RawSampleType type =
+        o_.format == RecordFormat::kFloat32 ? RawSampleType::kFloat32 : RawSampleType::kFloat64;
+    RawSampleDecoder decoder(type, [&](double value, std::int64_t index) {
+      Accept(value, index);
+      return true;
+    });
+    info_->column = type == RawSampleType::kFloat32 ? "float32 samples" : "float64 samples";
+    std::vector<char> chunk(kChunkBytes);
+    std::string why;
+    while (true) {
+      std::size_t got = 0;
+      if (!source->Read(chunk, &got, &why)) return Runtime(error, why);
+      if (got == 0) break;
+      decoder.Feed({chunk.data(), got});
+    }
+    if (!decoder.Finish(&why)) return Runtime(error, In() + why);
+    if (nonfinite_.count() > 0) {
+      return Runtime(error, In() + nonfinite_.Describe("the samples", "0-based index(es)"));
+    }
+    return true;
+  }
+
+  bool Conclude(RecordError* error) {
+    if (!info_->time_column.empty()) {
+      info_->time = steps_.Summarize();
+      const TimeSteps::Summary& t = info_->time;
+      if (t.nominal_step_s > 0) {
+        const double from_time = 1.0 / t.nominal_step_s;
+        info_->sample_rate_hz = from_time;
+        info_->rate_source = "time column " + info_->time_column;
+        if (o_.rate_hz) {
+          if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time) {
+            return Usage(error, In() + "--rate " + ShortestDecimal(*o_.rate_hz) +
+                                    " Hz disagrees with the time column " + info_->time_column +
+                                    " (" + ShortestDecimal(from_time) + " Hz from its step of " +
+                                    ShortestDecimal(t.nominal_step_s) +
+                                    " s); drop --rate or fix it");
+          }
+          info_->sample_rate_hz = *o_.rate_hz;
+          info_->rate_source = "--rate (time column " + info_->time_column + " agrees)";
+        }
+      }
+    }
+    if (info_->sample_rate_hz == 0.0) {
+      if (!o_.rate_hz) {
+        // A time column with fewer than two samples: it cannot give a rate.
+        return Usage(error, In() + "cannot read a sample rate from " +
+                                std::to_string(info_->samples) +
+                                " sample(s); give it with --rate HZ");
+      }
+      info_->sample_rate_hz = *o_.rate_hz;
+      info_->rate_source = "--rate";
+    }
+    if (info_->samples < o_.min_samples) {
+      return Runtime(error, In() + "only " + std::to_string(info_->samples) + " sample(s)" +
+                                (info_->dropped_nonfinite
+                                     ? " after dropping " +
+                                           std::to_string(info_->dropped_nonfinite) + " non-finite"
+                                     : std::string()) +
+                                " in " + info_->column + "; at least " +
+                                std::to_string(o_.min_samples) + " are needed");
+    }
+    return true;
+  }
+
+  static std::string TimeColumnList() {
+    std::string out;
+    for (std::string_view name : kTimeColumnNames)
+      out += (out.empty() ? "" : ", ") + std::string(name);
+    return out;
+  }
+
+  const RecordReaderOptions& o_;
+  const std::function<void(double)>& sink_;
+  RecordInfo* info_;
+  NonFiniteLog nonfinite_;
+  TimeSteps steps_;
+};
+
+}  // namespace
+
+bool ParseRecordFormat(std::string_view text, RecordFormat* format, std::string* why) {
+  for (RecordFormat f : {RecordFormat::kText, RecordFormat::kFloat32, RecordFormat::kFloat64}) {
+    if (text == RecordFormatName(f)) {
+      *format = f;
+      return true;
+    }
+  }
+  if (why) *why = "unknown format '" + std::string(text) + "' (expected text, f32 or f64)";
+  return false;
+}
+
+std::string_view RecordFormatName(RecordFormat format) {
+  switch (format) {
+    case RecordFormat::kText:
+      return "text";
+    case RecordFormat::kFloat32:
+      return "f32";
+    case RecordFormat::kFloat64:
+      return "f64";
+  }
+  return "?";
+}
+
+bool ReadRecord(const RecordReaderOptions& options, const std::function<void(double)>& sink,
+                RecordInfo* info, RecordError* error) {
+  return Reader(options, sink, info).Run(error);
+}
+
+bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
+                      RecordInfo* info, RecordError* error) {
+  values->clear();
+  return ReadRecord(
+      options, [values](double v) { values->push_back(v); }, info, error);
+}
+
+}  // namespace allanlab::app

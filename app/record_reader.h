@@ -1,0 +1,79 @@
+#pragma once
+// Reads one sample column of a recorded file, whatever its container: text (CSV, TSV, ';' or
+// whitespace columns; rules in app/text_record_parser.h) or raw little-endian float32/float64,
+// each plain, gzip or xz compressed (app/byte_source.h: decompressed by streaming, never held
+// whole). Values are streamed to a sink in file order, so a record larger than memory can be
+// consumed in one pass (`allanlab avar --stream`); ReadRecordValues collects them instead.
+//
+// The sample rate comes from the time column (header t, t_s, time, time_s or timestamp, in
+// seconds: the nominal step of app/time_steps.h) or from --rate. Both given: they must agree to
+// kRateTolerance (relative), and --rate is used. Steps off the nominal period are counted and the
+// worst gap kept (RecordInfo::time), for the caller to report.
+//
+// Failures (RecordError): exit code 2 (kExitUsageError) when the command line does not fit the
+// file (--column names no column or an index out of range, no time column and no --rate, --rate
+// disagrees with the time column); 1 (kExitRuntimeError) for everything about the file itself
+// (missing/unreadable, corrupt or truncated compression, not text, no data rows, a value that is
+// not a number, non-finite values without drop_nonfinite, time not increasing, fewer than
+// min_samples samples). Messages are one line and start with the file's path.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/byte_source.h"
+#include "app/time_steps.h"
+
+namespace allanlab::app {
+
+enum class RecordFormat { kText, kFloat32, kFloat64 };
+
+// "text", "f32", "f64" (the --format spellings).
+bool ParseRecordFormat(std::string_view text, RecordFormat* format, std::string* why);
+std::string_view RecordFormatName(RecordFormat format);
+
+inline constexpr double kRateTolerance = 1e-3;
+// Non-finite values listed by line (text) or index (raw) in an error message.
+inline constexpr int kListedNonFinite = 5;
+
+struct RecordReaderOptions {
+  std::string path;
+  RecordFormat format = RecordFormat::kText;
+  std::string column;             // text only: header name or 0-based index; empty = first data
+  std::optional<double> rate_hz;  // --rate [Hz], finite and > 0 (checked by the caller)
+  bool drop_nonfinite = false;    // skip rows whose value (or time) is NaN/inf, and count them
+  std::int64_t min_samples = 3;   // fewer kept samples is an error
+};
+
+struct RecordInfo {
+  std::string path;
+  Compression compression = Compression::kNone;
+  RecordFormat format = RecordFormat::kText;
+  bool has_header = false;
+  std::string column;        // "Gyro_X", "column 2" (text without header) or "float64 samples"
+  std::string time_column;   // empty when the rate did not come from a time column
+  std::int64_t lines = 0;    // text: physical lines read
+  std::int64_t samples = 0;  // values passed to the sink
+  std::int64_t dropped_nonfinite = 0;  // rows skipped by drop_nonfinite
+  double sample_rate_hz = 0.0;
+  std::string rate_source;  // "--rate", "time column t_s" or "--rate (time column t_s agrees)"
+  TimeSteps::Summary time;  // the time column's steps (samples == 0 without one)
+};
+
+struct RecordError {
+  int exit_code = 0;
+  std::string message;
+};
+
+// Streams every kept value to `sink`, in order. The sink never sees a non-finite value. On
+// failure the sink may already have received values; the caller discards its state.
+bool ReadRecord(const RecordReaderOptions& options, const std::function<void(double)>& sink,
+                RecordInfo* info, RecordError* error);
+
+// ReadRecord into a vector.
+bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
+                      RecordInfo* info, RecordError* error);
+
+}  // namespace allanlab::app

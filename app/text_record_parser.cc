@@ -1,0 +1,309 @@
+#include "app/text_record_parser.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <system_error>
+
+namespace allanlab::app {
+namespace {
+
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+std::string_view Trim(std::string_view s) {
+  while (!s.empty() && IsBlank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && IsBlank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+char Lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
+
+bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (Lower(a[i]) != Lower(b[i])) return false;
+  }
+  return true;
+}
+
+bool AllDigits(std::string_view s) {
+  if (s.empty()) return false;
+  for (char c : s) {
+    if (c < '0' || c > '9') return false;
+  }
+  return true;
+}
+
+// Messages quote user text; keep them one line and short even for binary garbage.
+std::string Shown(std::string_view text) {
+  std::string out;
+  for (char c : text.substr(0, 40)) {
+    out +=
+        (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) ? '?' : c;
+  }
+  if (text.size() > 40) out += "...";
+  return out;
+}
+
+bool IsMissingMarker(std::string_view s) {
+  return s.empty() || EqualsIgnoreCase(s, "na") || EqualsIgnoreCase(s, "n/a");
+}
+
+}  // namespace
+
+bool ParseNumberField(std::string_view field, double* value) {
+  std::string_view s = Trim(field);
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = Trim(s.substr(1, s.size() - 2));
+  if (IsMissingMarker(s)) {
+    *value = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  bool negative = false;
+  if (s.front() == '+' || s.front() == '-') {
+    negative = s.front() == '-';
+    s.remove_prefix(1);
+    // "+-1" and "--1" are not numbers.
+    if (s.empty() || s.front() == '+' || s.front() == '-') return false;
+  }
+  std::chars_format format = std::chars_format::general;
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
+    format = std::chars_format::hex;
+    s.remove_prefix(2);
+  }
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, format);
+  if (end != s.data() + s.size()) return false;
+  if (ec == std::errc::result_out_of_range) {
+    // from_chars leaves the value alone on overflow and underflow; strtod knows which it was.
+    const std::string text = (format == std::chars_format::hex ? "0x" : "") + std::string(s);
+    v = std::strtod(text.c_str(), nullptr);
+  } else if (ec != std::errc()) {
+    return false;
+  }
+  *value = negative ? -v : v;
+  return true;
+}
+
+TextRecordParser::TextRecordParser(std::string column, RowSink sink)
+    : column_spec_(std::move(column)), sink_(std::move(sink)) {}
+
+bool TextRecordParser::Fail(std::string message) {
+  failed_ = true;
+  error_ = std::move(message);
+  return false;
+}
+
+bool TextRecordParser::Feed(std::string_view chunk) {
+  if (failed_) return false;
+  while (!chunk.empty()) {
+    const std::size_t newline = chunk.find('\n');
+    if (newline == std::string_view::npos) {
+      if (pending_.size() + chunk.size() > kMaxLineBytes) {
+        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                    "record (raw samples? use --format f32|f64)");
+      }
+      pending_.append(chunk);
+      return true;
+    }
+    std::string_view line = chunk.substr(0, newline);
+    chunk.remove_prefix(newline + 1);
+    bool ok;
+    if (pending_.empty()) {
+      if (line.size() > kMaxLineBytes) {
+        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                    "record (raw samples? use --format f32|f64)");
+      }
+      ok = ParseLine(line);
+    } else {
+      if (pending_.size() + line.size() > kMaxLineBytes) {
+        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                    "record (raw samples? use --format f32|f64)");
+      }
+      pending_.append(line);
+      ok = ParseLine(pending_);
+      pending_.clear();
+    }
+    if (!ok) {
+      failed_ = true;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool TextRecordParser::Finish() {
+  if (failed_) return false;
+  if (finished_) return true;
+  finished_ = true;
+  if (!pending_.empty()) {
+    const std::string last = std::move(pending_);
+    pending_.clear();
+    if (!ParseLine(last)) {
+      failed_ = true;
+      return false;
+    }
+  }
+  return true;
+}
+
+void TextRecordParser::Split(std::string_view line, std::vector<std::string_view>* fields) const {
+  fields->clear();
+  if (delimiter_ == ' ') {
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && IsBlank(line[i])) ++i;
+      if (i == line.size()) break;
+      const std::size_t start = i;
+      while (i < line.size() && !IsBlank(line[i])) ++i;
+      fields->push_back(line.substr(start, i - start));
+    }
+    return;
+  }
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = line.find(delimiter_, start);
+    fields->push_back(Trim(line.substr(start, end == std::string_view::npos ? end : end - start)));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+}
+
+bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first, bool header) {
+  has_header_ = header;
+  std::vector<std::string> names;
+  for (std::string_view f : first) {
+    if (f.size() >= 2 && f.front() == '"' && f.back() == '"') f = Trim(f.substr(1, f.size() - 2));
+    names.emplace_back(header ? std::string(f) : "");
+  }
+  if (header) {
+    for (std::size_t i = 0; i < names.size() && time_index_ < 0; ++i) {
+      for (std::string_view t : kTimeColumnNames) {
+        if (EqualsIgnoreCase(names[i], t)) {
+          time_index_ = static_cast<int>(i);
+          time_column_ = names[i];
+          break;
+        }
+      }
+    }
+  }
+  const auto list = [&] {
+    std::string out;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      out += (i ? ", " : "") + (header ? Shown(names[i]) : "") + (header ? " = " : "column ") +
+             std::to_string(i);
+    }
+    return out;
+  };
+  if (column_spec_.empty()) {
+    value_index_ = time_index_ == 0 ? 1 : 0;
+    if (value_index_ >= static_cast<int>(names.size())) {
+      return Fail("no data column besides the time column '" + time_column_ + "'");
+    }
+  } else if (AllDigits(column_spec_)) {
+    const std::string_view digits = column_spec_;
+    int index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (ec != std::errc() || index >= static_cast<int>(names.size())) {
+      error_is_usage_ = true;
+      return Fail("--column " + column_spec_ + ": the " + (header ? "header" : "first data row") +
+                  " has " + std::to_string(names.size()) + " column(s), 0-based (" + list() + ")");
+    }
+    value_index_ = index;
+  } else {
+    error_is_usage_ = true;
+    if (!header) {
+      return Fail("--column " + Shown(column_spec_) +
+                  ": the file has no header row, so columns have no names; give a 0-based index");
+    }
+    for (std::size_t i = 0; i < names.size() && value_index_ < 0; ++i) {
+      if (names[i] == column_spec_) value_index_ = static_cast<int>(i);
+    }
+    if (value_index_ < 0) {
+      int matches = 0;
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        if (EqualsIgnoreCase(names[i], column_spec_)) {
+          value_index_ = static_cast<int>(i);
+          ++matches;
+        }
+      }
+      if (matches > 1) value_index_ = -1;
+    }
+    if (value_index_ < 0) {
+      return Fail("--column " + Shown(column_spec_) + ": no such column (" + list() + ")");
+    }
+  }
+  error_is_usage_ = false;
+  // The time column chosen as the data: it then carries no time information of its own.
+  if (value_index_ == time_index_) {
+    time_index_ = -1;
+    time_column_.clear();
+  }
+  value_column_ = header ? names[value_index_] : "column " + std::to_string(value_index_);
+  return true;
+}
+
+bool TextRecordParser::ParseLine(std::string_view line) {
+  ++line_;
+  if (line_ == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
+  if (line.find('\0') != std::string_view::npos) {
+    return Fail("line " + std::to_string(line_) +
+                " has a NUL byte: not a text record (raw samples? use --format f32|f64)");
+  }
+  if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
+    line = line.substr(0, hash);
+  }
+  if (Trim(line).empty()) return true;
+
+  if (!format_known_) {
+    format_known_ = true;
+    delimiter_ = line.find(',') != std::string_view::npos    ? ','
+                 : line.find('\t') != std::string_view::npos ? '\t'
+                 : line.find(';') != std::string_view::npos  ? ';'
+                                                             : ' ';
+    Split(line, &fields_);
+    if (delimiter_ == '\t') {
+      // Tabs used for alignment among spaces ("1  2\t3") mean whitespace columns, not TSV.
+      for (std::string_view f : fields_) {
+        if (f.find(' ') != std::string_view::npos) delimiter_ = ' ';
+      }
+      if (delimiter_ == ' ') Split(line, &fields_);
+    }
+    bool header = false;
+    double ignored;
+    for (std::string_view f : fields_) header |= !ParseNumberField(f, &ignored);
+    if (!ChooseColumns(fields_, header)) return false;
+    if (header) return true;
+  } else {
+    Split(line, &fields_);
+  }
+
+  const int needed = std::max(value_index_, time_index_) + 1;
+  if (static_cast<int>(fields_.size()) < needed) {
+    return Fail("line " + std::to_string(line_) + " has " + std::to_string(fields_.size()) +
+                " field(s); column " + Shown(value_column_) +
+                (time_index_ >= 0 ? " and time column " + time_column_ : std::string()) + " need " +
+                std::to_string(needed));
+  }
+  TextRow row;
+  row.line = line_;
+  if (!ParseNumberField(fields_[value_index_], &row.value)) {
+    return Fail("line " + std::to_string(line_) + ": column " + Shown(value_column_) + ": '" +
+                Shown(Trim(fields_[value_index_])) + "' is not a number");
+  }
+  if (time_index_ >= 0) {
+    row.has_time = true;
+    if (!ParseNumberField(fields_[time_index_], &row.time)) {
+      return Fail("line " + std::to_string(line_) + ": time column " + time_column_ + ": '" +
+                  Shown(Trim(fields_[time_index_])) + "' is not a number");
+    }
+  }
+  ++data_rows_;
+  if (!sink_(row)) {
+    failed_ = true;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace allanlab::app

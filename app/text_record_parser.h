@@ -1,0 +1,99 @@
+#pragma once
+// Incremental parser of a delimited text record: CSV, TSV, ';'-separated or whitespace-separated
+// columns, '#' comments, an optional header row. Bytes go in by chunks of any size (the split
+// never changes the result); each data row comes out as one value of the chosen column, plus the
+// time column's value when the header names one. The parser only extracts: what a value means
+// (finite or not, time steps, sample rate) is decided by the caller (app/record_reader.h).
+//
+// Format rules, decided on the first line that is not blank or a comment:
+//  - delimiter: ',' if that line has one, else tab (unless a tab-separated field holds a space:
+//    then the tabs only align columns), else ';', else runs of spaces/tabs;
+//  - that line is a header when any field is neither a number nor a missing-value marker;
+//  - '#' starts a comment anywhere on a line; '\r' line ends, a UTF-8 BOM, spaces around fields
+//    and double quotes around a field ("Gyro_X") are ignored;
+//  - numbers are C-locale decimal or hex floats, a leading '+' allowed; "nan", "inf",
+//    "infinity" (any case, signed), "NA" and an empty field are read as NaN (missing values,
+//    which the caller may drop), a number beyond the double range as +-inf;
+//  - a NUL byte or a line longer than kMaxLineBytes means the file is not text.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace allanlab::app {
+
+// The header names that mark a time column, in seconds (compared case-insensitively).
+inline constexpr std::string_view kTimeColumnNames[] = {"t", "t_s", "time", "time_s", "timestamp"};
+
+struct TextRow {
+  std::int64_t line = 0;  // 1-based physical line number in the (decompressed) text
+  double value = 0.0;     // may be NaN or +-inf
+  bool has_time = false;
+  double time = 0.0;  // [s], when has_time; may be non-finite
+};
+
+class TextRecordParser {
+ public:
+  // Called for each data row; returning false stops the parse (Feed/Finish then return false
+  // with error() empty: the sink keeps its own reason).
+  using RowSink = std::function<bool(const TextRow&)>;
+
+  static constexpr std::size_t kMaxLineBytes = 1 << 20;
+
+  // `column`: the --column text, a header name or a 0-based index (all digits); empty picks the
+  // first column that is not the time column. Names are matched exactly, else case-insensitively
+  // when that is unambiguous.
+  explicit TextRecordParser(std::string column, RowSink sink);
+
+  // Parses the complete lines in `chunk` (a partial last line is kept for the next call).
+  // Returns false on the first format error (error() says which line and why) or when the sink
+  // stopped; after that the parser ignores further input.
+  bool Feed(std::string_view chunk);
+  // Parses the last line if it has no newline. Call once, after the last Feed().
+  bool Finish();
+
+  const std::string& error() const { return error_; }
+  // The error is about the --column choice (the command line), not about the file's content.
+  bool error_is_usage() const { return error_is_usage_; }
+  // Known once the first non-comment line has been seen.
+  bool has_header() const { return has_header_; }
+  char delimiter() const { return delimiter_; }  // ' ' for whitespace
+  // The chosen column: its header name, or "column K" without a header; and its 0-based index.
+  const std::string& value_column() const { return value_column_; }
+  int value_column_index() const { return value_index_; }
+  // The time column's header name, empty when there is none.
+  const std::string& time_column() const { return time_column_; }
+  std::int64_t lines() const { return line_; }  // physical lines read so far
+  std::int64_t data_rows() const { return data_rows_; }
+
+ private:
+  bool ParseLine(std::string_view line);
+  bool ChooseColumns(const std::vector<std::string_view>& first_fields, bool header);
+  bool Fail(std::string message);
+  void Split(std::string_view line, std::vector<std::string_view>* fields) const;
+
+  std::string column_spec_;
+  RowSink sink_;
+  std::string pending_;  // the incomplete last line of the previous chunk
+  std::string error_;
+  bool failed_ = false;
+  bool error_is_usage_ = false;
+  bool finished_ = false;
+  bool format_known_ = false;
+  bool has_header_ = false;
+  char delimiter_ = ',';
+  std::string value_column_;
+  int value_index_ = -1;
+  std::string time_column_;
+  int time_index_ = -1;
+  std::int64_t line_ = 0;
+  std::int64_t data_rows_ = 0;
+  std::vector<std::string_view> fields_;  // reused per line
+};
+
+// Reads one field as a number by the rules above. Returns false when the text is not a number
+// and not a missing-value marker.
+bool ParseNumberField(std::string_view field, double* value);
+
+}  // namespace allanlab::app

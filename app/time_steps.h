@@ -1,0 +1,50 @@
+#pragma once
+// The sample period read from a time column, in one pass and bounded memory, with the steps that
+// do not fit it counted rather than ignored (a gap of missing samples, a stall, jitter).
+//
+// Steps are grouped: a step joins a group when it is within kStepTolerance (relative) of the
+// group's mean step. The group with the most steps is the nominal period; every other step is
+// irregular. Only the first kMaxGroups distinct groups are kept (later odd steps still count as
+// irregular), so a file with wild timestamps costs no memory.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace allanlab::app {
+
+class TimeSteps {
+ public:
+  static constexpr double kStepTolerance = 1e-3;
+  static constexpr int kMaxGroups = 64;
+
+  // Adds the time of the next sample (seconds) read at `line`. Fails (with the line numbers) when
+  // the time is not finite or not strictly greater than the previous one.
+  bool Add(double time_s, std::int64_t line, std::string* why);
+
+  struct Summary {
+    std::int64_t samples = 0;
+    double nominal_step_s = 0.0;         // mean of the steps in the largest group (0: < 2 samples)
+    std::int64_t irregular_steps = 0;    // steps outside that group
+    double largest_step_s = 0.0;         // the worst gap
+    std::int64_t largest_step_line = 0;  // line of the sample that ends it
+    double smallest_step_s = 0.0;
+    std::int64_t smallest_step_line = 0;
+  };
+  Summary Summarize() const;
+
+ private:
+  struct Group {
+    double sum_s = 0.0;
+    std::int64_t count = 0;
+    double mean() const { return sum_s / static_cast<double>(count); }
+  };
+  std::vector<Group> groups_;
+  std::int64_t samples_ = 0;
+  std::int64_t ungrouped_ = 0;
+  double previous_s_ = 0.0;
+  std::int64_t previous_line_ = 0;
+  double largest_ = 0.0, smallest_ = 0.0;
+  std::int64_t largest_line_ = 0, smallest_line_ = 0;
+};
+
+}  // namespace allanlab::app

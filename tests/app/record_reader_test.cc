@@ -1,0 +1,327 @@
+// The record reader: every container (text, f32, f64; plain, gzip, xz), the sample rate from a
+// time column or --rate, irregular steps, and every bad input with its message and exit code.
+#include "app/record_reader.h"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app/byte_source.h"
+#include "app/subcommand.h"
+
+namespace allanlab::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RecordReaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string templ = (fs::path(::testing::TempDir()) / "record_reader_test.XXXXXX").string();
+    ASSERT_NE(::mkdtemp(templ.data()), nullptr);
+    dir_ = templ;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& bytes) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
+  // Compresses `path` with the system tool ("xz" or "gzip"), keeping the original.
+  std::string Compress(const std::string& path, const std::string& tool) const {
+    const std::string command = tool + " -kf '" + path + "'";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return path + (tool == "xz" ? ".xz" : ".gz");
+  }
+
+  struct Result {
+    bool ok = false;
+    std::vector<double> values;
+    RecordInfo info;
+    RecordError error;
+  };
+  static Result Read(RecordReaderOptions options) {
+    Result r;
+    r.ok = ReadRecordValues(options, &r.values, &r.info, &r.error);
+    return r;
+  }
+  static RecordReaderOptions Options(const std::string& path) {
+    RecordReaderOptions o;
+    o.path = path;
+    return o;
+  }
+
+  fs::path dir_;
+};
+
+std::string Csv(int n, double rate_hz) {
+  std::string text = "# a comment line\nt_s,gyro_x,gyro_y\n";
+  for (int k = 0; k < n; ++k) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%.6f,%.17g,%d\n", k / rate_hz, std::sin(0.1 * k), k);
+    text += line;
+  }
+  return text;
+}
+
+TEST_F(RecordReaderTest, PlainGzipAndXzGiveTheSameValues) {
+  const std::string plain = Write("r.csv", Csv(5000, 100));
+  const Result a = Read(Options(plain));
+  ASSERT_TRUE(a.ok) << a.error.message;
+  EXPECT_EQ(a.info.compression, Compression::kNone);
+  EXPECT_EQ(a.values.size(), 5000u);
+  EXPECT_EQ(a.values[7], std::sin(0.1 * 7));
+  EXPECT_EQ(a.info.column, "gyro_x");
+  EXPECT_EQ(a.info.time_column, "t_s");
+  EXPECT_TRUE(a.info.has_header);
+  EXPECT_NEAR(a.info.sample_rate_hz, 100, 1e-6);
+  EXPECT_EQ(a.info.rate_source, "time column t_s");
+  EXPECT_EQ(a.info.time.irregular_steps, 0);
+  EXPECT_EQ(a.info.lines, 5002);
+  for (const std::string tool : {"gzip", "xz"}) {
+    const Result c = Read(Options(Compress(plain, tool)));
+    ASSERT_TRUE(c.ok) << tool << ": " << c.error.message;
+    EXPECT_EQ(CompressionName(c.info.compression), tool == "gzip" ? "gzip" : "xz");
+    EXPECT_EQ(c.values, a.values) << tool;
+  }
+}
+
+TEST_F(RecordReaderTest, ConcatenatedGzipMembersAndXzStreamsReadAsOne) {
+  const std::string a = Compress(Write("a.csv", "1\n2\n"), "gzip");
+  const std::string b = Compress(Write("b.csv", "3\n4\n"), "gzip");
+  std::ifstream ia(a, std::ios::binary), ib(b, std::ios::binary);
+  std::string both((std::istreambuf_iterator<char>(ia)), {});
+  both.append((std::istreambuf_iterator<char>(ib)), {});
+  RecordReaderOptions o = Options(Write("ab.gz", both));
+  o.rate_hz = 1;
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.values, (std::vector<double>{1, 2, 3, 4}));
+
+  const std::string xa = Compress(Write("c.csv", "5\n6\n"), "xz");
+  const std::string xb = Compress(Write("d.csv", "7\n"), "xz");
+  std::ifstream ja(xa, std::ios::binary), jb(xb, std::ios::binary);
+  std::string xboth((std::istreambuf_iterator<char>(ja)), {});
+  xboth.append((std::istreambuf_iterator<char>(jb)), {});
+  o.path = Write("cd.xz", xboth);
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.values, (std::vector<double>{5, 6, 7}));
+}
+
+TEST_F(RecordReaderTest, CompressionIsFoundByContentNotName) {
+  const std::string gz = Compress(Write("x.csv", "1\n2\n3\n"), "gzip");
+  fs::rename(gz, dir_ / "looks_plain.csv");
+  RecordReaderOptions o = Options((dir_ / "looks_plain.csv").string());
+  o.rate_hz = 2;
+  const Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.compression, Compression::kGzip);
+  EXPECT_EQ(r.values, (std::vector<double>{1, 2, 3}));
+}
+
+TEST_F(RecordReaderTest, RawFloat32AndFloat64LittleEndian) {
+  std::string f32, f64;
+  std::vector<double> expected;
+  for (int k = 0; k < 1001; ++k) {
+    const double v = std::cos(0.3 * k) * 1e-3;
+    const auto b32 = std::bit_cast<std::uint32_t>(static_cast<float>(v));
+    const auto b64 = std::bit_cast<std::uint64_t>(v);
+    for (int i = 0; i < 4; ++i) f32 += static_cast<char>((b32 >> (8 * i)) & 0xff);
+    for (int i = 0; i < 8; ++i) f64 += static_cast<char>((b64 >> (8 * i)) & 0xff);
+    expected.push_back(v);
+  }
+  RecordReaderOptions o = Options(Write("r.f64", f64));
+  o.format = RecordFormat::kFloat64;
+  o.rate_hz = 200;
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.values, expected);
+  EXPECT_EQ(r.info.sample_rate_hz, 200);
+  EXPECT_EQ(r.info.rate_source, "--rate");
+  EXPECT_EQ(r.info.column, "float64 samples");
+
+  o.path = Compress(Write("r.f32", f32), "xz");
+  o.format = RecordFormat::kFloat32;
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  ASSERT_EQ(r.values.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(r.values[i], static_cast<double>(static_cast<float>(expected[i])));
+  }
+}
+
+TEST_F(RecordReaderTest, RateFromTimeColumnAndAgreeingRate) {
+  RecordReaderOptions o = Options(Write("r.csv", Csv(100, 50)));
+  o.rate_hz = 50.02;  // within 1e-3 relative: used as given
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.sample_rate_hz, 50.02);
+  EXPECT_EQ(r.info.rate_source, "--rate (time column t_s agrees)");
+  o.rate_hz = 50.1;
+  r = Read(o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message,
+            o.path +
+                ": --rate 50.1 Hz disagrees with the time column t_s (50 Hz from its step "
+                "of 0.02 s); drop --rate or fix it");
+}
+
+TEST_F(RecordReaderTest, IrregularStepsAreReported) {
+  const Result r =
+      Read(Options(Write("r.csv", "time,x\n0,1\n1,2\n2,3\n5,4\n6,5\n7,6\n7.5,7\n8.5,8\n")));
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.sample_rate_hz, 1.0);
+  EXPECT_EQ(r.info.time.irregular_steps, 2);
+  EXPECT_EQ(r.info.time.largest_step_s, 3.0);
+  EXPECT_EQ(r.info.time.largest_step_line, 5);
+  EXPECT_EQ(r.info.time.smallest_step_s, 0.5);
+  EXPECT_EQ(r.info.time.smallest_step_line, 8);
+}
+
+TEST_F(RecordReaderTest, NonFiniteValuesAreListedOrDroppedExplicitly) {
+  std::string text = "t,x\n";
+  for (int k = 0; k < 20; ++k) {
+    text += std::to_string(k) + "," + (k % 3 == 1 ? std::string("nan") : std::to_string(k)) + "\n";
+  }
+  RecordReaderOptions o = Options(Write("r.csv", text));
+  Result r = Read(o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_EQ(r.error.message,
+            o.path +
+                ": 7 non-finite value(s) (NaN, inf or missing) in column x at line(s) 3, 6, "
+                "9, 12, 15, ...; remove them or pass --drop-nonfinite to skip them");
+  o.drop_nonfinite = true;
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.dropped_nonfinite, 7);
+  EXPECT_EQ(r.values.size(), 13u);
+  EXPECT_EQ(r.values[1], 2.0);
+  // A dropped row leaves a hole in time, which is reported like any gap.
+  EXPECT_EQ(r.info.time.irregular_steps, 6);
+  EXPECT_EQ(r.info.time.largest_step_s, 2.0);
+
+  std::string raw(8 * 4, '\0');
+  const auto nan_bits = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::infinity());
+  for (int i = 0; i < 8; ++i) raw[8 + i] = static_cast<char>((nan_bits >> (8 * i)) & 0xff);
+  RecordReaderOptions b = Options(Write("r.f64", raw));
+  b.format = RecordFormat::kFloat64;
+  b.rate_hz = 1;
+  r = Read(b);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.message,
+            b.path +
+                ": 1 non-finite value(s) (NaN, inf or missing) in the samples at 0-based "
+                "index(es) 1; remove them or pass --drop-nonfinite to skip them");
+}
+
+TEST_F(RecordReaderTest, BadInputs) {
+  struct Case {
+    std::string name;
+    std::string content;  // empty: the file is not created
+    std::string column;
+    bool rate;
+    int code;
+    std::string message;  // after "<path>: " unless it starts with "cannot"
+  };
+  const std::vector<Case> cases = {
+      {"missing.csv", "", "", true, kExitRuntimeError,
+       "cannot open {path}: No such file or directory"},
+      {"empty.csv", "# only a comment\n\n", "", true, kExitRuntimeError,
+       "no data rows (2 line(s) of comments, blank lines or header)"},
+      {"header_only.csv", "t,x\n", "", false, kExitRuntimeError,
+       "no data rows (1 line(s) of comments, blank lines or header)"},
+      {"text.csv", "t,x\n0,1\n1,one\n", "", false, kExitRuntimeError,
+       "line 3: column x: 'one' is not a number"},
+      {"two.csv", "t,x\n0,1\n1,2\n", "", false, kExitRuntimeError,
+       "only 2 sample(s) in x; at least 3 are needed"},
+      {"backwards.csv", "t,x\n0,1\n1,2\n0.5,3\n", "", false, kExitRuntimeError,
+       "time is not increasing: line 4 has t = 0.5 s after t = 1 s at line 3 (sort the record "
+       "first)"},
+      {"norate.csv", "a,b\n0,1\n1,2\n2,3\n", "", false, kExitUsageError,
+       "no time column (t, t_s, time, time_s, timestamp) in the header: give the sample rate "
+       "with --rate HZ"},
+      {"nohead.csv", "0,1\n1,2\n2,3\n", "", false, kExitUsageError,
+       "no time column (t, t_s, time, time_s, timestamp) in the file (it has no header row): "
+       "give the sample rate with --rate HZ"},
+      {"column.csv", "t,x\n0,1\n", "y", false, kExitUsageError,
+       "--column y: no such column (t = 0, x = 1)"},
+      {"binary.csv", std::string("\x01\x00\x7f\x03\n", 5), "", true, kExitRuntimeError,
+       "line 1 has a NUL byte: not a text record (raw samples? use --format f32|f64)"},
+      {"bad.xz",
+       std::string("\xfd"
+                   "7zXZ\x00garbage-garbage-garbage",
+                   28),
+       "", true, kExitRuntimeError, "{path}: corrupt xz data"},
+  };
+  for (const Case& c : cases) {
+    RecordReaderOptions o =
+        Options(c.content.empty() && c.name == "missing.csv" ? (dir_ / c.name).string()
+                                                             : Write(c.name, c.content));
+    o.column = c.column;
+    if (c.rate) o.rate_hz = 1;
+    const Result r = Read(o);
+    EXPECT_FALSE(r.ok) << c.name;
+    EXPECT_EQ(r.error.exit_code, c.code) << c.name;
+    std::string expected = c.message;
+    const bool absolute = expected.find("{path}") != std::string::npos;
+    if (absolute) {
+      expected.replace(expected.find("{path}"), 6, o.path);
+    } else {
+      expected = o.path + ": " + expected;
+    }
+    EXPECT_EQ(r.error.message, expected) << c.name;
+  }
+}
+
+TEST_F(RecordReaderTest, TruncatedCompressedFilesFail) {
+  const std::string text = Csv(20000, 100);
+  for (const std::string tool : {"gzip", "xz"}) {
+    const std::string path = Compress(Write("t_" + tool + ".csv", text), tool);
+    const auto size = fs::file_size(path);
+    fs::resize_file(path, size / 2);
+    const Result r = Read(Options(path));
+    EXPECT_FALSE(r.ok) << tool;
+    EXPECT_EQ(r.error.exit_code, kExitRuntimeError) << tool;
+    EXPECT_NE(r.error.message.find("truncated " + std::string(tool == "gzip" ? "gzip" : "xz")),
+              std::string::npos)
+        << r.error.message;
+  }
+}
+
+TEST_F(RecordReaderTest, RawWithoutRateOrWithAPartialSampleFails) {
+  RecordReaderOptions o = Options(Write("r.f32", std::string(10, '\0')));
+  o.format = RecordFormat::kFloat32;
+  Result r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, "raw f32 samples carry no time: give the sample rate with --rate HZ");
+  o.rate_hz = 10;
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_EQ(r.error.message, o.path +
+                                 ": the data ends 2 byte(s) into a 4-byte sample: truncated "
+                                 "file, or not float32 data");
+}
+
+TEST_F(RecordReaderTest, ParseRecordFormat) {
+  RecordFormat f;
+  std::string why;
+  EXPECT_TRUE(ParseRecordFormat("f32", &f, &why));
+  EXPECT_EQ(f, RecordFormat::kFloat32);
+  EXPECT_FALSE(ParseRecordFormat("csv", &f, &why));
+  EXPECT_EQ(why, "unknown format 'csv' (expected text, f32 or f64)");
+}
+
+}  // namespace
+}  // namespace allanlab::app
