@@ -1,0 +1,136 @@
+// The one-pass octave estimator agrees with the in-memory one (estimators/allan_variance.h) to
+// 1e-9 relative where it claims to be exact, computes exactly the strided estimator it documents
+// above exact_overlap_max_m, and keeps its state bounded.
+#include "estimators/streaming_avar.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "estimators/allan_variance.h"
+
+namespace allanlab::estimators {
+namespace {
+
+// White + random-walk rate with a bias 1e4 times the white level and a ramp: the digits the
+// prefix sums must not lose.
+std::vector<double> Record(std::int64_t n, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal;
+  std::vector<double> y(static_cast<std::size_t>(n));
+  double walk = 0;
+  for (std::int64_t k = 0; k < n; ++k) {
+    walk += 1e-3 * normal(engine);
+    y[static_cast<std::size_t>(k)] = 1e4 + 2e-6 * static_cast<double>(k) + normal(engine) + walk;
+  }
+  return y;
+}
+
+StreamingAvar Stream(const std::vector<double>& y, std::int64_t exact_max_m) {
+  StreamingAvar s(StreamingAvarOptions{exact_max_m});
+  for (double v : y) s.Add(v);
+  return s;
+}
+
+void ExpectRelativeNear(double actual, double expected, double tolerance, const char* what,
+                        std::int64_t m) {
+  EXPECT_LE(std::abs(actual - expected), tolerance * std::abs(expected))
+      << what << " at m = " << m << ": expected " << expected << ", actual " << actual
+      << ", relative tolerance " << tolerance;
+}
+
+TEST(StreamingAvarTest, AgreesWithInMemoryEstimatorsTo1e9) {
+  const std::int64_t n = 200003;  // not a power of two: partial last clusters
+  const std::vector<double> y = Record(n, 42);
+  const StreamingAvar s = Stream(y, std::int64_t{1} << 17);
+  const std::vector<StreamingAvarPoint> points = s.Points();
+  std::vector<std::int64_t> ms;
+  for (const StreamingAvarPoint& p : points) ms.push_back(p.m);
+  ASSERT_EQ(ms, OctaveAveragingFactors(n / 2));
+  const std::vector<double> overlapping = AllanVariance(y, ms, AvarEstimatorKind::kOverlapping);
+  const std::vector<double> plain = AllanVariance(y, ms, AvarEstimatorKind::kNonOverlapping);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const StreamingAvarPoint& p = points[i];
+    EXPECT_EQ(p.overlapping_stride, 1);
+    EXPECT_EQ(p.overlapping_terms, n - 2 * p.m + 1);
+    EXPECT_EQ(p.nonoverlapping_terms, n / p.m - 1);
+    ExpectRelativeNear(p.overlapping, overlapping[i], 1e-9, "overlapping", p.m);
+    ExpectRelativeNear(p.nonoverlapping, plain[i], 1e-9, "non-overlapping", p.m);
+  }
+}
+
+TEST(StreamingAvarTest, DefaultIsExactUpToItsLimit) {
+  const std::int64_t n = 70001;
+  const std::vector<double> y = Record(n, 7);
+  const StreamingAvar s = Stream(y, StreamingAvarOptions().exact_overlap_max_m);
+  std::vector<std::int64_t> ms;
+  for (const StreamingAvarPoint& p : s.Points()) {
+    if (p.overlapping_stride == 1) ms.push_back(p.m);
+  }
+  ASSERT_EQ(ms.back(), StreamingAvarOptions().exact_overlap_max_m);
+  const std::vector<double> overlapping = AllanVariance(y, ms, AvarEstimatorKind::kOverlapping);
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    ExpectRelativeNear(s.Points()[i].overlapping, overlapping[i], 1e-9, "overlapping", ms[i]);
+  }
+}
+
+// Above exact_overlap_max_m the starts are every s = m / exact_overlap_max_m samples: checked
+// against a direct sum over exactly those starts.
+TEST(StreamingAvarTest, StridedStartsAboveTheExactLimit) {
+  const std::int64_t n = 5000;
+  const std::vector<double> y = Record(n, 3);
+  const std::int64_t exact_max_m = 4;
+  const StreamingAvar s = Stream(y, exact_max_m);
+  std::vector<long double> prefix(y.size() + 1, 0.0L);
+  for (std::size_t k = 0; k < y.size(); ++k) prefix[k + 1] = prefix[k] + (y[k] - y[0]);
+  for (const StreamingAvarPoint& p : s.Points()) {
+    const std::int64_t stride = std::max<std::int64_t>(1, p.m / exact_max_m);
+    EXPECT_EQ(p.overlapping_stride, stride);
+    long double sum = 0;
+    std::int64_t terms = 0;
+    for (std::int64_t t = 0; t + 2 * p.m <= n; t += stride) {
+      const long double d = prefix[t + 2 * p.m] - 2 * prefix[t + p.m] + prefix[t];
+      sum += d * d;
+      ++terms;
+    }
+    EXPECT_EQ(p.overlapping_terms, terms) << "m = " << p.m;
+    const double expected = static_cast<double>(sum / (2.0L * p.m * p.m * terms));
+    ExpectRelativeNear(p.overlapping, expected, 1e-9, "strided overlapping", p.m);
+  }
+}
+
+TEST(StreamingAvarTest, StateIsBoundedByTheOctaveCount) {
+  const std::int64_t exact_max_m = 256;
+  StreamingAvar s(StreamingAvarOptions{exact_max_m});
+  std::mt19937_64 engine(1);
+  std::normal_distribution<double> normal;
+  std::size_t bytes_at_1e5 = 0;
+  for (std::int64_t k = 1; k <= 2000000; ++k) {
+    s.Add(normal(engine));
+    if (k == 100000) bytes_at_1e5 = s.StateBytes();
+  }
+  // 20x the samples adds log2(20) < 5 octaves of at most (2 * 256 + 1) 16-byte entries each.
+  const std::size_t per_octave = (2 * exact_max_m + 1) * 16 + 256;
+  EXPECT_LE(s.StateBytes() - bytes_at_1e5, 5 * per_octave)
+      << "state grew from " << bytes_at_1e5 << " to " << s.StateBytes() << " bytes";
+  EXPECT_LE(s.StateBytes(), 23 * per_octave);
+}
+
+TEST(StreamingAvarTest, FewSamplesAndInvalidOptions) {
+  StreamingAvar s;
+  s.Add(1.0);
+  EXPECT_TRUE(s.Points().empty());
+  s.Add(3.0);
+  ASSERT_EQ(s.Points().size(), 1u);
+  EXPECT_EQ(s.Points()[0].overlapping, 2.0);  // (3 - 1)^2 / 2
+  std::string why;
+  EXPECT_FALSE(StreamingAvarOptions{3}.IsValid(&why));
+  EXPECT_EQ(why, "exact_overlap_max_m must be a power of two >= 1, got 3");
+  EXPECT_FALSE(StreamingAvarOptions{0}.IsValid(&why));
+}
+
+}  // namespace
+}  // namespace allanlab::estimators
