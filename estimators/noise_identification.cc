@@ -1,0 +1,178 @@
+#include "estimators/noise_identification.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace allanlab::estimators {
+namespace {
+
+// Riley & Greenhall (2004): the lag-1 ACF is trustworthy from about 30 points on; below that
+// SP 1065 §5.6 falls back on the B1 ratio, which needs three points (with two the sample and
+// the Allan variance coincide and the ratio is 1 whatever the noise).
+constexpr std::size_t kMinAcfPoints = 30;
+constexpr std::size_t kMinB1Points = 3;
+// Differencing stops at d_max = 2 (the Allan variance's own order): rate input reaches alpha
+// = -4 - 2 delta that way, far enough to clamp anything steeper to -2.
+constexpr int kMaxDifferences = 2;
+// delta = r1 / (1 + r1) >= 0.25 means the series is still too correlated (alpha < -0.5 at the
+// current order) and one more difference is needed.
+constexpr double kDeltaLimit = 0.25;
+// R(n) separates white from flicker phase only from m = 4 on (0.25 vs 0.39; at m = 2 the two
+// ratios are 0.50 and 0.52).
+constexpr std::int64_t kMinRnFactor = 4;
+
+// Non-overlapping m-averages of the mean-removed record: the mean goes first so that a large
+// bias costs no digits in the differences below.
+std::vector<double> ClusterMeans(std::span<const double> rate, std::int64_t m) {
+  long double mean = 0.0L;
+  for (double v : rate) mean += v;
+  mean /= static_cast<long double>(rate.size());
+  const std::size_t count = rate.size() / static_cast<std::size_t>(m);
+  std::vector<double> means(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    long double sum = 0.0L;
+    for (std::int64_t i = 0; i < m; ++i) sum += rate[k * m + i] - mean;
+    means[k] = static_cast<double>(sum / m);
+  }
+  return means;
+}
+
+// A rate ramp would read as random walk; Riley & Greenhall remove it before identifying.
+void RemoveLinearTrend(std::vector<double>& x) {
+  const double n = static_cast<double>(x.size());
+  const double t_mean = 0.5 * (n - 1.0);
+  long double x_mean = 0.0L, stt = 0.0L, sxt = 0.0L;
+  for (double v : x) x_mean += v;
+  x_mean /= n;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = i - t_mean;
+    stt += t * t;
+    sxt += t * (x[i] - x_mean);
+  }
+  const double slope = stt > 0.0L ? static_cast<double>(sxt / stt) : 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    x[i] -= static_cast<double>(x_mean) + slope * (i - t_mean);
+  }
+}
+
+// Riley & Greenhall (2004) eq. 2 (biased estimator: sums over N - 1 and N terms).
+double Lag1Autocorrelation(const std::vector<double>& x) {
+  long double mean = 0.0L;
+  for (double v : x) mean += v;
+  mean /= static_cast<long double>(x.size());
+  long double num = 0.0L, den = 0.0L;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const long double c = x[i] - mean;
+    den += c * c;
+    if (i + 1 < x.size()) num += c * (x[i + 1] - mean);
+  }
+  return den > 0.0L ? static_cast<double>(num / den) : 0.0;
+}
+
+int ClampAlpha(double alpha) { return static_cast<int>(std::clamp(std::lround(alpha), -2L, 2L)); }
+
+// For S ~ f^p (p > -1 after d differences) the lag-1 ACF tends to r1 = -p/2 / (1 + p/2), so
+// delta = r1 / (1 + r1) = -p/2 and p = -2 delta; each difference of rate raised p by 2, so the
+// rate exponent is alpha = -2 (delta + d). (Phase input would add 2; rate is frequency here.)
+int AcfAlpha(std::vector<double> x) {
+  for (int d = 0;; ++d) {
+    const double r1 = Lag1Autocorrelation(x);
+    // r1 -> -1 is an alternating series, white phase or bluer: alpha at the top of the range.
+    const double delta = r1 > -1.0 + 1e-12 ? r1 / (1.0 + r1) : -1e9;
+    if (delta < kDeltaLimit || d >= kMaxDifferences) return ClampAlpha(-2.0 * (delta + d));
+    for (std::size_t i = 0; i + 1 < x.size(); ++i) x[i] = x[i + 1] - x[i];
+    x.pop_back();
+  }
+}
+
+// Barnes' bias function B1(N, mu) = E[sample variance of N averages] / AVAR for AVAR ~ tau^mu
+// (SP 1065 eq. 66; the mu = 0 entry is the limit N ln N / (2 (N - 1) ln 2)).
+double B1Theory(double n, int mu) {
+  if (mu == 0) return n * std::log(n) / (2.0 * (n - 1.0) * std::numbers::ln2);
+  return n * (1.0 - std::pow(n, mu)) / (2.0 * (n - 1.0) * (1.0 - std::pow(2.0, mu)));
+}
+
+// MVAR(m) / OAVAR(m) from prefix sums: Mod Allan differences are m-averages of consecutive
+// Allan differences, so one more prefix sum over the Allan differences gives them.
+double ModifiedToAllanRatio(std::span<const double> rate, std::int64_t m) {
+  const auto n = static_cast<std::int64_t>(rate.size());
+  if (3 * m > n) return 0.0;
+  long double mean = 0.0L;
+  for (double v : rate) mean += v;
+  mean /= n;
+  std::vector<long double> y_sum(n + 1, 0.0L);
+  for (std::int64_t i = 0; i < n; ++i) y_sum[i + 1] = y_sum[i] + (rate[i] - mean);
+  const std::int64_t count = n - 2 * m + 1;  // Allan differences (times m)
+  std::vector<long double> diff_sum(count + 1, 0.0L);
+  long double avar = 0.0L;
+  for (std::int64_t t = 0; t < count; ++t) {
+    const long double a = y_sum[t + 2 * m] - 2.0L * y_sum[t + m] + y_sum[t];
+    avar += a * a;
+    diff_sum[t + 1] = diff_sum[t] + a;
+  }
+  avar /= count;
+  long double mvar = 0.0L;
+  const std::int64_t mod_count = count - m + 1;
+  for (std::int64_t t = 0; t < mod_count; ++t) {
+    const long double a = (diff_sum[t + m] - diff_sum[t]) / m;
+    mvar += a * a;
+  }
+  mvar /= mod_count;
+  return avar > 0.0L ? static_cast<double>(mvar / avar) : 0.0;
+}
+
+// SP 1065 §5.6: R(n) = MVAR/AVAR is 1/m for white phase and, for flicker phase with the usual
+// f_h = 1/(2 tau0), 3 ln(256/27) / (2 (1.038 + 3 ln(pi m))); the boundary is their geometric mean.
+int WhiteOrFlickerPhase(std::span<const double> rate, std::int64_t m) {
+  if (m < kMinRnFactor) return 2;
+  const double md = static_cast<double>(m);
+  const double white = 1.0 / md;
+  const double flicker =
+      3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
+  return ModifiedToAllanRatio(rate, m) < std::sqrt(white * flicker) ? 2 : 1;
+}
+
+NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
+                         const std::vector<double>& means) {
+  const double n = static_cast<double>(means.size());
+  long double mean = 0.0L;
+  for (double v : means) mean += v;
+  mean /= n;
+  long double var = 0.0L, avar = 0.0L;
+  for (std::size_t k = 0; k < means.size(); ++k) {
+    var += (means[k] - mean) * (means[k] - mean);
+    if (k + 1 < means.size()) avar += (means[k + 1] - means[k]) * (means[k + 1] - means[k]);
+  }
+  var /= n - 1.0;
+  avar /= 2.0 * (n - 1.0);
+  if (!(avar > 0.0L)) return {};
+  const double b1 = static_cast<double>(var / avar);
+  // AVAR ~ tau^mu: mu = 1, 0, -1 are RWFM, FFM, WFM (alpha = -mu - 1); mu = -2 is white or
+  // flicker phase. Boundaries: geometric means of neighbouring expectations.
+  NoiseId id{0, true, true};
+  for (int mu = 1; mu >= -1; --mu) {
+    if (b1 > std::sqrt(B1Theory(n, mu) * B1Theory(n, mu - 1))) {
+      id.alpha = -mu - 1;
+      return id;
+    }
+  }
+  id.alpha = WhiteOrFlickerPhase(rate, m);
+  return id;
+}
+
+}  // namespace
+
+NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
+  if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};
+  std::vector<double> means = ClusterMeans(rate, m);
+  if (means.size() >= kMinAcfPoints) {
+    RemoveLinearTrend(means);
+    return {AcfAlpha(std::move(means)), true, false};
+  }
+  if (means.size() >= kMinB1Points) return B1Identification(rate, m, means);
+  return {};
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,91 @@
+// The exact EDF of (O)AVAR under a noise model reproduces the "exact" columns of THEORY.md §2.2
+// (three decimals printed, so the tolerance is half a unit of the last digit) and the white-noise
+// closed form.
+#include "estimators/exact_edf.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "tests/support/monte_carlo.h"
+
+namespace allanlab::estimators {
+namespace {
+
+using sim::AvarEstimatorKind;
+using testing_support::SingleTermModel;
+
+struct Row {
+  std::int64_t n, m;
+  double overlapping, non_overlapping;
+};
+
+// EDF is scale-free, so unit coefficients at fs = 1 Hz stand for every record of that noise.
+void ExpectTable(const sim::NoiseTerm& term, const std::vector<Row>& rows, double tolerance) {
+  const sim::SensorModel model = SingleTermModel(term, 1.0);
+  for (const Row& row : rows) {
+    const std::int64_t ms[] = {row.m};
+    const double ovl = ModelAvarEdf(model, ms, {row.n, AvarEstimatorKind::kOverlapping})[0];
+    const double non = ModelAvarEdf(model, ms, {row.n, AvarEstimatorKind::kNonOverlapping})[0];
+    EXPECT_NEAR(ovl, row.overlapping, tolerance)
+        << sim::TermId(term) << " N=" << row.n << " m=" << row.m << " overlapping";
+    EXPECT_NEAR(non, row.non_overlapping, tolerance)
+        << sim::TermId(term) << " N=" << row.n << " m=" << row.m << " non-overlapping";
+  }
+}
+
+TEST(ExactEdf, WhiteRateMatchesTheoryTable) {
+  ExpectTable(sim::WhiteRateNoise{1.0},
+              {{100, 1, 66.223, 66.223},
+               {100, 10, 12.783, 6.231},
+               {1000, 10, 146.072, 66.223},
+               {1000, 100, 12.813, 6.231},
+               {1000, 300, 3.157, 1.600}},
+              5e-4);
+}
+
+TEST(ExactEdf, RandomWalkMatchesTheoryTable) {
+  ExpectTable(sim::RandomWalkRate{1.0}, {{1000, 10, 91.755, 88.387}, {1000, 100, 7.757, 8.100}},
+              5e-4);
+  // Discrete random-walk differences at m = 1 are iid: EDF = N - 1 exactly (printed as 999.0).
+  ExpectTable(sim::RandomWalkRate{1.0}, {{1000, 1, 999.0, 999.0}}, 1e-6);
+}
+
+TEST(ExactEdf, FlickerMatchesTheoryTable) {
+  ExpectTable(sim::FlickerNoise{1.0}, {{1000, 10, 116.392, 87.167}, {1000, 100, 9.926, 8.074}},
+              5e-4);
+}
+
+TEST(ExactEdf, QuantizationMatchesTheoryTable) {
+  ExpectTable(sim::QuantizationNoise{1.0},
+              {{1000, 10, 507.173, 51.180}, {1000, 100, 440.207, 4.909}}, 5e-4);
+}
+
+// THEORY.md §2.2: non-overlapping white rate noise, M clusters: EDF = 2 (M - 1)^2 / (3M - 4).
+TEST(ExactEdf, WhiteNonOverlappingClosedForm) {
+  const sim::SensorModel model = SingleTermModel(sim::WhiteRateNoise{0.3}, 100.0);
+  const std::vector<std::int64_t> ms = {1, 3, 7, 50, 333};
+  const std::int64_t n = 1000;
+  const std::vector<double> edf = ModelAvarEdf(model, ms, {n, AvarEstimatorKind::kNonOverlapping});
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    const double clusters = static_cast<double>(n / ms[i]);
+    const double expected = 2.0 * (clusters - 1.0) * (clusters - 1.0) / (3.0 * clusters - 4.0);
+    EXPECT_NEAR(edf[i], expected, 1e-9 * expected) << "m=" << ms[i];
+  }
+}
+
+// The mean is the model's expected AVAR (both come from the same autocovariance), and averaging
+// factors the record cannot hold give zero moments rather than garbage.
+TEST(ExactEdf, MeanIsExpectedAvarAndInvalidFactorsAreZero) {
+  const sim::SensorModel model = SingleTermModel(sim::WhiteRateNoise{0.3}, 100.0);
+  const sim::RecordShape shape{1000, AvarEstimatorKind::kOverlapping};
+  const std::vector<std::int64_t> ms = {0, 4, 501};
+  const std::vector<AvarMoments> moments = ModelAvarMoments(model, ms, shape);
+  EXPECT_EQ(moments[0].variance, 0.0);
+  EXPECT_EQ(moments[2].edf(), 0.0);
+  EXPECT_NEAR(moments[1].mean, model.ExpectedAvar(4, shape), 1e-12 * moments[1].mean);
+}
+
+}  // namespace
+}  // namespace allanlab::estimators
