@@ -78,6 +78,11 @@ bool Plottable(double x, double y) {
   return std::isfinite(x) && std::isfinite(y) && x > 0 && y > 0;
 }
 
+bool HasBars(const PlotSeries& s) {
+  return s.style == PlotStyle::kPoints && s.y_low.size() == s.x.size() &&
+         s.y_high.size() == s.x.size();
+}
+
 std::string SlopeLabel(double slope) {
   if (slope == 0.0) return "0";
   const std::string sign = slope > 0 ? "+" : "-";
@@ -98,12 +103,13 @@ const char* Color(std::size_t index) {
 std::string Script(const AllanPlot& plot, const std::string& output_path) {
   std::vector<const PlotSeries*> kept;
   std::vector<std::vector<std::pair<double, double>>> points;
+  std::vector<std::vector<std::pair<double, double>>> bars;  // (low, high) per kept point
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = 0;
   double y_lo = std::numeric_limits<double>::infinity(), y_hi = 0;
   int guide_index = -1;  // into points
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     const PlotSeries& series = plot.series[s];
-    std::vector<std::pair<double, double>> valid;
+    std::vector<std::pair<double, double>> valid, valid_bars;
     for (std::size_t i = 0; i < std::min(series.x.size(), series.y.size()); ++i) {
       if (!Plottable(series.x[i], series.y[i])) continue;
       valid.emplace_back(series.x[i], series.y[i]);
@@ -111,10 +117,19 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
       x_hi = std::max(x_hi, series.x[i]);
       y_lo = std::min(y_lo, series.y[i]);
       y_hi = std::max(y_hi, series.y[i]);
+      if (HasBars(series)) {
+        const double low = Plottable(series.x[i], series.y_low[i]) ? series.y_low[i] : series.y[i];
+        const double high =
+            Plottable(series.x[i], series.y_high[i]) ? series.y_high[i] : series.y[i];
+        valid_bars.emplace_back(low, high);
+        y_lo = std::min(y_lo, low);
+        y_hi = std::max(y_hi, high);
+      }
     }
     if (valid.empty()) continue;
     kept.push_back(&series);
     points.push_back(std::move(valid));
+    bars.push_back(std::move(valid_bars));
     if (static_cast<int>(s) == plot.guide_series) guide_index = static_cast<int>(points.size()) - 1;
   }
   // Guides must not stretch the axes, so the ranges come from the data alone.
@@ -140,8 +155,13 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
      << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
   for (std::size_t s = 0; s < points.size(); ++s) {
     os << "$s" << s << " << EOD\n";
-    for (const auto& [x, y] : points[s])
-      os << ShortestDecimal(x) << " " << ShortestDecimal(y) << "\n";
+    for (std::size_t i = 0; i < points[s].size(); ++i) {
+      os << ShortestDecimal(points[s][i].first) << " " << ShortestDecimal(points[s][i].second);
+      if (!bars[s].empty()) {
+        os << " " << ShortestDecimal(bars[s][i].first) << " " << ShortestDecimal(bars[s][i].second);
+      }
+      os << "\n";
+    }
     os << "EOD\n";
   }
   std::vector<std::string> clauses;
@@ -178,17 +198,18 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
     std::string style;
     switch (kept[s]->style) {
       case PlotStyle::kPoints:
-        style = "with points pt 7 ps 1.1";
+        style = bars[s].empty() ? "using 1:2 with points pt 7 ps 1.1"
+                                : "using 1:2:3:4 with yerrorbars pt 7 ps 1.1";
         break;
       case PlotStyle::kLine:
-        style = "with lines lw 2";
+        style = "using 1:2 with lines lw 2";
         break;
       case PlotStyle::kDashedLine:
-        style = "with lines lw 1.5 dt 2";
+        style = "using 1:2 with lines lw 1.5 dt 2";
         break;
     }
-    clauses.push_back("$s" + std::to_string(s) + " using 1:2 " + style + " lc rgb '" + Color(s) +
-                      "' title " + Quoted(kept[s]->title));
+    clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb '" + Color(s) + "' title " +
+                      Quoted(kept[s]->title));
   }
   os << "plot ";
   for (std::size_t i = 0; i < clauses.size(); ++i) {

@@ -15,6 +15,11 @@ struct PlotSeries {
   PlotStyle style = PlotStyle::kLine;
   std::vector<double> x;  // tau [s]
   std::vector<double> y;  // same length as x, in the unit of AllanPlot::y_label
+  // Optional vertical error bars (e.g. confidence intervals), kPoints only: when both have the
+  // length of x, each point gets a bar from y_low to y_high. An end a log axis cannot show (<= 0,
+  // NaN, inf) is drawn at the point itself, so a one-sided bar stays one-sided.
+  std::vector<double> y_low = {};
+  std::vector<double> y_high = {};
 };
 
 struct AllanPlot {

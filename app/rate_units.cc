@@ -52,4 +52,16 @@ double FromRadPerSecond(RateUnit unit, double rad_per_s) {
   return rad_per_s;
 }
 
+double ToRadPerSecond(RateUnit unit, double value) {
+  switch (unit) {
+    case RateUnit::kDegPerSecond:
+      return units::DegPerSecond(value);
+    case RateUnit::kDegPerHour:
+      return units::DegPerHour(value);
+    case RateUnit::kRadPerSecond:
+      return value;
+  }
+  return value;
+}
+
 }  // namespace allanlab::app

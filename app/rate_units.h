@@ -20,4 +20,7 @@ std::string_view RateUnitIdentifier(RateUnit unit);
 // last bit with every other place that prints deg/h).
 double FromRadPerSecond(RateUnit unit, double rad_per_s);
 
+// A rate given in `unit`, in rad/s (the inverse of FromRadPerSecond, same sim/units.h factors).
+double ToRadPerSecond(RateUnit unit, double value);
+
 }  // namespace allanlab::app

@@ -8,14 +8,14 @@
 #include <filesystem>
 #include <functional>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "app/allan_plot.h"
 #include "app/atomic_file.h"
+#include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
 #include "estimators/allan_variance.h"
@@ -201,27 +201,6 @@ std::optional<Failure> LoadModel(const SimulateOptions& o, sim::SensorModel* mod
   return std::nullopt;
 }
 
-// Refuses two outputs that are the same file: the second rename would silently win.
-std::optional<Failure> CheckDistinct(
-    const std::vector<std::pair<std::string, std::string>>& outputs) {
-  std::vector<std::pair<std::string, std::filesystem::path>> seen;
-  for (const auto& [option, path] : outputs) {
-    // Absolute first: weakly_canonical leaves a relative path to a missing file relative, and
-    // then "x.csv" and "./x.csv" would look different.
-    std::error_code ec;
-    const std::filesystem::path absolute = std::filesystem::absolute(path, ec).lexically_normal();
-    std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, ec);
-    if (ec) canonical = absolute;
-    for (const auto& [other_option, other] : seen) {
-      if (other == canonical) {
-        return Usage(other_option + " and " + option + " both name " + path);
-      }
-    }
-    seen.emplace_back(option, canonical);
-  }
-  return std::nullopt;
-}
-
 std::optional<Failure> Simulate(const SimulateOptions& o, const std::string& command_line) {
   // 1. The command line on its own.
   if (o.preset.empty() == o.sensor_path.empty()) {
@@ -271,7 +250,7 @@ std::optional<Failure> Simulate(const SimulateOptions& o, const std::string& com
   if (format == RecordFormat::kFloat64) outputs.emplace_back("-o (sidecar)", sidecar_path);
   if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
   if (!o.avar_table_path.empty()) outputs.emplace_back("--avar-table", o.avar_table_path);
-  if (auto failure = CheckDistinct(outputs)) return failure;
+  if (!CheckDistinctOutputs(outputs, &why)) return Usage(why);
   if (!o.plot_path.empty() && !FindGnuplot(&why)) return Runtime(why);
   AtomicFile record, sidecar, plot_png, table;
   if (!record.Open(o.output_path, &why)) return Runtime(why);

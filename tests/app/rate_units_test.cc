@@ -1,8 +1,8 @@
 #include "app/rate_units.h"
 
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "sim/units.h"
 
@@ -36,6 +36,15 @@ TEST(RateUnitsTest, ConversionsAgreeWithSimUnits) {
   EXPECT_DOUBLE_EQ(FromRadPerSecond(RateUnit::kDegPerSecond, rate), 1.5);
   EXPECT_DOUBLE_EQ(FromRadPerSecond(RateUnit::kDegPerHour, rate), 1.5 * 3600.0);
   EXPECT_EQ(FromRadPerSecond(RateUnit::kRadPerSecond, rate), rate);
+}
+
+TEST(RateUnitsTest, ToRadPerSecondInvertsFromRadPerSecond) {
+  EXPECT_EQ(ToRadPerSecond(RateUnit::kDegPerSecond, 180.0), units::kPi);
+  EXPECT_EQ(ToRadPerSecond(RateUnit::kRadPerSecond, 0.25), 0.25);
+  for (RateUnit unit : {RateUnit::kDegPerSecond, RateUnit::kDegPerHour, RateUnit::kRadPerSecond}) {
+    const double v = 0.123456789;
+    EXPECT_NEAR(FromRadPerSecond(unit, ToRadPerSecond(unit, v)), v, 1e-16) << RateUnitName(unit);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,387 @@
+#include "app/avar_command.h"
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <new>
+#include <utility>
+#include <vector>
+
+#include "app/allan_plot.h"
+#include "app/atomic_file.h"
+#include "app/avar_report.h"
+#include "app/output_paths.h"
+#include "app/provenance.h"
+#include "app/rate_units.h"
+#include "app/record_reader.h"
+#include "estimators/avar.h"
+#include "estimators/confidence.h"
+#include "estimators/streaming_avar.h"
+#include "sim/units.h"
+
+namespace allanlab::app {
+namespace {
+
+constexpr const char* kCommand = "avar";
+
+using estimators::ConfidenceMethod;
+using estimators::InputKind;
+using estimators::Statistic;
+
+struct Failure {
+  int code = kExitOk;
+  std::string message;
+};
+Failure Usage(std::string message) { return {kExitUsageError, std::move(message)}; }
+Failure Runtime(std::string message) { return {kExitRuntimeError, std::move(message)}; }
+
+void PrintWarning(const std::string& message) {
+  std::cerr << "allanlab " << kCommand << ": warning: " << message << std::endl;
+}
+
+bool PositiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
+
+// The command line turned into typed choices.
+struct Plan {
+  RecordReaderOptions read;
+  InputKind input = InputKind::kRate;
+  std::string input_units;
+  double to_si = 1.0;                            // angle input: [unit] -> rad
+  RateUnit rate_unit = RateUnit::kDegPerSecond;  // rate input
+  RateUnit output_unit = RateUnit::kDegPerHour;
+  estimators::AvarOptions avar;
+};
+
+std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
+  std::string why;
+  if (o.path.empty()) return Usage("FILE is required");
+  plan->read.path = o.path;
+  plan->read.column = o.column;
+  plan->read.drop_nonfinite = o.drop_nonfinite;
+  if (!ParseRecordFormat(o.format, &plan->read.format, &why)) return Usage("--format: " + why);
+  if (plan->read.format != RecordFormat::kText && !o.column.empty()) {
+    return Usage("--column applies to text records; raw " + o.format + " has one column");
+  }
+  if (o.rate_hz) {
+    if (!PositiveFinite(*o.rate_hz)) {
+      return Usage("--rate must be a finite number of Hz > 0, got " + ShortestDecimal(*o.rate_hz));
+    }
+    plan->read.rate_hz = o.rate_hz;
+  }
+  if (o.type == "rate") {
+    plan->input = InputKind::kRate;
+    plan->input_units = o.units.empty() ? "deg/s" : o.units;
+    if (!ParseRateUnit(plan->input_units, &plan->rate_unit, &why)) return Usage("--units: " + why);
+  } else if (o.type == "angle") {
+    plan->input = InputKind::kAngle;
+    plan->input_units = o.units.empty() ? "deg" : o.units;
+    if (plan->input_units == "deg") {
+      plan->to_si = units::kRadPerDeg;
+    } else if (plan->input_units == "rad") {
+      plan->to_si = 1.0;
+    } else if (plan->input_units == "arcsec") {
+      plan->to_si = units::kRadPerArcsec;
+    } else {
+      return Usage("--units: unknown angle unit '" + plan->input_units +
+                   "' for --type angle (expected deg, rad or arcsec)");
+    }
+    // One more angle than rates: 3 rates need 4 angles.
+    plan->read.min_samples = 4;
+  } else {
+    return Usage("--type: unknown '" + o.type + "' (expected rate or angle)");
+  }
+  if (!ParseRateUnit(o.out_units, &plan->output_unit, &why)) return Usage("--out-units: " + why);
+
+  estimators::AvarOptions& a = plan->avar;
+  a.input = plan->input;
+  if (!estimators::ParseStatistic(o.estimator, &a.statistic)) {
+    return Usage("--estimator: unknown '" + o.estimator +
+                 "' (expected overlapping, nonoverlapping, modified, hadamard, "
+                 "hadamard_nonoverlapping, total or time)");
+  }
+  if (!estimators::TauGridOptions::Parse(o.taus, &a.taus, &why)) return Usage("--taus: " + why);
+  const std::string ci = o.ci.value_or(o.stream ? "simple" : "gr");
+  if (ci == "gr") {
+    a.confidence_method = ConfidenceMethod::kGreenhallRiley;
+  } else if (ci == "simple") {
+    a.confidence_method = ConfidenceMethod::kSimple;
+  } else if (ci == "none") {
+    a.confidence_method = ConfidenceMethod::kNone;
+  } else {
+    return Usage("--ci: unknown '" + ci + "' (expected gr, simple or none)");
+  }
+  if (!(o.confidence > 0.0 && o.confidence < 1.0)) {
+    return Usage("--confidence must be in (0, 1), got " + ShortestDecimal(o.confidence));
+  }
+  a.confidence = o.confidence;
+  if (o.stream) {
+    if (a.statistic != Statistic::kAllanOverlapping &&
+        a.statistic != Statistic::kAllanNonOverlapping) {
+      return Usage("--stream computes overlapping or nonoverlapping AVAR only, not " + o.estimator);
+    }
+    if (a.taus.kind != estimators::TauGridKind::kOctave) {
+      return Usage("--stream computes octave taus only (--taus octave), not " + o.taus);
+    }
+    if (a.confidence_method == ConfidenceMethod::kGreenhallRiley) {
+      return Usage(
+          "--stream cannot give --ci gr: the Greenhall-Riley EDF needs the noise type at each "
+          "tau, identified from the record in memory; use --ci simple or none, or drop --stream");
+    }
+    estimators::StreamingAvarOptions stream{o.stream_exact_max_m};
+    if (!stream.IsValid(&why)) return Usage("--stream-exact-m: " + why);
+  }
+  return std::nullopt;
+}
+
+// Reads the record in SI units (rad/s or rad) and computes the curve in memory.
+std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
+  std::vector<double> values;
+  RecordError error;
+  if (!ReadRecordValues(plan.read, &values, &report->record, &error)) {
+    return Failure{error.exit_code, error.message};
+  }
+  for (double& v : values) {
+    v = plan.input == InputKind::kAngle ? v * plan.to_si : ToRadPerSecond(plan.rate_unit, v);
+  }
+  estimators::AvarOptions options = plan.avar;
+  options.sample_period_s = 1.0 / report->record.sample_rate_hz;
+  if (!estimators::ComputeAvar(options, values, &report->summary)) {
+    return Runtime(plan.read.path + ": " + report->summary.message);
+  }
+  return std::nullopt;
+}
+
+// One pass in bounded memory: the rate (angle differences for angle input) goes straight from the
+// reader into the streaming estimator; units and tau0 are applied to the results at the end,
+// since tau0 may only be known from the time column once the file has been read.
+std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_m,
+                                       AvarReport* report) {
+  estimators::StreamingAvar stream(estimators::StreamingAvarOptions{exact_max_m});
+  bool have_previous = false;
+  double previous = 0.0;
+  const bool angle = plan.input == InputKind::kAngle;
+  RecordError error;
+  const bool ok = ReadRecord(
+      plan.read,
+      [&](double v) {
+        if (!angle) {
+          stream.Add(ToRadPerSecond(plan.rate_unit, v));
+          return;
+        }
+        const double a = v * plan.to_si;
+        if (have_previous) stream.Add(a - previous);
+        previous = a;
+        have_previous = true;
+      },
+      &report->record, &error);
+  if (!ok) return Failure{error.exit_code, error.message};
+  const double tau0 = 1.0 / report->record.sample_rate_hz;
+  const double scale = angle ? 1.0 / (tau0 * tau0) : 1.0;
+  estimators::AvarSummary& s = report->summary;
+  s.options = plan.avar;
+  s.options.sample_period_s = tau0;
+  s.num_samples = stream.count();
+  const bool overlapping = plan.avar.statistic == Statistic::kAllanOverlapping;
+  for (const estimators::StreamingAvarPoint& p : stream.Points()) {
+    estimators::AvarPoint point;
+    point.m = p.m;
+    point.tau_s = static_cast<double>(p.m) * tau0;
+    point.value = (overlapping ? p.overlapping : p.nonoverlapping) * scale;
+    point.terms = overlapping ? p.overlapping_terms : p.nonoverlapping_terms;
+    if (plan.avar.confidence_method == ConfidenceMethod::kSimple) {
+      point.edf = estimators::SimpleEdf(stream.count() / p.m);
+      if (point.edf > 0) {
+        const estimators::Interval ci =
+            estimators::ChiSquareInterval(point.value, point.edf, plan.avar.confidence);
+        point.ci_low = ci.low;
+        point.ci_high = ci.high;
+      }
+    }
+    s.points.push_back(point);
+    report->overlap_stride.push_back(overlapping ? p.overlapping_stride : p.m);
+  }
+  if (s.points.empty()) {
+    return Runtime(plan.read.path + ": " + std::to_string(stream.count()) +
+                   " rate samples give no octave tau");
+  }
+  s.ok = true;
+  report->streamed = true;
+  report->stream_exact_max_m = exact_max_m;
+  return std::nullopt;
+}
+
+void WarnAboutRecord(const RecordInfo& info) {
+  if (info.dropped_nonfinite > 0) {
+    PrintWarning(info.path + ": dropped " + std::to_string(info.dropped_nonfinite) +
+                 " non-finite value(s) (--drop-nonfinite); the record is shorter by as many "
+                 "samples and the curve treats it as contiguous");
+  }
+  if (info.time.irregular_steps > 0) {
+    PrintWarning(info.path + ": " + std::to_string(info.time.irregular_steps) +
+                 " irregular time step(s) in " + info.time_column + " (nominal " +
+                 ShortestDecimal(info.time.nominal_step_s) + " s; largest " +
+                 ShortestDecimal(info.time.largest_step_s) + " s at line " +
+                 std::to_string(info.time.largest_step_line) + ", smallest " +
+                 ShortestDecimal(info.time.smallest_step_s) + " s at line " +
+                 std::to_string(info.time.smallest_step_line) +
+                 "); the estimator assumes uniform sampling");
+  }
+}
+
+std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& command_line) {
+  // 1. The command line on its own.
+  Plan plan;
+  if (auto failure = MakePlan(o, &plan)) return failure;
+
+  // 2. Every output opened before the work: a bad path or a missing gnuplot costs nothing.
+  std::string why;
+  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.path}};
+  if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
+  if (!o.csv_path.empty()) outputs.emplace_back("--csv", o.csv_path);
+  if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
+  if (!CheckDistinctOutputs(outputs, &why)) return Usage(why);
+  if (!o.plot_path.empty() && !FindGnuplot(&why)) return Runtime(why);
+  AtomicFile json, csv, png;
+  if (!o.json_path.empty() && !json.Open(o.json_path, &why)) return Runtime(why);
+  if (!o.csv_path.empty() && !csv.Open(o.csv_path, &why)) return Runtime(why);
+  if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return Runtime(why);
+
+  // 3. The record and its curve.
+  AvarReport report;
+  report.input_units = plan.input_units;
+  report.output_unit = plan.output_unit;
+  report.taus_text = o.taus;
+  const std::optional<Failure> failure = o.stream
+                                             ? ComputeStreamed(plan, o.stream_exact_max_m, &report)
+                                             : ComputeInMemory(plan, &report);
+  if (failure) return failure;
+  WarnAboutRecord(report.record);
+
+  Provenance& p = report.provenance;
+  p = MakeProvenance(kCommand, command_line);
+  const RecordInfo& info = report.record;
+  p.Add("input", info.path);
+  p.Add("format", std::string(RecordFormatName(info.format)) + ", compression " +
+                      std::string(CompressionName(info.compression)));
+  p.Add("column", info.column);
+  p.Add("type", o.type);
+  p.Add("units", plan.input_units + " in, " + std::string(RateUnitName(plan.output_unit)) + " out");
+  p.Add("samples", std::to_string(info.samples) + " read, " +
+                       std::to_string(report.summary.num_samples) + " rate samples used");
+  p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
+  if (info.dropped_nonfinite > 0) {
+    p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
+  }
+  if (!info.time_column.empty()) {
+    p.Add("irregular_time_steps", std::to_string(info.time.irregular_steps));
+  }
+  p.Add("estimator", std::string(estimators::StatisticId(plan.avar.statistic)) +
+                         (report.streamed ? " (--stream, exact overlap up to m = " +
+                                                std::to_string(o.stream_exact_max_m) + ")"
+                                          : ""));
+  p.Add("taus", o.taus);
+  p.Add("interval", o.ci.value_or(o.stream ? "simple" : "gr") + " at confidence " +
+                        ShortestDecimal(plan.avar.confidence));
+
+  // 4. Outputs: stdout first, files committed last and together.
+  WriteAvarTable(std::cout, report);
+  std::cout.flush();
+  if (json.is_open()) json.stream() << AvarJson(report).dump(2) << "\n";
+  if (csv.is_open()) WriteAvarCsv(csv.stream(), report);
+  if (png.is_open() && !RenderAllanPlot(AvarPlot(report), &png, &why)) return Runtime(why);
+  for (AtomicFile* file : {&json, &csv, &png}) {
+    if (file->is_open() && !file->Commit(&why)) return Runtime(why);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Subcommand AddAvarCommand(CLI::App* parent) {
+  auto options = std::make_shared<AvarCommandOptions>();
+  CLI::App* cmd = parent->add_subcommand(
+      kCommand,
+      "Allan-family curve of a recorded gyro rate (or angle) column with confidence intervals: "
+      "a table on stdout, optionally JSON, CSV and an Allan diagram.");
+  cmd->add_option("FILE", options->path,
+                  "the record: CSV/TSV/whitespace text with '#' comments and an optional header, "
+                  "or raw little-endian float32/float64 (--format); plain, .gz or .xz (detected "
+                  "from the content)")
+      ->required();
+  cmd->add_option("--column", options->column,
+                  "text column by header name or 0-based index (default: the first column that "
+                  "is not the time column t, t_s, time, time_s or timestamp)")
+      ->type_name("NAME|INDEX");
+  cmd->add_option("--units", options->units,
+                  "input units: deg/s (default), deg/h or rad/s for rate; deg (default), rad or "
+                  "arcsec for angle")
+      ->type_name("UNIT");
+  cmd->add_option("--out-units", options->out_units,
+                  "units of the printed deviation: deg/h (default), deg/s or rad/s")
+      ->type_name("deg/h|deg/s|rad/s");
+  cmd->add_option("--rate", options->rate_hz,
+                  "sample rate in Hz; needed without a time column; with one it must agree to "
+                  "1e-3 relative")
+      ->type_name("HZ");
+  cmd->add_option("--type", options->type, "the column holds rate (default) or angle samples")
+      ->type_name("rate|angle");
+  cmd->add_option("--estimator", options->estimator,
+                  "overlapping (default), nonoverlapping, modified, hadamard, "
+                  "hadamard_nonoverlapping, total or time")
+      ->type_name("NAME");
+  cmd->add_option("--taus", options->taus,
+                  "octave (default), decade (1-2-5), dense:K (K per decade), all (slow: O(N^2)), "
+                  "or a comma list of taus in seconds")
+      ->type_name("GRID");
+  cmd->add_option("--confidence", options->confidence,
+                  "two-sided level of the intervals (default 0.683)")
+      ->type_name("P");
+  cmd->add_option_function<std::string>(
+         "--ci", [options](const std::string& v) { options->ci = v; },
+         "interval method: gr (Greenhall-Riley EDF, default), simple (EDF = clusters - 1, "
+         "IEEE 952; the default with --stream) or none")
+      ->type_name("gr|simple|none");
+  cmd->add_option("--json", options->json_path, "also write the results as JSON with provenance")
+      ->type_name("OUT.json");
+  cmd->add_option("--csv", options->csv_path, "also write the results as CSV with provenance")
+      ->type_name("OUT.csv");
+  cmd->add_option("--plot", options->plot_path,
+                  "also draw the log-log diagram with interval bars and slope guides (PNG, "
+                  "needs gnuplot)")
+      ->type_name("OUT.png");
+  cmd->add_option("--format", options->format,
+                  "input record format: text (default), f32 or f64 (raw little-endian)")
+      ->type_name("text|f32|f64");
+  cmd->add_flag("--drop-nonfinite", options->drop_nonfinite,
+                "skip rows whose value is NaN, inf or missing (counted and reported) instead of "
+                "failing");
+  cmd->add_flag("--stream", options->stream,
+                "one pass in bounded memory for records larger than memory: octave taus, "
+                "overlapping or nonoverlapping AVAR, --ci simple or none");
+  cmd->add_option("--stream-exact-m", options->stream_exact_max_m,
+                  "with --stream: overlapping AVAR uses every window start up to this m (a power "
+                  "of two, default 16384; state ~32 bytes x M per octave), every m/M-th above")
+      ->type_name("M");
+  cmd->footer(
+      "Output files are written to a temporary file and renamed into place only when the whole "
+      "run succeeds.\nExit status: 0 ok, 1 bad or unreadable file, I/O or gnuplot error, 2 usage "
+      "error.");
+  return {cmd,
+          [options](const std::string& command_line) { return RunAvar(*options, command_line); }};
+}
+
+int RunAvar(const AvarCommandOptions& options, const std::string& command_line) {
+  std::optional<Failure> failure;
+  try {
+    failure = Avar(options, command_line);
+  } catch (const std::bad_alloc&) {
+    failure = Runtime("out of memory (for records larger than memory, use --stream)");
+  } catch (const std::exception& e) {
+    failure = Runtime(std::string("internal error: ") + e.what());
+  }
+  if (!failure) return kExitOk;
+  PrintError(kCommand, failure->message);
+  return failure->code;
+}
+
+}  // namespace allanlab::app

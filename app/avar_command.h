@@ -1,0 +1,51 @@
+#pragma once
+// `allanlab avar FILE`: the Allan-family curve of a recorded rate (or angle) column with
+// confidence intervals, as a table on stdout and optionally JSON, CSV (both with provenance) and
+// a PNG diagram. The record is read by app/record_reader.h (text, f32, f64; plain, gzip, xz).
+// In memory by default: estimators/avar.h (every statistic, tau grid and interval). With
+// --stream, one pass in bounded memory: estimators/streaming_avar.h (octave taus, overlapping or
+// non-overlapping AVAR, simple or no interval), for records larger than memory.
+//
+// Units: input in --units (rate: deg/s, deg/h, rad/s; angle: deg, rad, arcsec), converted to SI
+// on reading; output in --out-units (default deg/h). Tau in seconds.
+//
+// Exit codes (app/subcommand.h): 2 for a wrong command line or value (unknown unit, estimator,
+// tau grid, CI method or format, a confidence outside (0, 1), a --rate not finite and > 0 or
+// disagreeing with the time column, no rate at all, a --column the file does not have, an option
+// --stream cannot do, two outputs naming one file); 1 for a file that cannot be read or whose
+// content is bad (see app/record_reader.h), an estimator failure, gnuplot missing or failing, an
+// output that cannot be written. Errors are one line "allanlab avar: error: ..."; warnings
+// (irregular time steps, dropped values) are "allanlab avar: warning: ..." lines on stderr.
+// Outputs go through AtomicFile and are committed together at the end: a failed run leaves no
+// new or changed file.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "app/subcommand.h"
+
+namespace allanlab::app {
+
+struct AvarCommandOptions {
+  std::string path;
+  std::string column;
+  std::string units;  // empty: deg/s for rate, deg for angle
+  std::string out_units = "deg/h";
+  std::optional<double> rate_hz;
+  std::string type = "rate";
+  std::string estimator = "overlapping";
+  std::string taus = "octave";
+  double confidence = 0.683;
+  std::optional<std::string> ci;  // unset: gr, or simple with --stream
+  std::string json_path, csv_path, plot_path;
+  std::string format = "text";  // text, f32, f64 (the input record)
+  bool drop_nonfinite = false;
+  bool stream = false;
+  std::int64_t stream_exact_max_m = std::int64_t{1} << 14;
+};
+
+Subcommand AddAvarCommand(CLI::App* parent);
+int RunAvar(const AvarCommandOptions& options, const std::string& command_line);
+
+}  // namespace allanlab::app
