@@ -1,0 +1,240 @@
+#include "estimators/fit/fit_avar_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <Eigen/Dense>
+#include <boost/math/special_functions/digamma.hpp>
+#include <ceres/ceres.h>
+
+#include "estimators/fit/avar_residuals.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::estimators {
+namespace {
+
+constexpr int kTerms = 5;
+
+struct Problem {
+  std::vector<int> asked;                       // coefficient indices in the fit
+  std::array<std::vector<double>, kTerms> shape;  // S_i(tau_k)
+  std::array<double, kTerms> scale{};           // c_i^2 = scale_i theta'_i
+  std::vector<double> edf;
+};
+
+// Model E_k for scaled parameters theta'.
+std::vector<double> Model(const Problem& p, const std::array<double, kTerms>& theta, std::size_t taus) {
+  std::vector<double> e(taus, 0.0);
+  for (int i : p.asked) {
+    for (std::size_t k = 0; k < taus; ++k) e[k] += p.shape[i][k] * p.scale[i] * theta[i];
+  }
+  return e;
+}
+
+// One weighted solve with Ceres; weights fixed from `expected` (linear) or nu (log).
+bool Solve(const FitOptions& options, const AvarCurve& curve, const Problem& p,
+           const std::vector<double>& expected, std::array<double, kTerms>* theta, std::string* why) {
+  ceres::Problem problem;
+  const std::size_t taus = curve.size();
+  for (std::size_t k = 0; k < taus; ++k) {
+    std::array<double, kTerms> shape{};
+    for (int i : p.asked) shape[i] = p.shape[i][k] * p.scale[i];
+    ceres::CostFunction* cost = nullptr;
+    if (options.method == FitMethod::kLogWls) {
+      const double half_nu = 0.5 * p.edf[k];
+      auto* f = new LogAvarResidual;
+      f->log_observed_unbiased =
+          std::log(curve.avar[k]) - (boost::math::digamma(half_nu) - std::log(half_nu));
+      f->sqrt_weight = std::sqrt(half_nu);
+      f->shape = shape;
+      cost = new ceres::AutoDiffCostFunction<LogAvarResidual, 1, 1, 1, 1, 1, 1>(f);
+    } else {
+      auto* f = new LinearAvarResidual;
+      f->observed = curve.avar[k];
+      f->sqrt_weight = std::sqrt(0.5 * p.edf[k]) / expected[k];
+      f->shape = shape;
+      cost = new ceres::AutoDiffCostFunction<LinearAvarResidual, 1, 1, 1, 1, 1, 1>(f);
+    }
+    problem.AddResidualBlock(cost, nullptr, &(*theta)[0], &(*theta)[1], &(*theta)[2], &(*theta)[3],
+                             &(*theta)[4]);
+  }
+  for (int i = 0; i < kTerms; ++i) {
+    const bool asked = std::find(p.asked.begin(), p.asked.end(), i) != p.asked.end();
+    if (!asked) {
+      (*theta)[i] = 0.0;
+      problem.SetParameterBlockConstant(&(*theta)[i]);
+    } else {
+      problem.SetParameterLowerBound(&(*theta)[i], 0, 0.0);
+    }
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 500;
+  solver.function_tolerance = 1e-15;
+  solver.gradient_tolerance = 1e-16;
+  solver.parameter_tolerance = 1e-13;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    if (why) *why = "Ceres: " + summary.message;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool FitOptions::IsValid(std::string* why) const {
+  if (terms.empty()) {
+    if (why) *why = "fit: no terms requested";
+    return false;
+  }
+  if (max_reweightings < 1) {
+    if (why) *why = "fit: max_reweightings must be >= 1";
+    return false;
+  }
+  return true;
+}
+
+std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact) {
+  if (!exact || curve.num_samples <= 0) {
+    std::vector<double> s;
+    for (double tau : curve.tau_s) s.push_back(AsymptoteShape(c, tau));
+    return s;
+  }
+  sim::SensorModel model;
+  model.sample_rate_hz = 1.0 / curve.sample_period_s;
+  model.terms = {TermFor(c, 1.0)};
+  return model.ExpectedAvar(curve.m, {curve.num_samples, curve.estimator});
+}
+
+bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
+  *summary = FitSummary{};
+  summary->method = options.method;
+  std::string why;
+  if (!options.IsValid(&why) || !curve.IsValid(&why)) {
+    summary->message = why;
+    return false;
+  }
+  summary->slope = ReadSlopes(curve);
+  for (Coefficient c : options.terms) summary->coefficients[static_cast<int>(c)].asked = true;
+  const std::size_t taus = curve.size();
+  summary->taus_used = static_cast<int>(taus);
+
+  if (options.method == FitMethod::kSlope) {
+    for (Coefficient c : options.terms) {
+      CoefficientEstimate& e = summary->coefficients[static_cast<int>(c)];
+      const SlopeReading& r = summary->slope.at(c);
+      e.fitted = r.found;
+      e.value_si = r.value_si;
+      e.note = r.note.empty() ? "slope method (no uncertainty)" : r.note;
+    }
+    summary->converged = summary->ok = true;
+    return true;
+  }
+
+  Problem p;
+  for (Coefficient c : options.terms) p.asked.push_back(static_cast<int>(c));
+  std::sort(p.asked.begin(), p.asked.end());
+  p.asked.erase(std::unique(p.asked.begin(), p.asked.end()), p.asked.end());
+  if (taus < p.asked.size() + 1) {
+    summary->message = "fit: " + std::to_string(taus) + " taus cannot support " +
+                       std::to_string(p.asked.size()) + " terms (need at least one more tau)";
+    return false;
+  }
+  p.edf = curve.edf;
+  std::string edf_note;
+  if (p.edf.empty()) {
+    // No EDF with the curve: the non-overlapping cluster count K - 1 (IEEE 952's assumption).
+    for (std::int64_t m : curve.m) {
+      p.edf.push_back(std::max(1.0, static_cast<double>(curve.num_samples / m - 1)));
+    }
+    edf_note = " (no EDF given: weights from K - 1 clusters)";
+  }
+  for (int i : p.asked) {
+    p.shape[i] = TermShape(static_cast<Coefficient>(i), curve, options.exact_shapes);
+    double scale = 0.0;
+    for (std::size_t k = 0; k < taus; ++k) {
+      if (p.shape[i][k] > 0.0) {
+        const double bound = curve.avar[k] / p.shape[i][k];
+        scale = scale == 0.0 ? bound : std::min(scale, bound);
+      }
+    }
+    p.scale[i] = scale > 0.0 ? scale : 1.0;
+  }
+
+  std::array<double, kTerms> theta{};
+  for (int i : p.asked) theta[i] = 0.1;
+  std::vector<double> expected = curve.avar;  // first weights from the data
+  bool settled = false;
+  int iteration = 0;
+  const int passes = options.method == FitMethod::kLogWls ? 1 : options.max_reweightings;
+  for (; iteration < passes && !settled; ++iteration) {
+    const std::array<double, kTerms> before = theta;
+    if (!Solve(options, curve, p, expected, &theta, &why)) {
+      summary->message = "fit failed: " + why;
+      return false;
+    }
+    expected = Model(p, theta, taus);
+    for (double& e : expected) e = std::max(e, 1e-300);
+    settled = iteration > 0;
+    for (int i : p.asked) {
+      if (std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
+        settled = false;
+      }
+    }
+  }
+  if (options.method == FitMethod::kLogWls) settled = true;
+  summary->iterations = iteration;
+  summary->converged = settled;
+
+  // Covariance of theta' from the weighted design at the solution.
+  const std::vector<double> model = Model(p, theta, taus);
+  Eigen::MatrixXd a(taus, p.asked.size());
+  double chi2 = 0.0;
+  for (std::size_t k = 0; k < taus; ++k) {
+    const double sqrt_w = options.method == FitMethod::kLogWls
+                              ? std::sqrt(0.5 * p.edf[k]) / model[k]
+                              : std::sqrt(0.5 * p.edf[k]) / expected[k];
+    for (std::size_t j = 0; j < p.asked.size(); ++j) {
+      a(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
+          sqrt_w * p.shape[p.asked[j]][k] * p.scale[p.asked[j]];
+    }
+    const double r = options.method == FitMethod::kLogWls
+                         ? std::sqrt(0.5 * p.edf[k]) *
+                               (std::log(curve.avar[k]) -
+                                (boost::math::digamma(0.5 * p.edf[k]) - std::log(0.5 * p.edf[k])) -
+                                std::log(model[k]))
+                         : sqrt_w * (curve.avar[k] - model[k]);
+    chi2 += r * r;
+  }
+  const Eigen::MatrixXd cov = (a.transpose() * a).completeOrthogonalDecomposition().pseudoInverse();
+  int fitted = 0;
+  for (std::size_t j = 0; j < p.asked.size(); ++j) {
+    const int i = p.asked[j];
+    CoefficientEstimate& e = summary->coefficients[i];
+    const double theta_si = theta[i] * p.scale[i];
+    const double sigma_theta = std::sqrt(std::max(cov(j, j), 0.0)) * p.scale[i];
+    if (theta[i] <= 1e-12) {
+      e.fitted = false;
+      e.value_si = 0.0;
+      e.sigma_si = std::sqrt(sigma_theta);
+      e.note = "at zero: not supported by the data (sigma is the coefficient whose square is 1 sigma)";
+      continue;
+    }
+    ++fitted;
+    e.fitted = true;
+    e.value_si = std::sqrt(theta_si);
+    e.sigma_si = sigma_theta / (2.0 * e.value_si);
+  }
+  summary->chi2 = chi2;
+  summary->dof = static_cast<int>(taus) - fitted;
+  summary->ok = true;
+  summary->message = (settled ? "converged" : "weights did not settle within max_reweightings") +
+                     edf_note;
+  return true;
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,66 @@
+#pragma once
+// Coefficient extraction from an Allan-variance curve: one entry point, several methods.
+//   kSlope:  the graphical slope method (slope_method.h), the biased baseline.
+//   kWls:    weighted least squares on the Allan variance in the linear domain, the sum model
+//            E[AVAR](tau) = sum_i c_i^2 S_i(tau) (seed paper eq. 3, with the exact discrete shapes
+//            S_i of sim/), c_i^2 >= 0 as Ceres bounds, weights nu/(2 E^2) from the EDF, iterated
+//            so that E comes from the fitted model (THEORY.md §4.4 (i)).
+//   kLogWls: the log-domain variant, weights nu/2, with the psi(nu/2) - ln(nu/2) bias removed
+//            (THEORY.md §4.4 (ii)).
+// Uncertainties: the covariance (S' W S)^{-1} of the squared coefficients, propagated to c_i.
+// WLS treats the taus as independent, which overlapping curves are not; the experiments measure
+// how far that makes its error bars optimistic.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+#include "estimators/fit/noise_coefficient.h"
+#include "estimators/fit/slope_method.h"
+
+namespace allanlab::estimators {
+
+enum class FitMethod { kSlope, kWls, kLogWls };
+
+struct FitOptions {
+  FitMethod method = FitMethod::kWls;
+  std::vector<Coefficient> terms = {Coefficient::kQ, Coefficient::kN, Coefficient::kB,
+                                    Coefficient::kK, Coefficient::kR};
+  int max_reweightings = 10;         // WLS weight iterations (model -> weights -> refit)
+  double reweight_tolerance = 1e-6;  // stop when no squared coefficient moves more (relative)
+  // Shapes: exact discrete expectations for the record (true) or IEEE 952 asymptotes (false).
+  bool exact_shapes = true;
+  bool IsValid(std::string* why) const;
+};
+
+struct CoefficientEstimate {
+  bool asked = false;   // in options.terms
+  bool fitted = false;  // asked and not stuck at zero
+  double value_si = 0.0;
+  double sigma_si = 0.0;  // standard uncertainty (0 when not fitted)
+  std::string note;
+};
+
+struct FitSummary {
+  FitMethod method = FitMethod::kWls;
+  std::array<CoefficientEstimate, 5> coefficients;  // indexed by Coefficient
+  const CoefficientEstimate& at(Coefficient c) const { return coefficients[static_cast<int>(c)]; }
+  SlopeMethodResult slope;  // the slope-method reading, always computed for comparison
+  int taus_used = 0;
+  int iterations = 0;
+  bool converged = false;
+  double chi2 = 0.0;  // sum of squared weighted residuals at the solution
+  int dof = 0;        // taus - fitted coefficients
+  bool ok = false;
+  std::string message;
+};
+
+// Returns summary->ok. A curve too short for the requested terms, invalid options or a solver
+// failure give ok = false with a message; a fit that converged poorly is ok with
+// converged = false and a message saying so.
+bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary* summary);
+
+// S_i(m) for unit coefficient c_i = 1 on the curve's record (exact or asymptotic).
+std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact);
+
+}  // namespace allanlab::estimators
