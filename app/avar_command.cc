@@ -217,14 +217,8 @@ void WarnAboutRecord(const RecordInfo& info) {
                  "samples and the curve treats it as contiguous");
   }
   if (info.time.irregular_steps > 0) {
-    PrintWarning(info.path + ": " + std::to_string(info.time.irregular_steps) +
-                 " irregular time step(s) in " + info.time_column + " (nominal " +
-                 ShortestDecimal(info.time.nominal_step_s) + " s; largest " +
-                 ShortestDecimal(info.time.largest_step_s) + " s at line " +
-                 std::to_string(info.time.largest_step_line) + ", smallest " +
-                 ShortestDecimal(info.time.smallest_step_s) + " s at line " +
-                 std::to_string(info.time.smallest_step_line) +
-                 "); the estimator assumes uniform sampling");
+    PrintWarning(info.path + ": " + TimeSteps::Describe(info.time, info.time_column) +
+                 "; the estimator assumes uniform sampling");
   }
 }
 

@@ -80,13 +80,8 @@ std::vector<std::string> Notes(const AvarReport& r) {
                     " non-finite value(s) dropped (--drop-nonfinite)");
   }
   if (r.record.time.irregular_steps > 0) {
-    notes.push_back(std::to_string(r.record.time.irregular_steps) + " irregular time step(s) in " +
-                    r.record.time_column + " (nominal " + Number(r.record.time.nominal_step_s) +
-                    " s; largest " + Number(r.record.time.largest_step_s) + " s at line " +
-                    std::to_string(r.record.time.largest_step_line) + ", smallest " +
-                    Number(r.record.time.smallest_step_s) + " s at line " +
-                    std::to_string(r.record.time.smallest_step_line) +
-                    "): the estimator assumes uniform sampling");
+    notes.push_back(TimeSteps::Describe(r.record.time, r.record.time_column) +
+                    ": the estimator assumes uniform sampling");
   }
   if (r.streamed) {
     std::int64_t first_strided = 0;
@@ -181,8 +176,11 @@ void WriteAvarTable(std::ostream& os, const AvarReport& r) {
       std::snprintf(low, sizeof low, "%.6g", row.dev_low);
       std::snprintf(high, sizeof high, "%.6g", row.dev_high);
       std::snprintf(edf, sizeof edf, "%.4g", row.edf);
-      std::snprintf(alpha, sizeof alpha, "%d%s", row.alpha, row.alpha_identified ? "" : "*");
-      any_unidentified |= !row.alpha_identified;
+      // alpha only matters for (and is only identified by) the Greenhall-Riley EDF.
+      if (r.summary.options.confidence_method == estimators::ConfidenceMethod::kGreenhallRiley) {
+        std::snprintf(alpha, sizeof alpha, "%d%s", row.alpha, row.alpha_identified ? "" : "*");
+        any_unidentified |= !row.alpha_identified;
+      }
     }
     char stride[32] = "";
     if (show_stride)

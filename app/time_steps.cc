@@ -1,6 +1,7 @@
 #include "app/time_steps.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "app/provenance.h"
 
@@ -70,6 +71,26 @@ TimeSteps::Summary TimeSteps::Summarize() const {
   s.smallest_step_s = smallest_;
   s.smallest_step_line = smallest_line_;
   return s;
+}
+
+std::string TimeSteps::Describe(const Summary& s, const std::string& column) {
+  // Steps are differences of printed times: their last digits are noise, not information.
+  const auto seconds = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g s", v);
+    return std::string(text);
+  };
+  std::string out = std::to_string(s.irregular_steps) + " irregular time step(s) in " + column +
+                    " (nominal " + seconds(s.nominal_step_s);
+  if (s.largest_step_s > s.nominal_step_s * (1 + kStepTolerance)) {
+    out += "; largest " + seconds(s.largest_step_s) + " at line " +
+           std::to_string(s.largest_step_line);
+  }
+  if (s.smallest_step_s < s.nominal_step_s * (1 - kStepTolerance)) {
+    out += "; smallest " + seconds(s.smallest_step_s) + " at line " +
+           std::to_string(s.smallest_step_line);
+  }
+  return out + ")";
 }
 
 }  // namespace allanlab::app

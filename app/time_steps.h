@@ -32,6 +32,10 @@ class TimeSteps {
   };
   Summary Summarize() const;
 
+  // "2 irregular time step(s) in t (nominal 0.1 s; largest 1.1 s at line 102)", with the
+  // smallest step too when it is off the nominal period; times to 6 significant digits.
+  static std::string Describe(const Summary& summary, const std::string& column);
+
  private:
   struct Group {
     double sum_s = 0.0;

@@ -40,6 +40,16 @@ TEST(TimeStepsTest, GapsAreCountedAndTheWorstIsKept) {
   EXPECT_EQ(s.smallest_step_line, 71);
 }
 
+TEST(TimeStepsTest, DescribeRoundsAndNamesOnlyOffNominalExtremes) {
+  TimeSteps steps;
+  std::string why;
+  for (double t : {0.0, 0.1, 0.2, 0.30000000000000004, 1.4, 1.5}) {
+    ASSERT_TRUE(steps.Add(t, static_cast<std::int64_t>(t * 10) + 2, &why)) << why;
+  }
+  EXPECT_EQ(TimeSteps::Describe(steps.Summarize(), "t"),
+            "1 irregular time step(s) in t (nominal 0.1 s; largest 1.1 s at line 16)");
+}
+
 TEST(TimeStepsTest, NotIncreasingOrNotFiniteFails) {
   TimeSteps steps;
   std::string why;
