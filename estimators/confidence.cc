@@ -120,6 +120,19 @@ double WhitePhaseInverseEdf(int d, double big_m, double r) {
   return sum / big_m;
 }
 
+// NIST SP 1065 Table 5 ("simple" EDF approximations, N phase points) for the phase noises, which
+// Table 7 leaves out; Stable32 uses them for TOTDEV there (its OCXO reference intervals at
+// alpha = 1 reproduce them) and so does allantools.
+double SimplePhaseNoiseEdf(int alpha, std::int64_t m, std::int64_t n_phase) {
+  const double n = static_cast<double>(n_phase);
+  const double md = static_cast<double>(m);
+  if (alpha == 2) return (n + 1.0) * (n - 2.0 * md) / (2.0 * (n - md));
+  const double a = (n - 1.0) / (2.0 * md);
+  const double b = (2.0 * md + 1.0) * (n - 1.0) / 4.0;
+  if (a <= 1.0) return 0.0;
+  return std::exp(std::sqrt(std::log(a) * std::log(b)));
+}
+
 }  // namespace
 
 double GreenhallRileyEdf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
@@ -192,12 +205,9 @@ double TotalVarianceEdf(int alpha, double record_length_s, double tau_s) {
 double StatisticEdf(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate, double tau0_s) {
   const std::int64_t n_phase = n_rate + 1;
   if (s == Statistic::kTotal) {
-    // Table 7 covers the FM noises only; for phase noise fall back on the overlapping Allan
-    // EDF, which TOTVAR (the same differences plus reflected ones) does not do worse than.
     // SP 1065 and allantools measure T in phase points: T = n_phase tau0.
-    const double edf = TotalVarianceEdf(alpha, n_phase * tau0_s, m * tau0_s);
-    if (alpha <= 0) return edf;
-    return GreenhallRileyEdf(alpha, 2, m, n_phase, true, false);
+    if (alpha <= 0) return TotalVarianceEdf(alpha, n_phase * tau0_s, m * tau0_s);
+    return std::max(0.0, SimplePhaseNoiseEdf(alpha, m, n_phase));
   }
   return GreenhallRileyEdf(alpha, DifferenceOrder(s), m, n_phase, IsOverlapping(s), IsModified(s));
 }

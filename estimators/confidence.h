@@ -16,7 +16,8 @@ double GreenhallRileyEdf(int alpha, int d, std::int64_t m, std::int64_t n_phase,
 // TOTVAR EDF, NIST SP 1065 Table 7: b (T/tau) - c for alpha = 0, -1, -2 (T = record length).
 double TotalVarianceEdf(int alpha, double record_length_s, double tau_s);
 
-// EDF for a statistic at averaging factor m on n_rate rate samples (dispatches to the above).
+// EDF for a statistic at averaging factor m on n_rate rate samples (dispatches to the above;
+// TOTVAR at alpha = 1, 2, outside Table 7, uses SP 1065 Table 5's simple formulas, as Stable32).
 double StatisticEdf(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate, double tau0_s);
 
 // The seed paper's / IEEE 952 simple error: EDF = K - 1 for K non-overlapping clusters

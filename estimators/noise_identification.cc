@@ -19,8 +19,8 @@ constexpr int kMaxDifferences = 2;
 // delta = r1 / (1 + r1) >= 0.25 means the series is still too correlated (alpha < -0.5 at the
 // current order) and one more difference is needed.
 constexpr double kDeltaLimit = 0.25;
-// R(n) separates white from flicker phase only from m = 4 on (0.25 vs 0.39; at m = 2 the two
-// ratios are 0.50 and 0.52).
+// R(n) separates white phase, flicker phase and white FM only from m = 4 on (0.25, 0.39, 0.5;
+// at m = 2 they are 0.50, 0.52, 0.5).
 constexpr std::int64_t kMinRnFactor = 4;
 
 // Non-overlapping m-averages of the mean-removed record: the mean goes first so that a large
@@ -123,15 +123,20 @@ double ModifiedToAllanRatio(std::span<const double> rate, std::int64_t m) {
   return avar > 0.0L ? static_cast<double>(mvar / avar) : 0.0;
 }
 
-// SP 1065 §5.6: R(n) = MVAR/AVAR is 1/m for white phase and, for flicker phase with the usual
-// f_h = 1/(2 tau0), 3 ln(256/27) / (2 (1.038 + 3 ln(pi m))); the boundary is their geometric mean.
-int WhiteOrFlickerPhase(std::span<const double> rate, std::int64_t m) {
+// SP 1065 §5.6: R(n) = MVAR/AVAR is 1/m for white phase, 3 ln(256/27) / (2 (1.038 + 3 ln(pi m)))
+// for flicker phase (with the usual f_h = 1/(2 tau0)) and 1/2 for white FM; boundaries are
+// geometric means. White FM is among the candidates because B1 from a handful of averages
+// often falls below its mu = -1 band while R(n), from the whole record, is far more precise.
+int PhaseNoiseOrWhiteFm(std::span<const double> rate, std::int64_t m) {
   if (m < kMinRnFactor) return 2;
   const double md = static_cast<double>(m);
-  const double white = 1.0 / md;
-  const double flicker =
+  const double white_phase = 1.0 / md;
+  const double flicker_phase =
       3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
-  return ModifiedToAllanRatio(rate, m) < std::sqrt(white * flicker) ? 2 : 1;
+  const double white_fm = 0.5;
+  const double rn = ModifiedToAllanRatio(rate, m);
+  if (rn < std::sqrt(white_phase * flicker_phase)) return 2;
+  return rn < std::sqrt(flicker_phase * white_fm) ? 1 : 0;
 }
 
 NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
@@ -150,7 +155,8 @@ NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
   if (!(avar > 0.0L)) return {};
   const double b1 = static_cast<double>(var / avar);
   // AVAR ~ tau^mu: mu = 1, 0, -1 are RWFM, FFM, WFM (alpha = -mu - 1); mu = -2 is white or
-  // flicker phase. Boundaries: geometric means of neighbouring expectations.
+  // flicker phase, which R(n) tells apart. Boundaries: geometric means of neighbouring
+  // expectations.
   NoiseId id{0, true, true};
   for (int mu = 1; mu >= -1; --mu) {
     if (b1 > std::sqrt(B1Theory(n, mu) * B1Theory(n, mu - 1))) {
@@ -158,7 +164,7 @@ NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
       return id;
     }
   }
-  id.alpha = WhiteOrFlickerPhase(rate, m);
+  id.alpha = PhaseNoiseOrWhiteFm(rate, m);
   return id;
 }
 
