@@ -14,6 +14,13 @@ using estimators::Statistic;
 
 std::string Number(double v) { return ShortestDecimal(v); }
 
+// 0.683 -> "68.3 %" (0.683 * 100 is 68.30000000000001 in binary).
+std::string Percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g %%", fraction * 100);
+  return text;
+}
+
 // The factor from the estimator's SI deviation to the output unit.
 double DeviationFactor(const AvarReport& r) {
   if (r.summary.options.statistic == Statistic::kTime) {
@@ -50,7 +57,7 @@ std::string StatisticDescription(Statistic s) {
 
 std::string IntervalDescription(const AvarReport& r) {
   const estimators::AvarOptions& o = r.summary.options;
-  const std::string level = Number(o.confidence * 100) + " %";
+  const std::string level = Percent(o.confidence);
   switch (o.confidence_method) {
     case estimators::ConfidenceMethod::kNone:
       return "none";
@@ -309,7 +316,7 @@ AllanPlot AvarPlot(const AvarReport& r) {
     series.y_high.push_back(row.has_interval ? row.dev_high : NAN);
     bars |= row.has_interval;
   }
-  if (bars) series.title += ", " + Number(r.summary.options.confidence * 100) + " % interval";
+  if (bars) series.title += ", " + Percent(r.summary.options.confidence) + " interval";
   plot.series = {std::move(series)};
   plot.guide_series = 0;
   return plot;
