@@ -1,6 +1,7 @@
 #pragma once
 // The Allan family of two-sample statistics allanlab computes, and the facts about each that the
 // confidence-interval and noise-identification code needs (difference order, overlap, modified).
+#include <cstdint>
 #include <string_view>
 
 namespace allanlab::estimators {
@@ -25,5 +26,16 @@ bool ParseStatistic(std::string_view id, Statistic* s);
 int DifferenceOrder(Statistic s);
 bool IsOverlapping(Statistic s);
 bool IsModified(Statistic s);  // MVAR and TVAR
+
+// Largest averaging factor m the estimator is computed for on n rate samples (n + 1 phase
+// points): n/2 for AVAR and OAVAR; n/3 for MVAR, TVAR, HVAR and OHVAR; n - 1 for TOTVAR, whose
+// doubly reflected extension (NIST SP 1065 §5.2.11) reaches every m below the record length.
+std::int64_t MaxAveragingFactor(Statistic s, std::int64_t n);
+
+// Number of squared differences averaged at averaging factor m on n rate samples, 0 when
+// m < 1 or m > MaxAveragingFactor(s, n). With M = floor(n/m) clusters (NIST SP 1065 §5.2):
+// AVAR M - 1, OAVAR n - 2m + 1, MVAR and TVAR n - 3m + 2 (= phase points - 3m + 1),
+// HVAR M - 2, OHVAR n - 3m + 1, TOTVAR n - 1.
+std::int64_t TermCount(Statistic s, std::int64_t m, std::int64_t n);
 
 }  // namespace allanlab::estimators

@@ -1,0 +1,158 @@
+#include "estimators/allan_family.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "estimators/difference_sums.h"
+#include "estimators/modified_allan_sums.h"
+#include "estimators/phase_integral.h"
+#include "estimators/total_variance_sums.h"
+
+namespace allanlab::estimators {
+namespace {
+
+std::string Shortest(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", v);
+  return buffer;
+}
+
+// Why a candidate m is not reported, or empty if it is.
+std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t n) {
+  const Statistic s = options.statistic;
+  const std::string name(StatisticId(s));
+  if (m < 1) {
+    return "tau rounds to m = 0: below half the sample period " +
+           Shortest(options.sample_period_s) + " s";
+  }
+  const std::int64_t max_m = MaxAveragingFactor(s, n);
+  if (m > max_m) {
+    return "m = " + std::to_string(m) + " exceeds the largest averaging factor " +
+           std::to_string(max_m) + " of the " + name + " statistic on " + std::to_string(n) +
+           " samples (0 terms)";
+  }
+  const std::int64_t terms = TermCount(s, m, n);
+  if (terms < options.min_terms) {
+    return "only " + std::to_string(terms) + " terms at m = " + std::to_string(m) +
+           ", fewer than min_terms = " + std::to_string(options.min_terms);
+  }
+  return {};
+}
+
+// The variances from the sums of squared phase differences (x in rate x tau0 units, so tau0
+// cancels): NIST SP 1065 eqs. for AVAR/OAVAR (sum / 2 m^2 T), HVAR/OHVAR (sum / 6 m^2 T), MVAR
+// (sum / 2 m^4 T, the inner sum of m second differences), TOTVAR (sum / 2 m^2 (n - 1)).
+std::vector<double> Variances(Statistic s, std::span<const double> phase,
+                              std::span<const std::int64_t> ms, std::int64_t n) {
+  std::vector<double> sums(ms.size());
+  switch (s) {
+    case Statistic::kAllanNonOverlapping:
+      StridedDifferenceSums(phase, 2, ms, sums);
+      break;
+    case Statistic::kAllanOverlapping:
+      OverlappingDifferenceSums(phase, 2, ms, sums);
+      break;
+    case Statistic::kModifiedAllan:
+    case Statistic::kTime:
+      ModifiedAllanSums(phase, ms, sums);
+      break;
+    case Statistic::kHadamardNonOverlapping:
+      StridedDifferenceSums(phase, 3, ms, sums);
+      break;
+    case Statistic::kHadamardOverlapping:
+      OverlappingDifferenceSums(phase, 3, ms, sums);
+      break;
+    case Statistic::kTotal:
+      TotalVarianceSums(phase, ms, sums);
+      break;
+  }
+  std::vector<double> values(ms.size());
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const auto m = static_cast<double>(ms[k]);
+    const auto terms = static_cast<double>(TermCount(s, ms[k], n));
+    const double scale = DifferenceOrder(s) == 3 ? 6.0 : 2.0;
+    const double m_power = IsModified(s) ? m * m * m * m : m * m;
+    values[k] = sums[k] / (scale * m_power * terms);
+  }
+  return values;
+}
+
+}  // namespace
+
+bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
+                            AvarSummary* summary) {
+  *summary = AvarSummary{};
+  summary->options = options;
+  const auto n = static_cast<std::int64_t>(rate.size());
+  summary->num_samples = n;
+  std::string why;
+  if (!options.IsValid(&why)) {
+    summary->message = "invalid options: " + why;
+    return false;
+  }
+  if (n < 3) {
+    summary->message = "need at least 3 rate samples, got " + std::to_string(n);
+    return false;
+  }
+  for (std::int64_t k = 0; k < n; ++k) {
+    if (!std::isfinite(rate[k])) {
+      summary->message =
+          "rate sample " + std::to_string(k) + " is not finite (" + Shortest(rate[k]) + ")";
+      return false;
+    }
+  }
+
+  const Statistic s = options.statistic;
+  const double tau0 = options.sample_period_s;
+  // Generated grids stop at the statistic's largest m; explicit taus all come back, so that
+  // the ones beyond it are reported rather than silently skipped.
+  const std::int64_t limit = options.taus.kind == TauGridKind::kExplicit
+                                 ? std::numeric_limits<std::int64_t>::max()
+                                 : MaxAveragingFactor(s, n);
+  std::vector<std::int64_t> used;
+  for (std::int64_t m : CandidateAveragingFactors(options.taus, tau0, limit)) {
+    std::string reason = DropReason(options, m, n);
+    if (reason.empty()) {
+      used.push_back(m);
+    } else {
+      summary->dropped.push_back({static_cast<double>(m) * tau0, m, std::move(reason)});
+    }
+  }
+  if (used.empty()) {
+    summary->message = "no averaging time has enough terms on " + std::to_string(n) + " samples (" +
+                       std::to_string(summary->dropped.size()) + " dropped)";
+    return false;
+  }
+
+  std::vector<double> phase(static_cast<std::size_t>(n) + 1);
+  IntegrateMeanRemoved(rate, phase);
+  const std::vector<double> values = Variances(s, phase, used, n);
+  summary->points.reserve(used.size());
+  for (std::size_t k = 0; k < used.size(); ++k) {
+    AvarPoint point;
+    point.m = used[k];
+    point.tau_s = static_cast<double>(used[k]) * tau0;
+    point.terms = TermCount(s, used[k], n);
+    // TVAR = tau^2 MVAR / 3 (SP 1065 eq. 17): an angle variance.
+    point.value = s == Statistic::kTime ? point.tau_s * point.tau_s * values[k] / 3.0 : values[k];
+    summary->points.push_back(point);
+  }
+  summary->ok = true;
+  if (!summary->dropped.empty()) {
+    summary->message = std::to_string(summary->dropped.size()) + " tau" +
+                       (summary->dropped.size() == 1 ? "" : "s") + " dropped";
+  }
+  return true;
+}
+
+std::vector<double> AngleToRate(std::span<const double> angle, double tau0_s) {
+  if (angle.size() < 2) return {};
+  std::vector<double> rate(angle.size() - 1);
+  for (std::size_t k = 0; k + 1 < angle.size(); ++k) rate[k] = (angle[k + 1] - angle[k]) / tau0_s;
+  return rate;
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,57 @@
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "estimators/avar_summary.h"
+
+namespace allanlab::estimators {
+namespace {
+
+std::string Shortest(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", v);
+  return buffer;
+}
+
+}  // namespace
+
+bool AvarOptions::IsValid(std::string* why) const {
+  if (StatisticId(statistic).empty()) {
+    *why = "unknown statistic";
+    return false;
+  }
+  if (!taus.IsValid(why)) {
+    *why = "tau grid: " + *why;
+    return false;
+  }
+  if (!std::isfinite(sample_period_s) || sample_period_s <= 0.0) {
+    *why = "sample period must be finite and > 0 s, got " + Shortest(sample_period_s);
+    return false;
+  }
+  if (input != InputKind::kRate && input != InputKind::kAngle) {
+    *why = "unknown input kind";
+    return false;
+  }
+  if (confidence_method != ConfidenceMethod::kNone &&
+      confidence_method != ConfidenceMethod::kSimple &&
+      confidence_method != ConfidenceMethod::kGreenhallRiley) {
+    *why = "unknown confidence method";
+    return false;
+  }
+  // Checked even without an interval: a bad level is a mistake wherever it comes from.
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    *why = "confidence level must be in (0, 1), got " + Shortest(confidence);
+    return false;
+  }
+  if (min_terms < 1) {
+    *why = "min_terms must be >= 1, got " + std::to_string(min_terms);
+    return false;
+  }
+  if (alpha_fixed && (alpha < -2 || alpha > 2)) {
+    *why = "fixed noise exponent alpha must be in [-2, 2], got " + std::to_string(alpha);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,283 @@
+#include "estimators/difference_kernel.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define ALLANLAB_HAVE_AVX2_KERNEL 1
+#endif
+
+namespace allanlab::estimators {
+namespace {
+
+// ---- Portable: 16 independent lanes, which the compiler vectorises with whatever SIMD the
+// baseline target has. No fma here: emulated fma would be slower than the whole pass.
+
+inline double PortableD1(const double* x, std::int64_t t, std::int64_t m) {
+  return x[t + m] - x[t];
+}
+inline double PortableD2(const double* x, std::int64_t t, std::int64_t m) {
+  return (x[t] + x[t + 2 * m]) - (x[t + m] + x[t + m]);
+}
+inline double PortableD3(const double* x, std::int64_t t, std::int64_t m) {
+  return (x[t + 3 * m] - x[t]) - 3.0 * (x[t + 2 * m] - x[t + m]);
+}
+
+template <int kOrder>
+inline double PortableD(const double* x, std::int64_t t, std::int64_t m) {
+  if constexpr (kOrder == 1) {
+    return PortableD1(x, t, m);
+  } else if constexpr (kOrder == 2) {
+    return PortableD2(x, t, m);
+  } else {
+    return PortableD3(x, t, m);
+  }
+}
+
+template <int kOrder>
+void PortableAccumulate(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi,
+                        Lanes* lanes) {
+  Lanes acc = *lanes;
+  std::int64_t t = lo;
+  for (; t < hi && t % kLanes != 0; ++t) {
+    const double d = PortableD<kOrder>(x, t, m);
+    acc[t % kLanes] += d * d;
+  }
+  for (; t + kLanes <= hi; t += kLanes) {
+    for (int l = 0; l < kLanes; ++l) {
+      const double d = PortableD<kOrder>(x, t + l, m);
+      acc[l] += d * d;
+    }
+  }
+  for (; t < hi; ++t) {
+    const double d = PortableD<kOrder>(x, t, m);
+    acc[t % kLanes] += d * d;
+  }
+  *lanes = acc;
+}
+
+void PortableAccumulate1(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi,
+                         Lanes* lanes) {
+  PortableAccumulate<1>(x, m, lo, hi, lanes);
+}
+void PortableAccumulate2(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi,
+                         Lanes* lanes) {
+  PortableAccumulate<2>(x, m, lo, hi, lanes);
+}
+void PortableAccumulate3(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi,
+                         Lanes* lanes) {
+  PortableAccumulate<3>(x, m, lo, hi, lanes);
+}
+void PortablePair(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi, Lanes* a,
+                  Lanes* b) {
+  PortableAccumulate<2>(x, m, lo, hi, a);
+  PortableAccumulate<2>(x, 2 * m, lo, hi, b);
+}
+
+#ifdef ALLANLAB_HAVE_AVX2_KERNEL
+// ---- AVX2 + FMA. The vector and the scalar (head/tail) code compute D_t with the same fused
+// operations, so a term's value does not depend on where a range starts.
+#define ALLANLAB_AVX2 __attribute__((target("avx2,fma")))
+
+ALLANLAB_AVX2 inline double ScalarD1(const double* x, std::int64_t t, std::int64_t m) {
+  return x[t + m] - x[t];
+}
+ALLANLAB_AVX2 inline double ScalarD2(const double* x, std::int64_t t, std::int64_t m) {
+  return std::fma(x[t + m], -2.0, x[t] + x[t + 2 * m]);
+}
+ALLANLAB_AVX2 inline double ScalarD3(const double* x, std::int64_t t, std::int64_t m) {
+  return std::fma(x[t + 2 * m] - x[t + m], -3.0, x[t + 3 * m] - x[t]);
+}
+ALLANLAB_AVX2 inline __m256d VectorD1(const double* p, std::int64_t m) {
+  return _mm256_sub_pd(_mm256_loadu_pd(p + m), _mm256_loadu_pd(p));
+}
+ALLANLAB_AVX2 inline __m256d VectorD2(const double* p, std::int64_t m) {
+  return _mm256_fmadd_pd(_mm256_loadu_pd(p + m), _mm256_set1_pd(-2.0),
+                         _mm256_add_pd(_mm256_loadu_pd(p), _mm256_loadu_pd(p + 2 * m)));
+}
+ALLANLAB_AVX2 inline __m256d VectorD3(const double* p, std::int64_t m) {
+  const __m256d outer = _mm256_sub_pd(_mm256_loadu_pd(p + 3 * m), _mm256_loadu_pd(p));
+  const __m256d inner = _mm256_sub_pd(_mm256_loadu_pd(p + 2 * m), _mm256_loadu_pd(p + m));
+  return _mm256_fmadd_pd(inner, _mm256_set1_pd(-3.0), outer);
+}
+
+template <int kOrder>
+ALLANLAB_AVX2 inline double ScalarD(const double* x, std::int64_t t, std::int64_t m) {
+  if constexpr (kOrder == 1) {
+    return ScalarD1(x, t, m);
+  } else if constexpr (kOrder == 2) {
+    return ScalarD2(x, t, m);
+  } else {
+    return ScalarD3(x, t, m);
+  }
+}
+template <int kOrder>
+ALLANLAB_AVX2 inline __m256d VectorD(const double* p, std::int64_t m) {
+  if constexpr (kOrder == 1) {
+    return VectorD1(p, m);
+  } else if constexpr (kOrder == 2) {
+    return VectorD2(p, m);
+  } else {
+    return VectorD3(p, m);
+  }
+}
+
+// Four accumulators of four lanes: enough independent FMA chains to hide their latency.
+template <int kOrder>
+ALLANLAB_AVX2 void Avx2Accumulate(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi,
+                                  Lanes* lanes) {
+  double* acc = lanes->data();
+  std::int64_t t = lo;
+  for (; t < hi && t % kLanes != 0; ++t) {
+    const double d = ScalarD<kOrder>(x, t, m);
+    acc[t % kLanes] = std::fma(d, d, acc[t % kLanes]);
+  }
+  if (t + kLanes <= hi) {
+    __m256d a0 = _mm256_loadu_pd(acc), a1 = _mm256_loadu_pd(acc + 4);
+    __m256d a2 = _mm256_loadu_pd(acc + 8), a3 = _mm256_loadu_pd(acc + 12);
+    for (; t + kLanes <= hi; t += kLanes) {
+      const __m256d d0 = VectorD<kOrder>(x + t, m), d1 = VectorD<kOrder>(x + t + 4, m);
+      const __m256d d2 = VectorD<kOrder>(x + t + 8, m), d3 = VectorD<kOrder>(x + t + 12, m);
+      a0 = _mm256_fmadd_pd(d0, d0, a0);
+      a1 = _mm256_fmadd_pd(d1, d1, a1);
+      a2 = _mm256_fmadd_pd(d2, d2, a2);
+      a3 = _mm256_fmadd_pd(d3, d3, a3);
+    }
+    _mm256_storeu_pd(acc, a0);
+    _mm256_storeu_pd(acc + 4, a1);
+    _mm256_storeu_pd(acc + 8, a2);
+    _mm256_storeu_pd(acc + 12, a3);
+  }
+  for (; t < hi; ++t) {
+    const double d = ScalarD<kOrder>(x, t, m);
+    acc[t % kLanes] = std::fma(d, d, acc[t % kLanes]);
+  }
+}
+
+ALLANLAB_AVX2 void Avx2Accumulate1(const double* x, std::int64_t m, std::int64_t lo,
+                                   std::int64_t hi, Lanes* lanes) {
+  Avx2Accumulate<1>(x, m, lo, hi, lanes);
+}
+ALLANLAB_AVX2 void Avx2Accumulate2(const double* x, std::int64_t m, std::int64_t lo,
+                                   std::int64_t hi, Lanes* lanes) {
+  Avx2Accumulate<2>(x, m, lo, hi, lanes);
+}
+ALLANLAB_AVX2 void Avx2Accumulate3(const double* x, std::int64_t m, std::int64_t lo,
+                                   std::int64_t hi, Lanes* lanes) {
+  Avx2Accumulate<3>(x, m, lo, hi, lanes);
+}
+
+ALLANLAB_AVX2 inline void PairScalarStep(const double* x, std::int64_t t, std::int64_t m,
+                                         double* acc_a, double* acc_b) {
+  const double da = ScalarD2(x, t, m);
+  const double db = ScalarD2(x, t, 2 * m);
+  acc_a[t % kLanes] = std::fma(da, da, acc_a[t % kLanes]);
+  acc_b[t % kLanes] = std::fma(db, db, acc_b[t % kLanes]);
+}
+
+ALLANLAB_AVX2 void Avx2Pair(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi,
+                            Lanes* lanes_a, Lanes* lanes_b) {
+  double* acc_a = lanes_a->data();
+  double* acc_b = lanes_b->data();
+  std::int64_t t = lo;
+  for (; t < hi && t % kLanes != 0; ++t) PairScalarStep(x, t, m, acc_a, acc_b);
+  if (t + kLanes <= hi) {
+    __m256d a[4], b[4];
+    for (int k = 0; k < 4; ++k) {
+      a[k] = _mm256_loadu_pd(acc_a + 4 * k);
+      b[k] = _mm256_loadu_pd(acc_b + 4 * k);
+    }
+    const __m256d minus2 = _mm256_set1_pd(-2.0);
+    for (; t + kLanes <= hi; t += kLanes) {
+      for (int k = 0; k < 4; ++k) {
+        const double* p = x + t + 4 * k;
+        const __m256d x0 = _mm256_loadu_pd(p), x1 = _mm256_loadu_pd(p + m);
+        const __m256d x2 = _mm256_loadu_pd(p + 2 * m), x4 = _mm256_loadu_pd(p + 4 * m);
+        const __m256d da = _mm256_fmadd_pd(x1, minus2, _mm256_add_pd(x0, x2));
+        const __m256d db = _mm256_fmadd_pd(x2, minus2, _mm256_add_pd(x0, x4));
+        a[k] = _mm256_fmadd_pd(da, da, a[k]);
+        b[k] = _mm256_fmadd_pd(db, db, b[k]);
+      }
+    }
+    for (int k = 0; k < 4; ++k) {
+      _mm256_storeu_pd(acc_a + 4 * k, a[k]);
+      _mm256_storeu_pd(acc_b + 4 * k, b[k]);
+    }
+  }
+  for (; t < hi; ++t) PairScalarStep(x, t, m, acc_a, acc_b);
+}
+#endif  // ALLANLAB_HAVE_AVX2_KERNEL
+
+using AccumulateFn = void (*)(const double*, std::int64_t, std::int64_t, std::int64_t, Lanes*);
+using PairFn = void (*)(const double*, std::int64_t, std::int64_t, std::int64_t, Lanes*, Lanes*);
+
+struct Kernel {
+  AccumulateFn first;
+  AccumulateFn second;
+  AccumulateFn third;
+  PairFn pair;
+  const char* name;
+};
+
+// Chosen once. ALLANLAB_DIFFERENCE_KERNEL=portable forces the portable loops (tests use it to
+// cover both versions on one machine).
+const Kernel& ChosenKernel() {
+  static const Kernel kernel = [] {
+    const Kernel portable{PortableAccumulate1, PortableAccumulate2, PortableAccumulate3,
+                          PortablePair, "portable"};
+    const char* forced = std::getenv("ALLANLAB_DIFFERENCE_KERNEL");
+    if (forced != nullptr && std::strcmp(forced, "portable") == 0) return portable;
+#ifdef ALLANLAB_HAVE_AVX2_KERNEL
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+      return Kernel{Avx2Accumulate1, Avx2Accumulate2, Avx2Accumulate3, Avx2Pair, "avx2+fma"};
+    }
+#endif
+    return portable;
+  }();
+  return kernel;
+}
+
+}  // namespace
+
+void AccumulateSquaredDifferences(const double* x, int order, std::int64_t m, std::int64_t lo,
+                                  std::int64_t hi, Lanes* lanes) {
+  if (hi <= lo) return;
+  const Kernel& kernel = ChosenKernel();
+  const AccumulateFn fn = order == 1 ? kernel.first : order == 2 ? kernel.second : kernel.third;
+  fn(x, m, lo, hi, lanes);
+}
+
+void AccumulateSquaredSecondDifferencesPair(const double* x, std::int64_t m, std::int64_t lo,
+                                            std::int64_t hi, Lanes* lanes_m, Lanes* lanes_2m) {
+  if (hi <= lo) return;
+  ChosenKernel().pair(x, m, lo, hi, lanes_m, lanes_2m);
+}
+
+double SumSquaredDifferences(const double* x, int order, std::int64_t m, std::int64_t lo,
+                             std::int64_t hi) {
+  constexpr std::int64_t kFlush = 4096;
+  CompensatedSum total;
+  for (std::int64_t start = lo; start < hi; start += kFlush) {
+    Lanes lanes{};
+    AccumulateSquaredDifferences(x, order, m, start, std::min(start + kFlush, hi), &lanes);
+    total.Add(SumLanes(lanes));
+  }
+  return total.Value();
+}
+
+double SumLanes(const Lanes& lanes) {
+  // Pairwise, so that the order is fixed and the rounding small.
+  double level[kLanes];
+  for (int l = 0; l < kLanes; ++l) level[l] = lanes[l];
+  for (int width = kLanes / 2; width >= 1; width /= 2) {
+    for (int l = 0; l < width; ++l) level[l] = level[l] + level[l + width];
+  }
+  return level[0];
+}
+
+const char* DifferenceKernelName() { return ChosenKernel().name; }
+
+}  // namespace allanlab::estimators

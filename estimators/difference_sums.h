@@ -1,0 +1,21 @@
+#pragma once
+// Sums of squared lag-m differences of a phase record x_0..x_n over all the start indices an
+// estimator uses (order 2: x_{t+2m} - 2x_{t+m} + x_t, the Allan difference times m; order 3: the
+// Hadamard one). Preconditions: phase.size() = n + 1, sums.size() = lags.size(), every lag
+// 1 <= m with order * m <= n.
+#include <cstdint>
+#include <span>
+
+namespace allanlab::estimators {
+
+// Every start t = 0..n - order*m (OAVAR, OHVAR): n - order*m + 1 terms per lag.
+// One cache-blocked pass serves all lags (see the .cc); extra memory O(lags), no allocation per
+// lag.
+void OverlappingDifferenceSums(std::span<const double> phase, int order,
+                               std::span<const std::int64_t> lags, std::span<double> sums);
+
+// Starts t = 0, m, 2m, ... with t + order*m <= n (AVAR, HVAR): floor(n/m) - order + 1 terms.
+void StridedDifferenceSums(std::span<const double> phase, int order,
+                           std::span<const std::int64_t> lags, std::span<double> sums);
+
+}  // namespace allanlab::estimators
