@@ -1,6 +1,8 @@
 #include "app/record_reader.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -13,6 +15,15 @@ namespace allanlab::app {
 namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 18;
+
+// The mean of a million printed steps carries its rounding in the last digits (100 Hz from
+// t = 0.00, 0.01, ... comes out as 99.99999999999993 Hz); ten digits are more than a time column
+// can resolve and less than its noise.
+double RoundToSignificantDigits(double value, int digits) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return std::strtod(text, nullptr);
+}
 
 // Non-finite values are collected over the whole file so that the message can say how many
 // there are, not just where the first one is.
@@ -170,7 +181,7 @@ class Reader {
       info_->time = steps_.Summarize();
       const TimeSteps::Summary& t = info_->time;
       if (t.nominal_step_s > 0) {
-        const double from_time = 1.0 / t.nominal_step_s;
+        const double from_time = RoundToSignificantDigits(1.0 / t.nominal_step_s, 10);
         info_->sample_rate_hz = from_time;
         info_->rate_source = "time column " + info_->time_column;
         if (o_.rate_hz) {

@@ -6,7 +6,8 @@
 // consumed in one pass (`allanlab avar --stream`); ReadRecordValues collects them instead.
 //
 // The sample rate comes from the time column (header t, t_s, time, time_s or timestamp, in
-// seconds: the nominal step of app/time_steps.h) or from --rate. Both given: they must agree to
+// seconds: 1 / the nominal step of app/time_steps.h, rounded to 10 significant digits) or from
+// --rate. Both given: they must agree to
 // kRateTolerance (relative), and --rate is used. Steps off the nominal period are counted and the
 // worst gap kept (RecordInfo::time), for the caller to report.
 //
