@@ -58,6 +58,19 @@ TEST_F(AllanPlotTest, WritesAPng) {
   EXPECT_EQ(png.substr(1, 3), "PNG");
 }
 
+TEST_F(AllanPlotTest, PointsWithErrorBarsIncludingOneSidedOnes) {
+  std::string why;
+  if (!FindGnuplot(&why)) GTEST_SKIP() << why;
+  AllanPlot plot = WhiteNoisePlot();
+  PlotSeries& points = plot.series[1];
+  for (std::size_t i = 0; i < points.x.size(); ++i) {
+    points.y_low.push_back(i == 2 ? 0.0 : points.y[i] * 0.9);  // 0: no lower bar on a log axis
+    points.y_high.push_back(i == 3 ? NAN : points.y[i] * 1.2);
+  }
+  ASSERT_TRUE(WriteAllanPlotPng(plot, (dir_ / "bars.png").string(), &why)) << why;
+  EXPECT_EQ(ReadAll(dir_ / "bars.png").substr(1, 3), "PNG");
+}
+
 TEST_F(AllanPlotTest, MissingGnuplotFailsClearlyAndKeepsTheOldFile) {
   { std::ofstream(dir_ / "plot.png") << "old"; }
   const std::string saved_path = std::getenv("PATH") ? std::getenv("PATH") : "";
