@@ -84,6 +84,19 @@ TEST(TextRecordParserTest, TsvSemicolonAndWhitespace) {
   EXPECT_EQ(Values(ws), (std::vector<double>{3, 6}));
 }
 
+TEST(TextRecordParserTest, TabsThatAlignSpaceSeparatedColumnsAreWhitespace) {
+  const Parsed p = Parse("  1   2\t 3\n4 5\t6\n", "2");
+  ASSERT_TRUE(p.ok) << p.error;
+  EXPECT_EQ(p.delimiter, ' ');
+  EXPECT_FALSE(p.header);
+  EXPECT_EQ(Values(p), (std::vector<double>{3, 6}));
+  // Real TSV keeps its empty fields (missing values).
+  const Parsed tsv = Parse("a\tb\n1\t\n2\t3\n", "b");
+  ASSERT_TRUE(tsv.ok) << tsv.error;
+  EXPECT_EQ(tsv.delimiter, '\t');
+  EXPECT_TRUE(std::isnan(tsv.rows[0].value));
+}
+
 TEST(TextRecordParserTest, NoHeaderTakesTheFirstColumnAndHasNoTime) {
   const Parsed p = Parse("1.0,10\n2.0,20\n");
   ASSERT_TRUE(p.ok) << p.error;
