@@ -221,6 +221,15 @@ TEST_F(AvarCommandTest, AngleInputGivesTheSameCurveAsItsRate) {
     // The angle's printed digits limit the agreement, not the estimator.
     EXPECT_NEAR(a["points"][i]["var"].get<double>(), expected, 1e-6 * expected) << i;
   }
+  // The streaming path differences the angles itself.
+  const RunResult s = Run("avar angle.csv --type angle --stream --ci none --json stream.json");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const nlohmann::json c = Json("stream.json");
+  EXPECT_EQ(c["input"]["rate_samples"], 4096);
+  for (std::size_t i = 0; i < c["points"].size(); ++i) {
+    const double expected = a["points"][i]["var"].get<double>();
+    EXPECT_NEAR(c["points"][i]["var"].get<double>(), expected, 1e-9 * expected) << i;
+  }
 }
 
 TEST_F(AvarCommandTest, EveryContainerGivesTheSameNumbers) {
