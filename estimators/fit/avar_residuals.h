@@ -3,6 +3,10 @@
 // coefficients theta'_i (c_i^2 = scale_i theta'_i), each its own parameter block of size 1.
 #include <array>
 #include <cmath>
+#include <utility>
+
+#include <Eigen/Dense>
+#include <ceres/ceres.h>
 
 namespace allanlab::estimators {
 
@@ -36,6 +40,35 @@ struct LogAvarResidual {
     residual[0] = sqrt_weight * (log_observed_unbiased - log(model));
     return true;
   }
+};
+
+// GLS: all taus at once, whitened by W = L^{-1} (Omega = L L'): r = W a - (W S') theta'.
+// Linear, so the Jacobian is analytic: d r / d theta'_i = -(W S')_i.
+class WhitenedAvarResiduals : public ceres::CostFunction {
+ public:
+  // whitened_observed = W a; whitened_shapes.col(i) = W S_i scale_i (zero for absent terms).
+  WhitenedAvarResiduals(Eigen::VectorXd whitened_observed, Eigen::MatrixXd whitened_shapes)
+      : observed_(std::move(whitened_observed)), shapes_(std::move(whitened_shapes)) {
+    set_num_residuals(static_cast<int>(observed_.size()));
+    for (int i = 0; i < 5; ++i) mutable_parameter_block_sizes()->push_back(1);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    Eigen::Map<Eigen::VectorXd> r(residuals, observed_.size());
+    r = observed_;
+    for (int i = 0; i < 5; ++i) r -= shapes_.col(i) * parameters[i][0];
+    if (jacobians) {
+      for (int i = 0; i < 5; ++i) {
+        if (!jacobians[i]) continue;
+        Eigen::Map<Eigen::VectorXd>(jacobians[i], observed_.size()) = -shapes_.col(i);
+      }
+    }
+    return true;
+  }
+
+ private:
+  Eigen::VectorXd observed_;
+  Eigen::MatrixXd shapes_;
 };
 
 }  // namespace allanlab::estimators

@@ -8,6 +8,7 @@
 #include <boost/math/special_functions/digamma.hpp>
 #include <ceres/ceres.h>
 
+#include "estimators/fit/avar_covariance.h"
 #include "estimators/fit/avar_residuals.h"
 #include "sim/sensor_model.h"
 
@@ -62,6 +63,65 @@ bool Solve(const FitOptions& options, const AvarCurve& curve, const Problem& p,
   for (int i = 0; i < kTerms; ++i) {
     const bool asked = std::find(p.asked.begin(), p.asked.end(), i) != p.asked.end();
     if (!asked) {
+      (*theta)[i] = 0.0;
+      problem.SetParameterBlockConstant(&(*theta)[i]);
+    } else {
+      problem.SetParameterLowerBound(&(*theta)[i], 0, 0.0);
+    }
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 500;
+  solver.function_tolerance = 1e-15;
+  solver.gradient_tolerance = 1e-16;
+  solver.parameter_tolerance = 1e-13;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    if (why) *why = "Ceres: " + summary.message;
+    return false;
+  }
+  return true;
+}
+
+// theta' -> squared SI coefficients for the covariance model.
+std::array<double, kTerms> SquaredSi(const Problem& p, const std::array<double, kTerms>& theta) {
+  std::array<double, kTerms> si{};
+  for (int i : p.asked) si[i] = theta[i] * p.scale[i];
+  return si;
+}
+
+// W = L^{-1} with Omega = L L' (a tiny ridge if Omega is numerically singular: adjacent
+// overlapping taus are strongly correlated).
+bool Whitening(const Eigen::MatrixXd& omega, Eigen::MatrixXd* w) {
+  const Eigen::Index n = omega.rows();
+  Eigen::MatrixXd regular = omega;
+  for (double ridge = 0.0; ridge < 1e-3; ridge = ridge == 0.0 ? 1e-14 : ridge * 100.0) {
+    if (ridge > 0.0) regular = omega + ridge * omega.diagonal().mean() * Eigen::MatrixXd::Identity(n, n);
+    Eigen::LLT<Eigen::MatrixXd> llt(regular);
+    if (llt.info() == Eigen::Success) {
+      *w = llt.matrixL().solve(Eigen::MatrixXd::Identity(n, n));
+      return true;
+    }
+  }
+  return false;
+}
+
+// One GLS solve for a fixed whitening W.
+bool SolveWhitened(const AvarCurve& curve, const Problem& p, const Eigen::MatrixXd& w,
+                   std::array<double, kTerms>* theta, std::string* why) {
+  const auto taus = static_cast<Eigen::Index>(curve.size());
+  Eigen::VectorXd a = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), taus);
+  Eigen::MatrixXd shapes = Eigen::MatrixXd::Zero(taus, kTerms);
+  for (int i : p.asked) {
+    for (Eigen::Index k = 0; k < taus; ++k) shapes(k, i) = p.shape[i][k] * p.scale[i];
+  }
+  ceres::Problem problem;
+  problem.AddResidualBlock(new WhitenedAvarResiduals(w * a, w * shapes), nullptr, &(*theta)[0],
+                           &(*theta)[1], &(*theta)[2], &(*theta)[3], &(*theta)[4]);
+  for (int i = 0; i < kTerms; ++i) {
+    if (std::find(p.asked.begin(), p.asked.end(), i) == p.asked.end()) {
       (*theta)[i] = 0.0;
       problem.SetParameterBlockConstant(&(*theta)[i]);
     } else {
@@ -187,6 +247,35 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
     }
   }
   if (options.method == FitMethod::kLogWls) settled = true;
+
+  Eigen::MatrixXd whitening;  // GLS only
+  if (options.method == FitMethod::kGls) {
+    if (curve.estimator != sim::AvarEstimatorKind::kOverlapping || curve.num_samples <= 0) {
+      summary->message = "fit: GLS needs an overlapping Allan curve with its record length";
+      return false;
+    }
+    std::vector<Coefficient> terms;
+    for (int i : p.asked) terms.push_back(static_cast<Coefficient>(i));
+    const AvarCovarianceModel covariance(curve, terms);
+    settled = false;
+    for (int gls = 0; gls < options.max_reweightings && !settled; ++gls, ++iteration) {
+      const std::array<double, kTerms> before = theta;
+      if (!Whitening(covariance.Covariance(SquaredSi(p, theta)), &whitening)) {
+        summary->message = "fit: the model covariance is not positive definite";
+        return false;
+      }
+      if (!SolveWhitened(curve, p, whitening, &theta, &why)) {
+        summary->message = "fit failed: " + why;
+        return false;
+      }
+      settled = gls > 0;
+      for (int i : p.asked) {
+        if (std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
+          settled = false;
+        }
+      }
+    }
+  }
   summary->iterations = iteration;
   summary->converged = settled;
 
@@ -194,7 +283,20 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
   const std::vector<double> model = Model(p, theta, taus);
   Eigen::MatrixXd a(taus, p.asked.size());
   double chi2 = 0.0;
-  for (std::size_t k = 0; k < taus; ++k) {
+  if (options.method == FitMethod::kGls) {
+    Eigen::MatrixXd shapes(taus, p.asked.size());
+    Eigen::VectorXd residual(taus);
+    for (std::size_t k = 0; k < taus; ++k) {
+      residual(static_cast<Eigen::Index>(k)) = curve.avar[k] - model[k];
+      for (std::size_t j = 0; j < p.asked.size(); ++j) {
+        shapes(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
+            p.shape[p.asked[j]][k] * p.scale[p.asked[j]];
+      }
+    }
+    a = whitening * shapes;
+    chi2 = (whitening * residual).squaredNorm();
+  }
+  for (std::size_t k = 0; k < taus && options.method != FitMethod::kGls; ++k) {
     const double sqrt_w = options.method == FitMethod::kLogWls
                               ? std::sqrt(0.5 * p.edf[k]) / model[k]
                               : std::sqrt(0.5 * p.edf[k]) / expected[k];

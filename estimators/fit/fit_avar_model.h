@@ -7,7 +7,12 @@
 //            so that E comes from the fitted model (THEORY.md §4.4 (i)).
 //   kLogWls: the log-domain variant, weights nu/2, with the psi(nu/2) - ln(nu/2) bias removed
 //            (THEORY.md §4.4 (ii)).
-// Uncertainties: the covariance (S' W S)^{-1} of the squared coefficients, propagated to c_i.
+//   kGls:    generalised least squares with the full covariance of the overlapping AVAR estimates
+//            across taus computed from the fitted model (avar_covariance.h, THEORY.md §2.1),
+//            iterated: the consistent estimator the GMWM literature calls for (Guerrier et al.
+//            2013) without its wavelet detour. Overlapping curves only.
+// Uncertainties: the covariance (S' W S)^{-1} of the squared coefficients (W = Omega^{-1} for
+// GLS), propagated to c_i = sqrt(c_i^2) to first order.
 // WLS treats the taus as independent, which overlapping curves are not; the experiments measure
 // how far that makes its error bars optimistic.
 #include <array>
@@ -20,14 +25,14 @@
 
 namespace allanlab::estimators {
 
-enum class FitMethod { kSlope, kWls, kLogWls };
+enum class FitMethod { kSlope, kWls, kLogWls, kGls };
 
 struct FitOptions {
   FitMethod method = FitMethod::kWls;
   std::vector<Coefficient> terms = {Coefficient::kQ, Coefficient::kN, Coefficient::kB,
                                     Coefficient::kK, Coefficient::kR};
-  int max_reweightings = 10;         // WLS weight iterations (model -> weights -> refit)
-  double reweight_tolerance = 1e-6;  // stop when no squared coefficient moves more (relative)
+  int max_reweightings = 25;         // weight iterations (model -> weights or covariance -> refit)
+  double reweight_tolerance = 1e-5;  // stop when no squared coefficient moves more (relative)
   // Shapes: exact discrete expectations for the record (true) or IEEE 952 asymptotes (false).
   bool exact_shapes = true;
   bool IsValid(std::string* why) const;
@@ -49,7 +54,7 @@ struct FitSummary {
   int taus_used = 0;
   int iterations = 0;
   bool converged = false;
-  double chi2 = 0.0;  // sum of squared weighted residuals at the solution
+  double chi2 = 0.0;  // sum of squared weighted (GLS: whitened) residuals at the solution
   int dof = 0;        // taus - fitted coefficients
   bool ok = false;
   std::string message;
