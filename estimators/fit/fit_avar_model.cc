@@ -5,6 +5,7 @@
 #include <memory>
 
 #include <Eigen/Dense>
+#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/special_functions/digamma.hpp>
 #include <ceres/ceres.h>
 
@@ -170,7 +171,62 @@ std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact)
   return model.ExpectedAvar(curve.m, {curve.num_samples, curve.estimator});
 }
 
+namespace {
+bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary);
+}  // namespace
+
 bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
+  if (!options.select_terms || options.method == FitMethod::kSlope) {
+    return FitFixedTerms(options, curve, summary);
+  }
+  FitOptions current = options;
+  current.select_terms = false;
+  if (!FitFixedTerms(current, curve, summary)) return false;
+  // Critical value of 0.5 chi2_0 + 0.5 chi2_1 at the level: the chi2_1 quantile at 2 * level.
+  const double critical =
+      boost::math::quantile(boost::math::complement(boost::math::chi_squared(1.0), 2.0 * options.selection_level));
+  std::vector<std::string> notes(kTerms);
+  while (current.terms.size() > 1) {
+    double best_increase = 0.0;
+    std::size_t best = current.terms.size();
+    FitSummary best_fit;
+    for (std::size_t t = 0; t < current.terms.size(); ++t) {
+      FitOptions without = current;
+      without.terms.erase(without.terms.begin() + static_cast<std::ptrdiff_t>(t));
+      FitSummary trial;
+      if (!FitFixedTerms(without, curve, &trial)) continue;
+      const double increase = trial.chi2 - summary->chi2;
+      if (best == current.terms.size() || increase < best_increase) {
+        best_increase = increase;
+        best = t;
+        best_fit = trial;
+      }
+    }
+    if (best == current.terms.size() || best_increase >= critical) break;
+    const Coefficient dropped = current.terms[best];
+    notes[static_cast<int>(dropped)] =
+        "dropped by term selection: removing it raises chi2 by " + std::to_string(best_increase) +
+        " < " + std::to_string(critical) + " (likelihood-ratio test at " +
+        std::to_string(options.selection_level) + ")";
+    current.terms.erase(current.terms.begin() + static_cast<std::ptrdiff_t>(best));
+    *summary = best_fit;
+  }
+  for (Coefficient c : options.terms) {
+    CoefficientEstimate& e = summary->coefficients[static_cast<int>(c)];
+    e.asked = true;
+    if (!notes[static_cast<int>(c)].empty()) {
+      e.dropped = true;
+      e.fitted = false;
+      e.value_si = e.sigma_si = 0.0;
+      e.note = notes[static_cast<int>(c)];
+    }
+  }
+  return true;
+}
+
+namespace {
+
+bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
   *summary = FitSummary{};
   summary->method = options.method;
   std::string why;
@@ -338,5 +394,7 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
                      edf_note;
   return true;
 }
+
+}  // namespace
 
 }  // namespace allanlab::estimators

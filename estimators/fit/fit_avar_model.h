@@ -35,12 +35,19 @@ struct FitOptions {
   double reweight_tolerance = 1e-5;  // stop when no squared coefficient moves more (relative)
   // Shapes: exact discrete expectations for the record (true) or IEEE 952 asymptotes (false).
   bool exact_shapes = true;
+  // Term selection (WLS, log-WLS, GLS): backward elimination by a likelihood-ratio test on the
+  // fit cost. A term is dropped while removing it raises chi2 by less than the critical value of
+  // the 50:50 mixture of chi2_0 and chi2_1 (the coefficient sits on the c^2 >= 0 boundary under
+  // the null) at `selection_level`: 2.706 at 5 %.
+  bool select_terms = true;
+  double selection_level = 0.05;
   bool IsValid(std::string* why) const;
 };
 
 struct CoefficientEstimate {
   bool asked = false;   // in options.terms
-  bool fitted = false;  // asked and not stuck at zero
+  bool fitted = false;  // asked, kept by term selection and not stuck at zero
+  bool dropped = false;  // asked but removed by term selection (see note for the test value)
   double value_si = 0.0;
   double sigma_si = 0.0;  // standard uncertainty (0 when not fitted)
   std::string note;

@@ -57,6 +57,7 @@ TEST(GlsFit, RecoversPresentCoefficientsWithHonestSigmas) {
                                                     {Coefficient::kK, c.k_deg_h_rt_h}};
     FitOptions options;
     options.method = FitMethod::kGls;
+    options.select_terms = false;  // the sigmas of a fixed model are under test here
     options.terms.clear();
     for (auto [coef, value] : truth) {
       if (value == 0.0) continue;
@@ -91,6 +92,47 @@ TEST(GlsFit, RecoversPresentCoefficientsWithHonestSigmas) {
   for (double v : z) sum2 += v * v;
   const double rms = std::sqrt(sum2 / z.size());
   EXPECT_NEAR(rms, 1.0, 3.0 / std::sqrt(2.0 * z.size())) << z.size() << " z-scores";
+}
+
+}  // namespace
+}  // namespace allanlab::estimators
+
+namespace allanlab::estimators {
+namespace {
+
+// Term selection: fitting all five terms to N + B + K records in which each term dominates its
+// own tau range (N below 3 s, B from 3 to 100 s, K from 100 s to the longest tau, 330 s) keeps
+// N, B, K and drops Q and R. (Where a term dominates no tau range — e.g. B = 3 deg/h with
+// N = 0.2 deg/sqrt(h), K = 20 deg/h/sqrt(h) — some records do not support it and selection
+// rightly drops it.)
+TEST(GlsFit, TermSelectionDropsAbsentTerms) {
+  const double rate = 100.0;
+  const std::int64_t n = 1 << 18;
+  const auto ms = LogDense(n / 8, 8.0);
+  sim::SensorModel model;
+  model.sample_rate_hz = rate;
+  model.terms = {TermFor(Coefficient::kN, FromDatasheetUnit(Coefficient::kN, 0.115)),
+                 TermFor(Coefficient::kB, FromDatasheetUnit(Coefficient::kB, 6.0)),
+                 TermFor(Coefficient::kK, FromDatasheetUnit(Coefficient::kK, 41.0))};
+  FitOptions options;
+  options.method = FitMethod::kGls;
+  int correct = 0, fits = 0;
+  for (std::uint64_t seed = 21; seed <= 24; ++seed) {
+    const auto y = model.Generate(seed, 0, n);
+    FitSummary s;
+    ASSERT_TRUE(FitAvarModel(
+        options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)), &s))
+        << s.message;
+    ++fits;
+    const bool ok = s.at(Coefficient::kN).fitted && s.at(Coefficient::kB).fitted &&
+                    s.at(Coefficient::kK).fitted && !s.at(Coefficient::kQ).fitted &&
+                    !s.at(Coefficient::kR).fitted;
+    correct += ok;
+    EXPECT_TRUE(ok) << "seed " << seed << ": Q " << s.at(Coefficient::kQ).note << "; N "
+                    << s.at(Coefficient::kN).note << "; B " << s.at(Coefficient::kB).note
+                    << "; K " << s.at(Coefficient::kK).note << "; R " << s.at(Coefficient::kR).note;
+  }
+  EXPECT_EQ(correct, fits);
 }
 
 }  // namespace
