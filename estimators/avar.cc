@@ -1,0 +1,87 @@
+#include "estimators/avar.h"
+
+#include <string>
+#include <vector>
+
+#include "estimators/allan_family.h"
+#include "estimators/confidence.h"
+#include "estimators/noise_identification.h"
+
+namespace allanlab::estimators {
+namespace {
+
+void AppendNote(const std::string& note, std::string* message) {
+  if (!message->empty()) *message += "; ";
+  *message += note;
+}
+
+// Noise exponent of every point: fixed, or identified from the record. Where identification
+// cannot run (fewer than three m-averages, e.g. TOTVAR beyond n/3), the nearest shorter tau's
+// exponent stands in: noise type changes slowly with tau, and white FM (0) is the neutral start.
+int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rate,
+                         std::vector<AvarPoint>* points) {
+  int unidentified = 0;
+  int previous = 0;
+  for (AvarPoint& point : *points) {
+    if (options.alpha_fixed) {
+      point.alpha = options.alpha;
+      continue;
+    }
+    const NoiseId id = IdentifyNoise(rate, point.m);
+    point.alpha_identified = id.identified;
+    if (id.identified) {
+      previous = id.alpha;
+    } else {
+      ++unidentified;
+    }
+    point.alpha = previous;
+  }
+  return unidentified;
+}
+
+double PointEdf(const AvarOptions& options, const AvarPoint& point, std::int64_t n_rate) {
+  switch (options.confidence_method) {
+    case ConfidenceMethod::kNone:
+      return 0.0;
+    case ConfidenceMethod::kSimple:
+      return SimpleEdf(n_rate / point.m);
+    case ConfidenceMethod::kGreenhallRiley:
+      return StatisticEdf(options.statistic, point.alpha, point.m, n_rate, options.sample_period_s);
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary) {
+  std::vector<double> differenced;
+  std::span<const double> rate = data;
+  if (options.input == InputKind::kAngle) {
+    differenced = AngleToRate(data, options.sample_period_s);
+    rate = differenced;
+  }
+  if (!ComputeStatisticValues(options, rate, summary)) return false;
+
+  const int unidentified = AssignNoiseExponents(options, rate, &summary->points);
+  if (unidentified > 0) {
+    AppendNote("noise type not identifiable at " + std::to_string(unidentified) +
+                   " tau(s) (too few averages): the next shorter tau's alpha used",
+               &summary->message);
+  }
+  const auto n_rate = static_cast<std::int64_t>(rate.size());
+  for (AvarPoint& point : summary->points) {
+    point.edf = PointEdf(options, point, n_rate);
+    if (point.edf > 0.0) {
+      const Interval interval = ChiSquareInterval(point.value, point.edf, options.confidence);
+      point.ci_low = interval.low;
+      point.ci_high = interval.high;
+    }
+  }
+  if (options.confidence_method == ConfidenceMethod::kSimple) {
+    AppendNote("intervals: seed paper's simple formula, EDF = K - 1 for K = floor(N/m) clusters",
+               &summary->message);
+  }
+  return true;
+}
+
+}  // namespace allanlab::estimators
