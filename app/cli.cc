@@ -1,10 +1,10 @@
 #include "app/cli.h"
 
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "app/avar_command.h"
 #include "app/provenance.h"
 #include "app/simulate_command.h"
 #include "app/subcommand.h"
@@ -16,6 +16,7 @@ namespace {
 using SubcommandFactory = Subcommand (*)(CLI::App* parent);
 constexpr SubcommandFactory kSubcommands[] = {
     AddSimulateCommand,
+    AddAvarCommand,
 };
 
 }  // namespace
