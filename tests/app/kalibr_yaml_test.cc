@@ -1,0 +1,33 @@
+// Kalibr's gyroscope keys are the continuous-time densities: N in rad/sqrt(s) and K in
+// rad/s/sqrt(s) (DESIGN.md "Units of the robotics convention"), written with their units.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "app/kalibr_yaml.h"
+#include "sim/units.h"
+
+namespace allanlab::app {
+namespace {
+
+TEST(KalibrYaml, WritesDensitiesInSi) {
+  KalibrGyroNoise noise;
+  // 0.0267 deg/sqrt(h) = 7.767e-6 rad/s/sqrt(Hz); 0.03 deg/h/sqrt(h) = 2.424e-9 rad/s^2/sqrt(Hz).
+  noise.noise_density_rad_per_s_per_sqrt_hz = units::DegPerSqrtHour(0.0267);
+  noise.random_walk_rad_per_s2_per_sqrt_hz = units::DegPerHourPerSqrtHour(0.03);
+  noise.update_rate_hz = 400.0;
+  Provenance p;
+  p.command = "fit";
+  const std::string yaml = KalibrImuYaml(noise, p);
+  EXPECT_NEAR(units::DegPerSqrtHour(0.0267), 7.767e-6, 1e-9);
+  EXPECT_NEAR(units::DegPerHourPerSqrtHour(0.03), 2.424e-9, 1e-12);
+  EXPECT_NE(yaml.find("gyroscope_noise_density: " + ShortestDecimal(units::DegPerSqrtHour(0.0267))),
+            std::string::npos)
+      << yaml;
+  EXPECT_NE(yaml.find("gyroscope_random_walk: "), std::string::npos);
+  EXPECT_NE(yaml.find("update_rate: 400"), std::string::npos);
+  EXPECT_NE(yaml.find("rad/s/sqrt(Hz)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace allanlab::app
