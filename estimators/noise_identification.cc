@@ -94,32 +94,38 @@ double B1Theory(double n, int mu) {
   return n * (1.0 - std::pow(n, mu)) / (2.0 * (n - 1.0) * (1.0 - std::pow(2.0, mu)));
 }
 
-// MVAR(m) / OAVAR(m) from prefix sums: Mod Allan differences are m-averages of consecutive
-// Allan differences, so one more prefix sum over the Allan differences gives them.
+// MVAR(m) / OAVAR(m). Mod Allan differences are m-averages of consecutive Allan differences, so
+// one pass with two running window sums and a ring of the last m Allan differences gives both in
+// O(m) memory (this runs on records of any length, at the longest taus).
 double ModifiedToAllanRatio(std::span<const double> rate, std::int64_t m) {
   const auto n = static_cast<std::int64_t>(rate.size());
   if (3 * m > n) return 0.0;
   long double mean = 0.0L;
   for (double v : rate) mean += v;
   mean /= n;
-  std::vector<long double> y_sum(n + 1, 0.0L);
-  for (std::int64_t i = 0; i < n; ++i) y_sum[i + 1] = y_sum[i] + (rate[i] - mean);
+  auto y = [&](std::int64_t i) { return static_cast<long double>(rate[i]) - mean; };
+  long double first = 0.0L, second = 0.0L;  // sums over [t, t+m) and [t+m, t+2m)
+  for (std::int64_t i = 0; i < m; ++i) {
+    first += y(i);
+    second += y(i + m);
+  }
+  std::vector<long double> ring(static_cast<std::size_t>(m), 0.0L);
+  long double window = 0.0L, avar = 0.0L, mvar = 0.0L;
   const std::int64_t count = n - 2 * m + 1;  // Allan differences (times m)
-  std::vector<long double> diff_sum(count + 1, 0.0L);
-  long double avar = 0.0L;
   for (std::int64_t t = 0; t < count; ++t) {
-    const long double a = y_sum[t + 2 * m] - 2.0L * y_sum[t + m] + y_sum[t];
+    const long double a = second - first;
     avar += a * a;
-    diff_sum[t + 1] = diff_sum[t] + a;
+    long double& slot = ring[static_cast<std::size_t>(t % m)];
+    window += a - slot;
+    slot = a;
+    if (t >= m - 1) mvar += (window / m) * (window / m);
+    if (t + 1 < count) {
+      first += y(t + m) - y(t);
+      second += y(t + 2 * m) - y(t + m);
+    }
   }
   avar /= count;
-  long double mvar = 0.0L;
-  const std::int64_t mod_count = count - m + 1;
-  for (std::int64_t t = 0; t < mod_count; ++t) {
-    const long double a = (diff_sum[t + m] - diff_sum[t]) / m;
-    mvar += a * a;
-  }
-  mvar /= mod_count;
+  mvar /= count - m + 1;
   return avar > 0.0L ? static_cast<double>(mvar / avar) : 0.0;
 }
 
