@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include <boost/math/special_functions/polygamma.hpp>
 
 namespace allanlab::estimators {
 namespace {
@@ -66,9 +65,13 @@ double PairCount(std::int64_t k, std::int64_t t1, std::int64_t t2) {
 }
 
 // Flicker's far tail: C(k) ~ -m1 m2 R''(k), R''(k) = -(1/pi) psi''(k + 1/2) for unit B.
+// psi''(x) by its asymptotic series (x >= 8.5 here: truncation error below 4e-10 relative), which
+// is 100x cheaper than the general polygamma and sits in the innermost loop.
 double FlickerTail(std::int64_t k, std::int64_t m1, std::int64_t m2) {
   const double x = std::abs(static_cast<double>(k)) + 0.5;
-  return static_cast<double>(m1) * m2 * boost::math::polygamma(2, x) / std::numbers::pi;
+  const double r = 1.0 / x, r2 = r * r;
+  const double psi2 = -r2 * (1.0 + r * (1.0 + r * (0.5 - r2 * (1.0 / 6.0 - r2 * (1.0 / 6.0 - r2 * 3.0 / 10.0)))));
+  return static_cast<double>(m1) * m2 * psi2 / std::numbers::pi;
 }
 
 }  // namespace
