@@ -35,8 +35,8 @@ struct Failure {
 Failure Usage(std::string message) { return {kExitUsageError, std::move(message)}; }
 Failure Runtime(std::string message) { return {kExitRuntimeError, std::move(message)}; }
 
-void PrintWarning(const std::string& message) {
-  std::cerr << "allanlab " << kCommand << ": warning: " << message << std::endl;
+void PrintWarning(const std::string& message, const std::string& command = kCommand) {
+  std::cerr << "allanlab " << command << ": warning: " << message << std::endl;
 }
 
 bool PositiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
@@ -210,15 +210,17 @@ std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_
   return std::nullopt;
 }
 
-void WarnAboutRecord(const RecordInfo& info) {
+void WarnAboutRecord(const RecordInfo& info, const std::string& command = kCommand) {
   if (info.dropped_nonfinite > 0) {
     PrintWarning(info.path + ": dropped " + std::to_string(info.dropped_nonfinite) +
-                 " non-finite value(s) (--drop-nonfinite); the record is shorter by as many "
-                 "samples and the curve treats it as contiguous");
+                     " non-finite value(s) (--drop-nonfinite); the record is shorter by as many "
+                     "samples and the curve treats it as contiguous",
+                 command);
   }
   if (info.time.irregular_steps > 0) {
     PrintWarning(info.path + ": " + TimeSteps::Describe(info.time, info.time_column) +
-                 "; the estimator assumes uniform sampling");
+                     "; the estimator assumes uniform sampling",
+                 command);
   }
 }
 
@@ -291,12 +293,7 @@ std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& comm
 
 }  // namespace
 
-Subcommand AddAvarCommand(CLI::App* parent) {
-  auto options = std::make_shared<AvarCommandOptions>();
-  CLI::App* cmd = parent->add_subcommand(
-      kCommand,
-      "Allan-family curve of a recorded gyro rate (or angle) column with confidence intervals: "
-      "a table on stdout, optionally JSON, CSV and an Allan diagram.");
+void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
   cmd->add_option("FILE", options->path,
                   "the record: CSV/TSV/whitespace text with '#' comments and an optional header, "
                   "or raw little-endian float32/float64 (--format); plain, .gz or .xz (detected "
@@ -319,10 +316,6 @@ Subcommand AddAvarCommand(CLI::App* parent) {
       ->type_name("HZ");
   cmd->add_option("--type", options->type, "the column holds rate (default) or angle samples")
       ->type_name("rate|angle");
-  cmd->add_option("--estimator", options->estimator,
-                  "overlapping (default), nonoverlapping, modified, hadamard, "
-                  "hadamard_nonoverlapping, total or time")
-      ->type_name("NAME");
   cmd->add_option("--taus", options->taus,
                   "octave (default), decade (1-2-5), dense:K (K per decade), all (slow: O(N^2)), "
                   "or a comma list of taus in seconds")
@@ -335,6 +328,25 @@ Subcommand AddAvarCommand(CLI::App* parent) {
          "interval method: gr (Greenhall-Riley EDF, default), simple (EDF = clusters - 1, "
          "IEEE 952; the default with --stream) or none")
       ->type_name("gr|simple|none");
+  cmd->add_option("--format", options->format,
+                  "input record format: text (default), f32 or f64 (raw little-endian)")
+      ->type_name("text|f32|f64");
+  cmd->add_flag("--drop-nonfinite", options->drop_nonfinite,
+                "skip rows whose value is NaN, inf or missing (counted and reported) instead of "
+                "failing");
+}
+
+Subcommand AddAvarCommand(CLI::App* parent) {
+  auto options = std::make_shared<AvarCommandOptions>();
+  CLI::App* cmd = parent->add_subcommand(
+      kCommand,
+      "Allan-family curve of a recorded gyro rate (or angle) column with confidence intervals: "
+      "a table on stdout, optionally JSON, CSV and an Allan diagram.");
+  AddRecordCurveOptions(cmd, options.get());
+  cmd->add_option("--estimator", options->estimator,
+                  "overlapping (default), nonoverlapping, modified, hadamard, "
+                  "hadamard_nonoverlapping, total or time")
+      ->type_name("NAME");
   cmd->add_option("--json", options->json_path, "also write the results as JSON with provenance")
       ->type_name("OUT.json");
   cmd->add_option("--csv", options->csv_path, "also write the results as CSV with provenance")
@@ -343,12 +355,6 @@ Subcommand AddAvarCommand(CLI::App* parent) {
                   "also draw the log-log diagram with interval bars and slope guides (PNG, "
                   "needs gnuplot)")
       ->type_name("OUT.png");
-  cmd->add_option("--format", options->format,
-                  "input record format: text (default), f32 or f64 (raw little-endian)")
-      ->type_name("text|f32|f64");
-  cmd->add_flag("--drop-nonfinite", options->drop_nonfinite,
-                "skip rows whose value is NaN, inf or missing (counted and reported) instead of "
-                "failing");
   cmd->add_flag("--stream", options->stream,
                 "one pass in bounded memory for records larger than memory: octave taus, "
                 "overlapping or nonoverlapping AVAR, --ci simple or none");
@@ -362,6 +368,24 @@ Subcommand AddAvarCommand(CLI::App* parent) {
       "error.");
   return {cmd,
           [options](const std::string& command_line) { return RunAvar(*options, command_line); }};
+}
+
+int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& command,
+                         AvarReport* report, std::string* error) {
+  Plan plan;
+  std::optional<Failure> failure = MakePlan(options, &plan);
+  if (!failure) {
+    report->input_units = plan.input_units;
+    report->output_unit = plan.output_unit;
+    report->taus_text = options.taus;
+    failure = ComputeInMemory(plan, report);
+  }
+  if (failure) {
+    *error = failure->message;
+    return failure->code;
+  }
+  WarnAboutRecord(report->record, command);
+  return kExitOk;
 }
 
 int RunAvar(const AvarCommandOptions& options, const std::string& command_line) {

@@ -48,4 +48,14 @@ struct AvarCommandOptions {
 Subcommand AddAvarCommand(CLI::App* parent);
 int RunAvar(const AvarCommandOptions& options, const std::string& command_line);
 
+// Shared with commands that start from a recorded curve (`fit`): the options that read a record
+// and choose its curve (FILE, --column, --units, --out-units, --rate, --type, --taus,
+// --confidence, --ci, --format, --drop-nonfinite) ...
+void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options);
+// ... and reading + computing it in memory as `avar` does (warnings printed under `command`).
+// Returns kExitOk, or the exit code with *error set. report->provenance is left to the caller.
+struct AvarReport;
+int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& command,
+                         AvarReport* report, std::string* error);
+
 }  // namespace allanlab::app

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/avar_command.h"
+#include "app/fit_command.h"
 #include "app/provenance.h"
 #include "app/simulate_command.h"
 #include "app/subcommand.h"
@@ -17,6 +18,7 @@ using SubcommandFactory = Subcommand (*)(CLI::App* parent);
 constexpr SubcommandFactory kSubcommands[] = {
     AddSimulateCommand,
     AddAvarCommand,
+    AddFitCommand,
 };
 
 }  // namespace

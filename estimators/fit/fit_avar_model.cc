@@ -172,7 +172,18 @@ std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact)
 }
 
 namespace {
-bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary);
+// `weight_model_si` (squared SI coefficients): weights (WLS) or covariance (GLS) fixed from this
+// model instead of iterated, so that nested fits are compared under the same weights.
+bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary,
+                   const std::array<double, kTerms>* weight_model_si = nullptr);
+
+std::array<double, kTerms> SquaredCoefficients(const FitSummary& s) {
+  std::array<double, kTerms> theta{};
+  for (int i = 0; i < kTerms; ++i) {
+    if (s.coefficients[i].fitted) theta[i] = s.coefficients[i].value_si * s.coefficients[i].value_si;
+  }
+  return theta;
+}
 }  // namespace
 
 bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
@@ -187,19 +198,22 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
       boost::math::quantile(boost::math::complement(boost::math::chi_squared(1.0), 2.0 * options.selection_level));
   std::vector<std::string> notes(kTerms);
   while (current.terms.size() > 1) {
+    // Nested fits compared under the weights of the current model, so chi2 differences are
+    // those of one weighted least-squares problem (never negative).
+    const std::array<double, kTerms> weights = SquaredCoefficients(*summary);
+    FitSummary reference;
+    if (!FitFixedTerms(current, curve, &reference, &weights)) break;
     double best_increase = 0.0;
     std::size_t best = current.terms.size();
-    FitSummary best_fit;
     for (std::size_t t = 0; t < current.terms.size(); ++t) {
       FitOptions without = current;
       without.terms.erase(without.terms.begin() + static_cast<std::ptrdiff_t>(t));
       FitSummary trial;
-      if (!FitFixedTerms(without, curve, &trial)) continue;
-      const double increase = trial.chi2 - summary->chi2;
+      if (!FitFixedTerms(without, curve, &trial, &weights)) continue;
+      const double increase = trial.chi2 - reference.chi2;
       if (best == current.terms.size() || increase < best_increase) {
         best_increase = increase;
         best = t;
-        best_fit = trial;
       }
     }
     if (best == current.terms.size() || best_increase >= critical) break;
@@ -209,7 +223,7 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
         " < " + std::to_string(critical) + " (likelihood-ratio test at " +
         std::to_string(options.selection_level) + ")";
     current.terms.erase(current.terms.begin() + static_cast<std::ptrdiff_t>(best));
-    *summary = best_fit;
+    if (!FitFixedTerms(current, curve, summary)) return false;  // refit, weights iterated again
   }
   for (Coefficient c : options.terms) {
     CoefficientEstimate& e = summary->coefficients[static_cast<int>(c)];
@@ -226,7 +240,8 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
 
 namespace {
 
-bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
+bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary,
+                   const std::array<double, kTerms>* weight_model_si) {
   *summary = FitSummary{};
   summary->method = options.method;
   std::string why;
@@ -284,14 +299,28 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
   std::array<double, kTerms> theta{};
   for (int i : p.asked) theta[i] = 0.1;
   std::vector<double> expected = curve.avar;  // first weights from the data
+  if (weight_model_si) {
+    expected.assign(taus, 0.0);
+    for (int i = 0; i < kTerms; ++i) {
+      if ((*weight_model_si)[i] <= 0.0) continue;
+      const std::vector<double> shape = TermShape(static_cast<Coefficient>(i), curve, options.exact_shapes);
+      for (std::size_t k = 0; k < taus; ++k) expected[k] += (*weight_model_si)[i] * shape[k];
+    }
+    for (double& e : expected) e = std::max(e, 1e-300);
+  }
   bool settled = false;
   int iteration = 0;
-  const int passes = options.method == FitMethod::kLogWls ? 1 : options.max_reweightings;
+  const int passes =
+      options.method == FitMethod::kLogWls || weight_model_si ? 1 : options.max_reweightings;
   for (; iteration < passes && !settled; ++iteration) {
     const std::array<double, kTerms> before = theta;
     if (!Solve(options, curve, p, expected, &theta, &why)) {
       summary->message = "fit failed: " + why;
       return false;
+    }
+    if (weight_model_si) {
+      settled = true;
+      continue;
     }
     expected = Model(p, theta, taus);
     for (double& e : expected) e = std::max(e, 1e-300);
@@ -311,12 +340,19 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
       return false;
     }
     std::vector<Coefficient> terms;
-    for (int i : p.asked) terms.push_back(static_cast<Coefficient>(i));
+    for (int i = 0; i < kTerms; ++i) {
+      const bool asked = std::find(p.asked.begin(), p.asked.end(), i) != p.asked.end();
+      if (asked || (weight_model_si && (*weight_model_si)[i] > 0.0)) {
+        terms.push_back(static_cast<Coefficient>(i));
+      }
+    }
     const AvarCovarianceModel covariance(curve, terms);
     settled = false;
-    for (int gls = 0; gls < options.max_reweightings && !settled; ++gls, ++iteration) {
+    const int gls_passes = weight_model_si ? 1 : options.max_reweightings;
+    for (int gls = 0; gls < gls_passes && !settled; ++gls, ++iteration) {
       const std::array<double, kTerms> before = theta;
-      if (!Whitening(covariance.Covariance(SquaredSi(p, theta)), &whitening)) {
+      if (!Whitening(covariance.Covariance(weight_model_si ? *weight_model_si : SquaredSi(p, theta)),
+                     &whitening)) {
         summary->message = "fit: the model covariance is not positive definite";
         return false;
       }
@@ -324,9 +360,10 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
         summary->message = "fit failed: " + why;
         return false;
       }
-      settled = gls > 0;
+      settled = gls > 0 || weight_model_si;
       for (int i : p.asked) {
-        if (std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
+        if (!weight_model_si &&
+            std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
           settled = false;
         }
       }
@@ -392,6 +429,14 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
   summary->ok = true;
   summary->message = (settled ? "converged" : "weights did not settle within max_reweightings") +
                      edf_note;
+  // chi2 far above its expectation (5 SD of chi2_dof): the model does not describe the curve,
+  // and coefficients and sigmas are those of the closest wrong model.
+  if (summary->dof > 0 && chi2 > summary->dof + 5.0 * std::sqrt(2.0 * summary->dof)) {
+    summary->message += "; POOR FIT: chi2 = " + std::to_string(chi2) + " on " +
+                        std::to_string(summary->dof) +
+                        " dof, the model does not describe this curve (sigmas are not meaningful;"
+                        " look for effects beyond the model)";
+  }
   return true;
 }
 

@@ -1,0 +1,297 @@
+#include "app/fit_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/allan_plot.h"
+#include "app/atomic_file.h"
+#include "app/avar_report.h"
+#include "app/kalibr_yaml.h"
+#include "app/output_paths.h"
+#include "app/provenance.h"
+#include "app/rate_units.h"
+#include "estimators/fit/bandwidth_estimate.h"
+#include "estimators/fit/fit_avar_model.h"
+
+namespace allanlab::app {
+namespace {
+
+constexpr const char* kCommand = "fit";
+using estimators::Coefficient;
+using estimators::FitMethod;
+
+struct Failure {
+  int code = kExitOk;
+  std::string message;
+};
+
+bool ParseMethod(const std::string& text, FitMethod* method) {
+  if (text == "slope") *method = FitMethod::kSlope;
+  else if (text == "wls") *method = FitMethod::kWls;
+  else if (text == "logwls") *method = FitMethod::kLogWls;
+  else if (text == "gls") *method = FitMethod::kGls;
+  else return false;
+  return true;
+}
+
+bool ParseTerms(const std::string& text, std::vector<Coefficient>* terms, std::string* why) {
+  std::stringstream ss(text);
+  std::string id;
+  while (std::getline(ss, id, ',')) {
+    Coefficient c;
+    if (!estimators::ParseCoefficient(id, &c)) {
+      *why = "unknown term '" + id + "' (expected a comma list of Q, N, B, K, R)";
+      return false;
+    }
+    terms->push_back(c);
+  }
+  if (terms->empty()) {
+    *why = "no terms";
+    return false;
+  }
+  return true;
+}
+
+// The summary's points as the fit's curve, in SI.
+estimators::AvarCurve CurveOf(const AvarReport& report) {
+  estimators::AvarCurve c;
+  const auto& s = report.summary;
+  c.sample_period_s = s.options.sample_period_s;
+  c.num_samples = s.num_samples;
+  c.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const auto& p : s.points) {
+    if (!(p.value > 0.0)) continue;  // a zero variance (constant stretch) cannot be fitted
+    c.m.push_back(p.m);
+    c.tau_s.push_back(p.tau_s);
+    c.avar.push_back(p.value);
+    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
+  return c;
+}
+
+std::string Format(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+
+void WriteTable(std::ostream& os, const estimators::FitSummary& s,
+                const estimators::BandwidthEstimate& bw) {
+  os << "coefficient  value          +- sigma      unit            slope method\n";
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = s.at(c);
+    if (!e.asked) continue;
+    const auto& slope = s.slope.at(c);
+    char line[256];
+    std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-15s %s\n",
+                  std::string(estimators::CoefficientId(c)).c_str(),
+                  e.fitted ? Format(estimators::ToDatasheetUnit(c, e.value_si)).c_str() : "-",
+                  e.fitted && e.sigma_si > 0 ? ("+- " + Format(estimators::ToDatasheetUnit(c, e.sigma_si))).c_str() : "",
+                  std::string(estimators::DatasheetUnit(c)).c_str(),
+                  slope.found ? Format(estimators::ToDatasheetUnit(c, slope.value_si)).c_str() : "-");
+    os << line;
+    if (!e.note.empty()) os << "             (" << e.note << ")\n";
+  }
+  os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof, "
+     << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
+     << s.message << "\n";
+  if (bw.found) {
+    os << "bandwidth: ADEV peak at " << Format(bw.peak_tau_s) << " +- " << Format(bw.peak_tau_sigma_s)
+       << " s -> fc " << Format(bw.cutoff_first_order_hz) << " +- "
+       << Format(bw.cutoff_first_order_sigma_hz) << " Hz (first order; time constant "
+       << Format(bw.time_constant_s) << " s) or " << Format(bw.cutoff_butterworth2_hz)
+       << " Hz (2nd-order Butterworth)\n";
+  } else {
+    os << "bandwidth: not estimated (" << bw.note << ")\n";
+  }
+}
+
+nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::FitSummary& s,
+                               const estimators::BandwidthEstimate& bw, const Provenance& p) {
+  nlohmann::ordered_json j;
+  j["method"] = o.method;
+  nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = s.at(c);
+    if (!e.asked) continue;
+    nlohmann::ordered_json entry;
+    entry["value"] = e.fitted ? estimators::ToDatasheetUnit(c, e.value_si) : 0.0;
+    entry["sigma"] = estimators::ToDatasheetUnit(c, e.sigma_si);
+    entry["unit"] = std::string(estimators::DatasheetUnit(c));
+    entry["fitted"] = e.fitted;
+    if (!e.note.empty()) entry["note"] = e.note;
+    const auto& slope = s.slope.at(c);
+    if (slope.found) entry["slope_method"] = estimators::ToDatasheetUnit(c, slope.value_si);
+    coefficients[std::string(estimators::CoefficientId(c))] = entry;
+  }
+  j["coefficients"] = coefficients;
+  nlohmann::ordered_json bandwidth;
+  bandwidth["found"] = bw.found;
+  if (bw.found) {
+    bandwidth["peak_tau_s"] = bw.peak_tau_s;
+    bandwidth["first_order"] = {{"value", bw.cutoff_first_order_hz}, {"sigma", bw.cutoff_first_order_sigma_hz}};
+    bandwidth["butterworth2"] = {{"value", bw.cutoff_butterworth2_hz}, {"sigma", bw.cutoff_butterworth2_sigma_hz}};
+    bandwidth["time_constant_s"] = {{"value", bw.time_constant_s}, {"sigma", bw.time_constant_sigma_s}};
+  } else {
+    bandwidth["note"] = bw.note;
+  }
+  j["bandwidth_hz"] = bandwidth;
+  j["fit"] = {{"chi2", s.chi2}, {"dof", s.dof}, {"converged", s.converged},
+              {"taus_used", s.taus_used}, {"message", s.message}};
+  j["provenance"] = ProvenanceJson(p);
+  return j;
+}
+
+AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
+                  const estimators::FitSummary& s) {
+  AllanPlot plot = AvarPlot(report);  // data with interval bars
+  plot.title = "allanlab fit: " + report.record.path;
+  const double unit = FromRadPerSecond(report.output_unit, 1.0);
+  std::vector<double> total(curve.size(), 0.0);
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = s.at(c);
+    if (!e.fitted) continue;
+    const std::vector<double> shape = estimators::TermShape(c, curve, true);
+    PlotSeries term{std::string(estimators::CoefficientId(c)) + " term", PlotStyle::kDashedLine,
+                    curve.tau_s, {}};
+    for (std::size_t k = 0; k < curve.size(); ++k) {
+      const double v = e.value_si * e.value_si * shape[k];
+      total[k] += v;
+      term.y.push_back(std::sqrt(v) * unit);
+    }
+    plot.series.push_back(term);
+  }
+  PlotSeries fitted{"fitted total", PlotStyle::kLine, curve.tau_s, {}};
+  for (double v : total) fitted.y.push_back(std::sqrt(v) * unit);
+  plot.series.push_back(fitted);
+  return plot;
+}
+
+std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& command_line) {
+  std::string why;
+  estimators::FitOptions fit;
+  if (!ParseMethod(o.method, &fit.method)) {
+    return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
+  }
+  fit.terms.clear();
+  if (!ParseTerms(o.terms, &fit.terms, &why)) return Failure{kExitUsageError, "--terms: " + why};
+  fit.select_terms = o.select_terms;
+
+  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.curve.path}};
+  if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
+  if (!o.kalibr_path.empty()) outputs.emplace_back("--kalibr", o.kalibr_path);
+  if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
+  if (!CheckDistinctOutputs(outputs, &why)) return Failure{kExitUsageError, why};
+  if (!o.plot_path.empty() && !FindGnuplot(&why)) return Failure{kExitRuntimeError, why};
+  AtomicFile json, kalibr, png;
+  if (!o.json_path.empty() && !json.Open(o.json_path, &why)) return Failure{kExitRuntimeError, why};
+  if (!o.kalibr_path.empty() && !kalibr.Open(o.kalibr_path, &why)) return Failure{kExitRuntimeError, why};
+  if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return Failure{kExitRuntimeError, why};
+
+  AvarCommandOptions curve_options = o.curve;
+  curve_options.estimator = "overlapping";
+  AvarReport report;
+  if (const int code = ComputeCurveFromFile(curve_options, kCommand, &report, &why); code != kExitOk) {
+    return Failure{code, why};
+  }
+  const estimators::AvarCurve curve = CurveOf(report);
+  if (curve.size() < 2) {
+    return Failure{kExitRuntimeError, o.curve.path + ": the record gives " +
+                                          std::to_string(curve.size()) +
+                                          " usable taus (constant or too short): nothing to fit"};
+  }
+  estimators::FitSummary summary;
+  if (!estimators::FitAvarModel(fit, curve, &summary)) {
+    return Failure{kExitRuntimeError, o.curve.path + ": " + summary.message};
+  }
+  const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
+
+  Provenance& p = report.provenance;
+  p = MakeProvenance(kCommand, command_line);
+  p.Add("input", report.record.path);
+  p.Add("column", report.record.column);
+  p.Add("sample_rate", ShortestDecimal(report.record.sample_rate_hz) + " Hz (" + report.record.rate_source + ")");
+  p.Add("samples", std::to_string(report.summary.num_samples));
+  p.Add("taus", o.curve.taus);
+  p.Add("method", o.method);
+  p.Add("terms", o.terms + (o.select_terms ? " (with term selection)" : ""));
+
+  WriteTable(std::cout, summary, bandwidth);
+  std::cout.flush();
+  if (json.is_open()) json.stream() << FitJson(o, summary, bandwidth, p).dump(2) << "\n";
+  if (kalibr.is_open()) {
+    KalibrGyroNoise noise;
+    const auto& n = summary.at(Coefficient::kN);
+    const auto& k = summary.at(Coefficient::kK);
+    noise.noise_density_rad_per_s_per_sqrt_hz = n.fitted ? n.value_si : 0.0;
+    if (n.fitted && n.sigma_si > 0) noise.noise_density_sigma = n.sigma_si;
+    noise.random_walk_rad_per_s2_per_sqrt_hz = k.fitted ? k.value_si : 0.0;
+    if (k.fitted && k.sigma_si > 0) noise.random_walk_sigma = k.sigma_si;
+    noise.update_rate_hz = report.record.sample_rate_hz;
+    kalibr.stream() << KalibrImuYaml(noise, p);
+  }
+  if (png.is_open() && !RenderAllanPlot(FitPlot(report, curve, summary), &png, &why)) {
+    return Failure{kExitRuntimeError, why};
+  }
+  for (AtomicFile* file : {&json, &kalibr, &png}) {
+    if (file->is_open() && !file->Commit(&why)) return Failure{kExitRuntimeError, why};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Subcommand AddFitCommand(CLI::App* parent) {
+  auto options = std::make_shared<FitCommandOptions>();
+  options->curve.taus = "dense:10";
+  CLI::App* cmd = parent->add_subcommand(
+      kCommand,
+      "IEEE 952 coefficients (Q, N, B, K, R) of a recorded gyro with uncertainties, from its "
+      "overlapping Allan curve; the slope-method reading beside each, and the bandwidth.");
+  AddRecordCurveOptions(cmd, &options->curve);
+  cmd->add_option("--method", options->method,
+                  "gls (default: generalised least squares with the model covariance), wls, "
+                  "logwls or slope (the graphical method, no uncertainty)")
+      ->type_name("gls|wls|logwls|slope");
+  cmd->add_option("--terms", options->terms, "terms to fit, a comma list of Q,N,B,K,R (default all)")
+      ->type_name("LIST");
+  cmd->add_flag("!--no-select", options->select_terms,
+                "keep every requested term (default: drop terms the data do not support, by a "
+                "likelihood-ratio test at 5 %)");
+  cmd->add_option("--json", options->json_path, "also write the coefficients as JSON with provenance")
+      ->type_name("OUT.json");
+  cmd->add_option("--kalibr", options->kalibr_path,
+                  "also write gyroscope_noise_density / gyroscope_random_walk YAML (Kalibr, VINS, "
+                  "OpenVINS)")
+      ->type_name("OUT.yaml");
+  cmd->add_option("--plot", options->plot_path,
+                  "also draw the data with intervals, the fitted total and each term (PNG, gnuplot)")
+      ->type_name("OUT.png");
+  cmd->footer("Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.\nExit status: 0 ok, "
+              "1 bad file or failed fit, 2 usage error.");
+  return {cmd, [options](const std::string& command_line) { return RunFit(*options, command_line); }};
+}
+
+int RunFit(const FitCommandOptions& options, const std::string& command_line) {
+  std::optional<Failure> failure;
+  try {
+    failure = Fit(options, command_line);
+  } catch (const std::bad_alloc&) {
+    failure = Failure{kExitRuntimeError, "out of memory"};
+  } catch (const std::exception& e) {
+    failure = Failure{kExitRuntimeError, std::string("internal error: ") + e.what()};
+  }
+  if (!failure) return kExitOk;
+  PrintError(kCommand, failure->message);
+  return failure->code;
+}
+
+}  // namespace allanlab::app

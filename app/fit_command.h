@@ -1,0 +1,30 @@
+#pragma once
+// `allanlab fit FILE`: IEEE 952 coefficients (Q, N, B, K, R) of a recorded gyro with standard
+// uncertainties, from its overlapping Allan curve (estimators/fit/fit_avar_model.h), with the
+// slope-method reading beside each and the bandwidth from the short-tau inflection.
+// Input options are those of `avar` (app/avar_command.h); default tau grid dense:10.
+// Outputs: a table on stdout; --json (the issue 4 contract: method, coefficients with value,
+// sigma and unit, bandwidth_hz, fit chi2/dof/converged, provenance); --kalibr (gyroscope noise
+// density and random walk for Kalibr/VINS/OpenVINS); --plot (data with intervals, fitted total and
+// each term). Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.
+// Exit codes as app/subcommand.h: 2 usage, 1 unreadable file, curve or fit failure.
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "app/avar_command.h"
+#include "app/subcommand.h"
+
+namespace allanlab::app {
+
+struct FitCommandOptions {
+  AvarCommandOptions curve;  // record and curve (estimator fixed to overlapping)
+  std::string method = "gls";           // slope, wls, logwls, gls
+  std::string terms = "Q,N,B,K,R";      // asked terms
+  bool select_terms = true;
+  std::string json_path, kalibr_path, plot_path;
+};
+
+Subcommand AddFitCommand(CLI::App* parent);
+int RunFit(const FitCommandOptions& options, const std::string& command_line);
+
+}  // namespace allanlab::app
