@@ -45,29 +45,33 @@ std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t 
 // The variances from the sums of squared phase differences (x in rate x tau0 units, so tau0
 // cancels): NIST SP 1065 eqs. for AVAR/OAVAR (sum / 2 m^2 T), HVAR/OHVAR (sum / 6 m^2 T), MVAR
 // (sum / 2 m^4 T, the inner sum of m second differences), TOTVAR (sum / 2 m^2 (n - 1)).
-std::vector<double> Variances(Statistic s, std::span<const double> phase,
-                              std::span<const std::int64_t> ms, std::int64_t n) {
+std::vector<double> Variances(Statistic s, std::span<const double> rate, double mean,
+                              std::span<const std::int64_t> ms, AllanFamilyWorkspace* workspace) {
+  const auto n = static_cast<std::int64_t>(rate.size());
+  const std::span<double> phase = workspace->Phase(rate.size() + 1);
   std::vector<double> sums(ms.size());
-  switch (s) {
-    case Statistic::kAllanNonOverlapping:
-      StridedDifferenceSums(phase, 2, ms, sums);
-      break;
-    case Statistic::kAllanOverlapping:
-      OverlappingDifferenceSums(phase, 2, ms, sums);
-      break;
-    case Statistic::kModifiedAllan:
-    case Statistic::kTime:
-      ModifiedAllanSums(phase, ms, sums);
-      break;
-    case Statistic::kHadamardNonOverlapping:
-      StridedDifferenceSums(phase, 3, ms, sums);
-      break;
-    case Statistic::kHadamardOverlapping:
-      OverlappingDifferenceSums(phase, 3, ms, sums);
-      break;
-    case Statistic::kTotal:
-      TotalVarianceSums(phase, ms, sums);
-      break;
+  if (s == Statistic::kAllanOverlapping || s == Statistic::kHadamardOverlapping) {
+    IntegrateAndSumOverlappingDifferences(rate, mean, DifferenceOrder(s), ms, phase, sums);
+  } else {
+    IntegrateAbout(rate, mean, phase);
+    switch (s) {
+      case Statistic::kAllanNonOverlapping:
+      case Statistic::kHadamardNonOverlapping:
+        StridedDifferenceSums(phase, DifferenceOrder(s), ms, sums);
+        break;
+      case Statistic::kModifiedAllan:
+      case Statistic::kTime: {
+        const auto work = static_cast<std::size_t>(ModifiedAllanWorkSize(n, ms));
+        ModifiedAllanSums(phase, ms, workspace->Scratch(work), sums);
+        break;
+      }
+      case Statistic::kTotal:
+        TotalVarianceSums(phase, ms, sums);
+        break;
+      case Statistic::kAllanOverlapping:
+      case Statistic::kHadamardOverlapping:
+        break;  // above
+    }
   }
   std::vector<double> values(ms.size());
   for (std::size_t k = 0; k < ms.size(); ++k) {
@@ -82,8 +86,23 @@ std::vector<double> Variances(Statistic s, std::span<const double> phase,
 
 }  // namespace
 
+std::span<double> AllanFamilyWorkspace::Buffer::Get(std::size_t size) {
+  if (size > capacity_) {
+    data_.reset();  // release first: peak memory is the new size, not old + new
+    data_ = std::make_unique_for_overwrite<double[]>(size);
+    capacity_ = size;
+  }
+  return {data_.get(), size};
+}
+
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
                             AvarSummary* summary) {
+  AllanFamilyWorkspace workspace;
+  return ComputeStatisticValues(options, rate, summary, &workspace);
+}
+
+bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
+                            AvarSummary* summary, AllanFamilyWorkspace* workspace) {
   *summary = AvarSummary{};
   summary->options = options;
   const auto n = static_cast<std::int64_t>(rate.size());
@@ -97,12 +116,19 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
     summary->message = "need at least 3 rate samples, got " + std::to_string(n);
     return false;
   }
-  for (std::int64_t k = 0; k < n; ++k) {
-    if (!std::isfinite(rate[k])) {
-      summary->message =
-          "rate sample " + std::to_string(k) + " is not finite (" + Shortest(rate[k]) + ")";
-      return false;
+  // A non-finite sample makes the mean non-finite, so only then is the record searched (one
+  // pass over the data instead of two).
+  const double mean = MeanOf(rate);
+  if (!std::isfinite(mean)) {
+    for (std::int64_t k = 0; k < n; ++k) {
+      if (!std::isfinite(rate[k])) {
+        summary->message =
+            "rate sample " + std::to_string(k) + " is not finite (" + Shortest(rate[k]) + ")";
+        return false;
+      }
     }
+    summary->message = "rate samples too large: their sum overflows";
+    return false;
   }
 
   const Statistic s = options.statistic;
@@ -127,9 +153,7 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
     return false;
   }
 
-  std::vector<double> phase(static_cast<std::size_t>(n) + 1);
-  IntegrateMeanRemoved(rate, phase);
-  const std::vector<double> values = Variances(s, phase, used, n);
+  const std::vector<double> values = Variances(s, rate, mean, used, workspace);
   summary->points.reserve(used.size());
   for (std::size_t k = 0; k < used.size(); ++k) {
     AvarPoint point;

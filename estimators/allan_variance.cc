@@ -1,34 +1,40 @@
 #include "estimators/allan_variance.h"
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 
+#include "estimators/difference_sums.h"
+#include "estimators/phase_integral.h"
+
 namespace allanlab::estimators {
 
+// The same sums as the statistic values of allan_family.h (one cache-blocked pass over the
+// mean-removed phase for all m), without the tau grid and the summary.
 std::vector<double> AllanVariance(std::span<const double> rate, std::span<const std::int64_t> ms,
                                   AvarEstimatorKind kind) {
   const auto n = static_cast<std::int64_t>(rate.size());
-  long double mean = 0.0L;
-  for (double v : rate) mean += v;
-  mean /= n > 0 ? n : 1;
-  std::vector<double> prefix(rate.size() + 1, 0.0);
-  long double acc = 0.0L;
-  for (std::int64_t i = 0; i < n; ++i) prefix[i + 1] = static_cast<double>(acc += rate[i] - mean);
-
-  std::vector<double> result;
-  result.reserve(ms.size());
   const sim::RecordShape shape{n, kind};
   for (std::int64_t m : ms) {
     std::string why;
     if (!sim::IsValidAveragingFactor(m, shape, &why)) throw std::invalid_argument(why);
-    const sim::AllanStarts starts = sim::AllanDifferenceStarts(m, shape);
-    long double sum = 0.0L;
-    for (std::int64_t i = 0; i < starts.count; ++i) {
-      const std::int64_t t = i * starts.stride;
-      const double d = prefix[t + 2 * m] - 2.0 * prefix[t + m] + prefix[t];
-      sum += static_cast<long double>(d) * d;
-    }
-    result.push_back(static_cast<double>(sum / (2.0L * starts.count * m * m)));
+  }
+  // Not zero-filled: every element is written before it is read.
+  const auto storage = std::make_unique_for_overwrite<double[]>(rate.size() + 1);
+  const std::span<double> phase(storage.get(), rate.size() + 1);
+  std::vector<double> sums(ms.size());
+  const double mean = MeanOf(rate);
+  if (kind == AvarEstimatorKind::kOverlapping) {
+    IntegrateAndSumOverlappingDifferences(rate, mean, 2, ms, phase, sums);
+  } else {
+    IntegrateAbout(rate, mean, phase);
+    StridedDifferenceSums(phase, 2, ms, sums);
+  }
+  std::vector<double> result(ms.size());
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const sim::AllanStarts starts = sim::AllanDifferenceStarts(ms[k], shape);
+    const auto m = static_cast<double>(ms[k]);
+    result[k] = sums[k] / (2.0 * static_cast<double>(starts.count) * m * m);
   }
   return result;
 }

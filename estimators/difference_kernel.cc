@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <cstring>
+#include <string_view>
+#include <vector>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -70,10 +71,9 @@ void PortableAccumulate3(const double* x, std::int64_t m, std::int64_t lo, std::
                          Lanes* lanes) {
   PortableAccumulate<3>(x, m, lo, hi, lanes);
 }
-void PortablePair(const double* x, std::int64_t m, std::int64_t lo, std::int64_t hi, Lanes* a,
-                  Lanes* b) {
-  PortableAccumulate<2>(x, m, lo, hi, a);
-  PortableAccumulate<2>(x, 2 * m, lo, hi, b);
+void PortableChain(const double* x, std::int64_t m, int count, std::int64_t lo, std::int64_t hi,
+                   Lanes* const* lanes) {
+  for (int j = 0; j < count; ++j) PortableAccumulate<2>(x, m << j, lo, hi, lanes[j]);
 }
 
 #ifdef ALLANLAB_HAVE_AVX2_KERNEL
@@ -208,37 +208,132 @@ ALLANLAB_AVX2 void Avx2Pair(const double* x, std::int64_t m, std::int64_t lo, st
   }
   for (; t < hi; ++t) PairScalarStep(x, t, m, acc_a, acc_b);
 }
+
+ALLANLAB_AVX2 void Avx2Chain(const double* x, std::int64_t m, int count, std::int64_t lo,
+                             std::int64_t hi, Lanes* const* lanes) {
+  int j = 0;
+  for (; j + 1 < count; j += 2) Avx2Pair(x, m << j, lo, hi, lanes[j], lanes[j + 1]);
+  if (j < count) Avx2Accumulate<2>(x, m << j, lo, hi, lanes[j]);
+}
+
+// ---- AVX-512: the whole chain in one loop. Sixteen lanes per lag are two registers, so eight
+// lags fit with their loads in the 32 registers.
+#define ALLANLAB_AVX512 __attribute__((target("avx512f,avx2,fma")))
+
+template <int kCount>
+ALLANLAB_AVX512 void Avx512ChainOf(const double* x, std::int64_t m, std::int64_t lo,
+                                   std::int64_t hi, Lanes* const* lanes) {
+  std::int64_t t = lo;
+  for (; t < hi && t % kLanes != 0; ++t) {
+    for (int j = 0; j < kCount; ++j) {
+      const double d = ScalarD2(x, t, m << j);
+      double& a = (*lanes[j])[t % kLanes];
+      a = std::fma(d, d, a);
+    }
+  }
+  if (t + kLanes <= hi) {
+    __m512d acc[kCount][2];
+    for (int j = 0; j < kCount; ++j) {
+      acc[j][0] = _mm512_loadu_pd(lanes[j]->data());
+      acc[j][1] = _mm512_loadu_pd(lanes[j]->data() + 8);
+    }
+    const __m512d minus2 = _mm512_set1_pd(-2.0);
+    for (; t + kLanes <= hi; t += kLanes) {
+      for (int h = 0; h < 2; ++h) {
+        const double* p = x + t + 8 * h;
+        const __m512d x0 = _mm512_loadu_pd(p);
+        __m512d near = _mm512_loadu_pd(p + m);  // x_{t + 2^j m}
+        for (int j = 0; j < kCount; ++j) {
+          const __m512d far = _mm512_loadu_pd(p + (m << (j + 1)));
+          const __m512d d = _mm512_fmadd_pd(near, minus2, _mm512_add_pd(x0, far));
+          acc[j][h] = _mm512_fmadd_pd(d, d, acc[j][h]);
+          near = far;
+        }
+      }
+    }
+    for (int j = 0; j < kCount; ++j) {
+      _mm512_storeu_pd(lanes[j]->data(), acc[j][0]);
+      _mm512_storeu_pd(lanes[j]->data() + 8, acc[j][1]);
+    }
+  }
+  for (; t < hi; ++t) {
+    for (int j = 0; j < kCount; ++j) {
+      const double d = ScalarD2(x, t, m << j);
+      double& a = (*lanes[j])[t % kLanes];
+      a = std::fma(d, d, a);
+    }
+  }
+}
+
+ALLANLAB_AVX512 void Avx512Chain(const double* x, std::int64_t m, int count, std::int64_t lo,
+                                 std::int64_t hi, Lanes* const* lanes) {
+  switch (count) {
+    case 1:
+      return Avx512ChainOf<1>(x, m, lo, hi, lanes);
+    case 2:
+      return Avx512ChainOf<2>(x, m, lo, hi, lanes);
+    case 3:
+      return Avx512ChainOf<3>(x, m, lo, hi, lanes);
+    case 4:
+      return Avx512ChainOf<4>(x, m, lo, hi, lanes);
+    case 5:
+      return Avx512ChainOf<5>(x, m, lo, hi, lanes);
+    case 6:
+      return Avx512ChainOf<6>(x, m, lo, hi, lanes);
+    case 7:
+      return Avx512ChainOf<7>(x, m, lo, hi, lanes);
+    default:
+      return Avx512ChainOf<8>(x, m, lo, hi, lanes);
+  }
+}
 #endif  // ALLANLAB_HAVE_AVX2_KERNEL
 
 using AccumulateFn = void (*)(const double*, std::int64_t, std::int64_t, std::int64_t, Lanes*);
-using PairFn = void (*)(const double*, std::int64_t, std::int64_t, std::int64_t, Lanes*, Lanes*);
+using ChainFn = void (*)(const double*, std::int64_t, int, std::int64_t, std::int64_t,
+                         Lanes* const*);
 
 struct Kernel {
   AccumulateFn first;
   AccumulateFn second;
   AccumulateFn third;
-  PairFn pair;
+  ChainFn chain;
   const char* name;
 };
 
-// Chosen once. ALLANLAB_DIFFERENCE_KERNEL=portable forces the portable loops (tests use it to
-// cover both versions on one machine).
-const Kernel& ChosenKernel() {
-  static const Kernel kernel = [] {
-    const Kernel portable{PortableAccumulate1, PortableAccumulate2, PortableAccumulate3,
-                          PortablePair, "portable"};
-    const char* forced = std::getenv("ALLANLAB_DIFFERENCE_KERNEL");
-    if (forced != nullptr && std::strcmp(forced, "portable") == 0) return portable;
+// Every version this CPU runs, best first.
+std::vector<Kernel> AvailableKernels() {
+  std::vector<Kernel> kernels;
 #ifdef ALLANLAB_HAVE_AVX2_KERNEL
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
-      return Kernel{Avx2Accumulate1, Avx2Accumulate2, Avx2Accumulate3, Avx2Pair, "avx2+fma"};
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+    // The single-lag loops stay AVX2: with three loads per term they gain nothing from wider
+    // registers; the chain does.
+    if (__builtin_cpu_supports("avx512f")) {
+      kernels.push_back({Avx2Accumulate1, Avx2Accumulate2, Avx2Accumulate3, Avx512Chain, "avx512"});
     }
+    kernels.push_back({Avx2Accumulate1, Avx2Accumulate2, Avx2Accumulate3, Avx2Chain, "avx2+fma"});
+  }
 #endif
-    return portable;
-  }();
-  return kernel;
+  kernels.push_back(
+      {PortableAccumulate1, PortableAccumulate2, PortableAccumulate3, PortableChain, "portable"});
+  return kernels;
 }
+
+// Chosen at first use: the best one, or the one ALLANLAB_DIFFERENCE_KERNEL names (for
+// benchmarking the others on one machine).
+const Kernel*& Current() {
+  static const std::vector<Kernel> kernels = AvailableKernels();
+  static const Kernel* current = [] {
+    const char* name = std::getenv("ALLANLAB_DIFFERENCE_KERNEL");
+    for (const Kernel& k : kernels) {
+      if (name != nullptr && k.name == std::string_view(name)) return &k;
+    }
+    return &kernels.front();
+  }();
+  return current;
+}
+
+const Kernel& ChosenKernel() { return *Current(); }
 
 }  // namespace
 
@@ -250,10 +345,11 @@ void AccumulateSquaredDifferences(const double* x, int order, std::int64_t m, st
   fn(x, m, lo, hi, lanes);
 }
 
-void AccumulateSquaredSecondDifferencesPair(const double* x, std::int64_t m, std::int64_t lo,
-                                            std::int64_t hi, Lanes* lanes_m, Lanes* lanes_2m) {
+void AccumulateSquaredSecondDifferencesChain(const double* x, std::int64_t m, int count,
+                                             std::int64_t lo, std::int64_t hi,
+                                             Lanes* const* lanes) {
   if (hi <= lo) return;
-  ChosenKernel().pair(x, m, lo, hi, lanes_m, lanes_2m);
+  ChosenKernel().chain(x, m, count, lo, hi, lanes);
 }
 
 double SumSquaredDifferences(const double* x, int order, std::int64_t m, std::int64_t lo,
@@ -279,5 +375,16 @@ double SumLanes(const Lanes& lanes) {
 }
 
 const char* DifferenceKernelName() { return ChosenKernel().name; }
+
+bool UseDifferenceKernelForTesting(std::string_view name) {
+  static const std::vector<Kernel> kernels = AvailableKernels();
+  for (const Kernel& k : kernels) {
+    if (k.name == name) {
+      Current() = &k;
+      return true;
+    }
+  }
+  return false;
+}
 
 }  // namespace allanlab::estimators

@@ -7,11 +7,13 @@
 // Results are accumulated in kLanes partial sums, lane = t mod kLanes, each in increasing t.
 // So a sum over [lo, hi) is bit-identical however the range is split into calls, which lets the
 // cache-blocked passes give every tau the same value whatever other taus share the pass.
-// The AVX2+FMA version is chosen once at run time when the CPU has it; the portable one differs
-// from it only by rounding (it has no fused multiply-add).
+// The AVX-512 and AVX2+FMA versions are chosen once at run time when the CPU has them and give
+// the same bits; the portable one differs from them only by rounding (it has no fused
+// multiply-add).
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string_view>
 
 namespace allanlab::estimators {
 
@@ -22,10 +24,13 @@ using Lanes = std::array<double, kLanes>;
 void AccumulateSquaredDifferences(const double* x, int order, std::int64_t m, std::int64_t lo,
                                   std::int64_t hi, Lanes* lanes);
 
-// The same for lags m and 2m at once (order 2): the two share the loads of x_t and x_{t+2m},
-// which the octave grid makes worth having. Reads x[lo .. hi - 1 + 4m].
-void AccumulateSquaredSecondDifferencesPair(const double* x, std::int64_t m, std::int64_t lo,
-                                            std::int64_t hi, Lanes* lanes_m, Lanes* lanes_2m);
+// The same (order 2) for the doubling chain of lags m, 2m, 4m, ..., 2^(count-1) m, 1 <= count <=
+// kMaxChain: lag 2^j m reuses the loads of x_t and x_{t+2^j m} made for the lag before it, so an
+// octave grid costs about one load per lag and term instead of three. lanes[j] belongs to lag
+// 2^j m. Reads x[lo .. hi - 1 + 2^count m]. Same bits as AccumulateSquaredDifferences per lag.
+inline constexpr int kMaxChain = 8;
+void AccumulateSquaredSecondDifferencesChain(const double* x, std::int64_t m, int count,
+                                             std::int64_t lo, std::int64_t hi, Lanes* const* lanes);
 
 // sum_{t=lo}^{hi-1} D_t^2, lanes flushed into a compensated total every few thousand terms.
 double SumSquaredDifferences(const double* x, int order, std::int64_t m, std::int64_t lo,
@@ -34,8 +39,12 @@ double SumSquaredDifferences(const double* x, int order, std::int64_t m, std::in
 // Sum of the lanes in a fixed order.
 double SumLanes(const Lanes& lanes);
 
-// Name of the implementation in use ("avx2+fma" or "portable"), for benchmark records.
+// Name of the implementation in use ("avx512", "avx2+fma" or "portable"), for benchmark records.
 const char* DifferenceKernelName();
+
+// Switches to the named implementation if this CPU runs it (false otherwise), so that a test can
+// compare them. Not safe while another thread uses the kernels.
+bool UseDifferenceKernelForTesting(std::string_view name);
 
 // Kahan–Babuška (Neumaier) running sum: the blocked passes add one partial sum per block and
 // tau, so a 1e8-term sum loses no more than a few units in the last place.

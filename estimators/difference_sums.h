@@ -9,10 +9,16 @@
 namespace allanlab::estimators {
 
 // Every start t = 0..n - order*m (OAVAR, OHVAR): n - order*m + 1 terms per lag.
-// One cache-blocked pass serves all lags (see the .cc); extra memory O(lags), no allocation per
-// lag.
+// Cache-blocked passes serve all lags (see the .cc); extra memory O(lags), no allocation per lag.
 void OverlappingDifferenceSums(std::span<const double> phase, int order,
                                std::span<const std::int64_t> lags, std::span<double> sums);
+
+// The same sums from rate samples: fills phase (phase.size() = rate.size() + 1) as
+// IntegrateAbout(rate, reference, phase) does, bit for bit, and sums the short lags right behind
+// the integration while that part of the phase is still in cache, which saves a pass over it.
+void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double reference,
+                                           int order, std::span<const std::int64_t> lags,
+                                           std::span<double> phase, std::span<double> sums);
 
 // Starts t = 0, m, 2m, ... with t + order*m <= n (AVAR, HVAR): floor(n/m) - order + 1 terms.
 void StridedDifferenceSums(std::span<const double> phase, int order,

@@ -1,7 +1,6 @@
 #include "estimators/modified_allan_sums.h"
 
 #include <algorithm>
-#include <vector>
 
 #include "estimators/difference_kernel.h"
 
@@ -23,15 +22,17 @@ std::int64_t BlockLength(std::int64_t m, std::int64_t terms) {
 // offset or drift is already gone from d, whereas a double integral grows like n^2 times it and
 // leaves too few digits for the difference. Q restarts every block, so it sums a few thousand
 // terms at most.
+std::int64_t ModifiedAllanWorkSize(std::int64_t n, std::span<const std::int64_t> lags) {
+  std::int64_t size = 0;
+  for (std::int64_t m : lags) size = std::max(size, BlockLength(m, n - 3 * m + 2) + m);
+  return size;
+}
+
 void ModifiedAllanSums(std::span<const double> phase, std::span<const std::int64_t> lags,
-                       std::span<double> sums) {
+                       std::span<double> work, std::span<double> sums) {
   const auto n = static_cast<std::int64_t>(phase.size()) - 1;
   const double* x = phase.data();
-  std::int64_t work_size = 0;
-  for (std::int64_t m : lags) {
-    work_size = std::max(work_size, BlockLength(m, n - 3 * m + 2) + m);
-  }
-  std::vector<double> running(static_cast<std::size_t>(work_size));
+  double* running = work.data();
   for (std::size_t k = 0; k < lags.size(); ++k) {
     const std::int64_t m = lags[k];
     const std::int64_t terms = n - 3 * m + 2;
@@ -45,10 +46,10 @@ void ModifiedAllanSums(std::span<const double> phase, std::span<const std::int64
       for (std::int64_t i = 0; i + 1 < len + m; ++i) {
         const double* p = x + j0 + i;
         q += (p[0] + p[2 * m]) - (p[m] + p[m]);
-        running[static_cast<std::size_t>(i + 1)] = q;
+        running[i + 1] = q;
       }
       Lanes lanes{};
-      AccumulateSquaredDifferences(running.data(), 1, m, 0, len, &lanes);
+      AccumulateSquaredDifferences(running, 1, m, 0, len, &lanes);
       total.Add(SumLanes(lanes));
     }
     sums[k] = total.Value();

@@ -7,9 +7,12 @@
 
 namespace allanlab::estimators {
 
-// Preconditions: phase.size() = n + 1, sums.size() = lags.size(), 1 <= m, 3m <= n + 1.
-// Extra memory: one work buffer of at most n doubles, allocated once per call.
+// Doubles of work space ModifiedAllanSums needs for these lags (at most n).
+std::int64_t ModifiedAllanWorkSize(std::int64_t n, std::span<const std::int64_t> lags);
+
+// Preconditions: phase.size() = n + 1, sums.size() = lags.size(), 1 <= m, 3m <= n + 1,
+// work.size() >= ModifiedAllanWorkSize(n, lags).
 void ModifiedAllanSums(std::span<const double> phase, std::span<const std::int64_t> lags,
-                       std::span<double> sums);
+                       std::span<double> work, std::span<double> sums);
 
 }  // namespace allanlab::estimators

@@ -4,60 +4,224 @@
 
 #include "estimators/difference_kernel.h"
 #include "estimators/difference_sums.h"
+#include "estimators/phase_integral.h"
 
 namespace allanlab::estimators {
 namespace {
 
-// Start indices per block. A lag-m term reads x_t, x_{t+m}, x_{t+2m}: one block of all lags
-// touches the block itself plus the blocks m and 2m ahead. Blocking by t (rather than one pass
-// per lag) reads x from memory once for all lags whose look-ahead fits in cache, instead of once
-// per lag; a plain per-lag loop is memory bound on long records.
-constexpr std::int64_t kBlock = 2048;
+// A lag-m term reads x_t, x_{t+m} (, x_{t+2m}, x_{t+3m}). One pass per lag would stream the
+// record from memory once per lag (a plain loop needs ~18 ns/sample for an octave grid at
+// N = 1e7), so the lags share passes arranged so that x is fetched from memory about once per
+// pass, and every pass works within L2 (1 MiB per core here):
+//
+// * Short lags (m < kShortLimit): blocks of kBlock starts t, all short lags per block. A block
+//   reads x over [t, t + kBlock + order*m), which stays in L2 for the blocks after it. Runs of
+//   doubling lags share their loads (difference_kernel.h).
+// * Long lags m = q R with R = kShortLimit * kTierRatio^k <= m < R * kTierRatio (every octave
+//   lag, on tier k): x is viewed as rows of R samples; term t = i R + r reads column r of rows
+//   i, i + q, ..., i + order*q. Walking down the rows of a strip of kStripWidth columns keeps the
+//   strip's last order*kTierRatio rows in L2, so each row is fetched once for all lags of the
+//   tier.
+// * Other long lags (dense or explicit grids): blocks again; their far reads come from L3 or
+//   memory.
+// Every pass puts term t in lane t mod kLanes and flushes the lanes per block, strip or pass in a
+// fixed way, so a lag's value depends only on (n, m), not on the other lags computed with it.
+constexpr std::int64_t kBlock = 4096;
+constexpr std::int64_t kFarBlock = 16384;
+constexpr std::int64_t kShortLimit = 32768;
+constexpr std::int64_t kTierRatio = 16;
+constexpr std::int64_t kStripWidth = 2048;  // columns per strip: 16 KiB of each row
+constexpr std::int64_t kPrefetchRows = 2;
+
+struct LagSet {
+  std::vector<std::int64_t> m;    // ascending
+  std::vector<std::int64_t> end;  // number of terms n - order*m + 1, descending
+  std::vector<std::size_t> slot;  // index into the caller's lags / sums
+  void Add(std::int64_t lag, std::int64_t terms, std::size_t index) {
+    m.push_back(lag);
+    end.push_back(terms);
+    slot.push_back(index);
+  }
+};
+
+struct Tier {
+  std::int64_t row_length = 0;
+  LagSet lags;
+};
+
+struct SplitLags {
+  LagSet short_lags, other_lags;
+  std::vector<Tier> tiers;
+};
+
+SplitLags Split(std::int64_t n, int order, std::span<const std::int64_t> lags) {
+  std::vector<std::size_t> by_lag(lags.size());
+  std::iota(by_lag.begin(), by_lag.end(), std::size_t{0});
+  std::stable_sort(by_lag.begin(), by_lag.end(),
+                   [&](std::size_t a, std::size_t b) { return lags[a] < lags[b]; });
+  SplitLags split;
+  for (std::size_t slot : by_lag) {
+    const std::int64_t m = lags[slot];
+    const std::int64_t terms = n - order * m + 1;
+    if (m < kShortLimit) {
+      split.short_lags.Add(m, terms, slot);
+      continue;
+    }
+    std::int64_t row_length = kShortLimit;
+    std::size_t tier = 0;
+    while (m / row_length >= kTierRatio) {
+      row_length *= kTierRatio;
+      ++tier;
+    }
+    if (m % row_length != 0) {
+      split.other_lags.Add(m, terms, slot);
+      continue;
+    }
+    if (split.tiers.size() <= tier) split.tiers.resize(tier + 1);
+    split.tiers[tier].row_length = row_length;
+    split.tiers[tier].lags.Add(m, terms, slot);
+  }
+  return split;
+}
+
+class Accumulators {
+ public:
+  explicit Accumulators(std::size_t count) : lanes_(count, Lanes{}), totals_(count) {}
+  Lanes* lanes(std::size_t slot) { return &lanes_[slot]; }
+  void Flush(std::size_t slot) {
+    totals_[slot].Add(SumLanes(lanes_[slot]));
+    lanes_[slot] = Lanes{};
+  }
+  double Total(std::size_t slot) const { return totals_[slot].Value(); }
+
+ private:
+  std::vector<Lanes> lanes_;
+  std::vector<CompensatedSum> totals_;
+};
+
+// Terms [lo, hi) of every lag of the set that still has terms there; a run of doubling lags
+// (m, 2m, 4m, ...) goes through one chain call that shares their loads.
+// `visit(j)` follows each lag's accumulation.
+template <typename Visit>
+void ForEachActiveLag(const LagSet& set, int order, std::int64_t lo, std::int64_t hi,
+                      const double* x, Accumulators* acc, Visit&& visit) {
+  const std::size_t count = set.m.size();
+  for (std::size_t j = 0; j < count && lo < set.end[j];) {
+    std::size_t chain = 1;
+    if (order == 2) {
+      while (chain < static_cast<std::size_t>(kMaxChain) && j + chain < count &&
+             set.m[j + chain] == 2 * set.m[j + chain - 1] && lo < set.end[j + chain]) {
+        ++chain;
+      }
+    }
+    if (chain == 1) {
+      AccumulateSquaredDifferences(x, order, set.m[j], lo, std::min(hi, set.end[j]),
+                                   acc->lanes(set.slot[j]));
+      visit(j++);
+      continue;
+    }
+    // Together while the widest lag of the chain has terms, then each on its own.
+    const std::int64_t common = std::min(hi, set.end[j + chain - 1]);
+    Lanes* lanes[kMaxChain];
+    for (std::size_t k = 0; k < chain; ++k) lanes[k] = acc->lanes(set.slot[j + k]);
+    AccumulateSquaredSecondDifferencesChain(x, set.m[j], static_cast<int>(chain), lo, common,
+                                            lanes);
+    for (std::size_t k = 0; k < chain; ++k, ++j) {
+      AccumulateSquaredDifferences(x, order, set.m[j], common, std::min(hi, set.end[j]), lanes[k]);
+      visit(j);
+    }
+  }
+}
+
+// `before_block(last)` runs before each block with the last phase index the block reads.
+template <typename BeforeBlock>
+void BlockPass(const double* x, int order, std::int64_t block, const LagSet& set, Accumulators* acc,
+               BeforeBlock&& before_block) {
+  if (set.m.empty()) return;
+  const std::int64_t reach = order * set.m.back();
+  for (std::int64_t start = 0; start < set.end[0]; start += block) {
+    before_block(start + block - 1 + reach);
+    ForEachActiveLag(set, order, start, start + block, x, acc,
+                     [&](std::size_t j) { acc->Flush(set.slot[j]); });
+  }
+}
+
+void RowPass(const double* x, std::int64_t n, int order, const Tier& tier, Accumulators* acc) {
+  const LagSet& set = tier.lags;
+  if (set.m.empty()) return;
+  const std::int64_t r = tier.row_length;
+  for (std::int64_t column = 0; column < r; column += kStripWidth) {
+    std::size_t widest = set.m.size() - 1;  // largest lag still active
+    for (std::int64_t base = column; base < set.end[0]; base += r) {
+      while (base >= set.end[widest]) --widest;
+      // The row the widest lag reaches a few rows on is not in cache yet, and the hardware
+      // prefetcher cannot guess a jump of a whole row: ask for it.
+      const std::int64_t ahead = base + kPrefetchRows * r + order * set.m[widest];
+      if (ahead + kStripWidth <= n + 1) {
+        for (std::int64_t k = 0; k < kStripWidth; k += 8) __builtin_prefetch(x + ahead + k, 0, 3);
+      }
+      ForEachActiveLag(set, order, base, base + kStripWidth, x, acc, [](std::size_t) {});
+    }
+    for (std::size_t j = 0; j < set.m.size(); ++j) acc->Flush(set.slot[j]);
+  }
+}
+
+void LongPasses(const double* x, std::int64_t n, int order, const SplitLags& split,
+                Accumulators* acc) {
+  for (const Tier& tier : split.tiers) RowPass(x, n, order, tier, acc);
+  BlockPass(x, order, kFarBlock, split.other_lags, acc, [](std::int64_t) {});
+}
+
+// Integrates the phase up to (at least) x_upto, in pieces that start at multiples of 8 so that
+// the bits do not depend on where the pieces end (phase_integral.h).
+class LazyPhase {
+ public:
+  LazyPhase(std::span<const double> rate, double reference, std::span<double> phase)
+      : rate_(rate), reference_(reference), phase_(phase) {
+    phase_[0] = 0.0;
+  }
+  void EnsureUpTo(std::int64_t upto) {
+    const auto n = static_cast<std::int64_t>(rate_.size());
+    if (upto <= done_) return;
+    upto = std::min(n, (upto + kPiece - 1) / kPiece * kPiece);
+    const auto from = static_cast<std::size_t>(done_);
+    const auto count = static_cast<std::size_t>(upto - done_);
+    ContinueIntegral(rate_.subspan(from, count), reference_, phase_.subspan(from, count + 1));
+    done_ = upto;
+  }
+
+ private:
+  static constexpr std::int64_t kPiece = 8;
+  std::span<const double> rate_;
+  double reference_;
+  std::span<double> phase_;
+  std::int64_t done_ = 0;  // phase_[0..done_] is final
+};
 
 }  // namespace
 
 void OverlappingDifferenceSums(std::span<const double> phase, int order,
                                std::span<const std::int64_t> lags, std::span<double> sums) {
   const auto n = static_cast<std::int64_t>(phase.size()) - 1;
-  const double* x = phase.data();
-  const std::size_t count = lags.size();
-  if (count == 0) return;
+  const SplitLags split = Split(n, order, lags);
+  Accumulators acc(lags.size());
+  BlockPass(phase.data(), order, kBlock, split.short_lags, &acc, [](std::int64_t) {});
+  LongPasses(phase.data(), n, order, split, &acc);
+  for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = acc.Total(slot);
+}
 
-  // Ascending lags have descending term counts, so a block can stop at the first lag it is past.
-  std::vector<std::size_t> by_lag(count);
-  std::iota(by_lag.begin(), by_lag.end(), std::size_t{0});
-  std::stable_sort(by_lag.begin(), by_lag.end(),
-                   [&](std::size_t a, std::size_t b) { return lags[a] < lags[b]; });
-  std::vector<std::int64_t> m(count), end(count);
-  for (std::size_t j = 0; j < count; ++j) {
-    m[j] = lags[by_lag[j]];
-    end[j] = n - order * m[j] + 1;
-  }
-  std::vector<Lanes> lanes(count, Lanes{});
-  std::vector<CompensatedSum> totals(count);
-  auto flush = [&](std::size_t j) {
-    totals[j].Add(SumLanes(lanes[j]));
-    lanes[j] = Lanes{};
-  };
-
-  for (std::int64_t start = 0; start < end[0]; start += kBlock) {
-    const std::int64_t stop = start + kBlock;
-    for (std::size_t j = 0; j < count && start < end[j]; ++j) {
-      const std::int64_t e = std::min(stop, end[j]);
-      const bool pair = order == 2 && j + 1 < count && m[j + 1] == 2 * m[j] && start < end[j + 1];
-      if (pair) {
-        const std::int64_t e2 = std::min(stop, end[j + 1]);
-        AccumulateSquaredSecondDifferencesPair(x, m[j], start, e2, &lanes[j], &lanes[j + 1]);
-        AccumulateSquaredDifferences(x, order, m[j], e2, e, &lanes[j]);
-        flush(j);
-        flush(++j);
-      } else {
-        AccumulateSquaredDifferences(x, order, m[j], start, e, &lanes[j]);
-        flush(j);
-      }
-    }
-  }
-  for (std::size_t j = 0; j < count; ++j) sums[by_lag[j]] = totals[j].Value();
+void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double reference,
+                                           int order, std::span<const std::int64_t> lags,
+                                           std::span<double> phase, std::span<double> sums) {
+  const auto n = static_cast<std::int64_t>(rate.size());
+  const SplitLags split = Split(n, order, lags);
+  Accumulators acc(lags.size());
+  LazyPhase lazy(rate, reference, phase);
+  BlockPass(phase.data(), order, kBlock, split.short_lags, &acc,
+            [&](std::int64_t last) { lazy.EnsureUpTo(last); });
+  lazy.EnsureUpTo(n);
+  LongPasses(phase.data(), n, order, split, &acc);
+  for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = acc.Total(slot);
 }
 
 }  // namespace allanlab::estimators

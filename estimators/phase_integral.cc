@@ -16,8 +16,7 @@ namespace {
 constexpr std::int64_t kMeanBlock = 4096;
 
 void PortableIntegrate(const double* v, std::int64_t n, double reference, double* out) {
-  double acc = 0.0;
-  out[0] = 0.0;
+  double acc = out[0];
   for (std::int64_t k = 0; k < n; ++k) {
     acc += v[k] - reference;
     out[k + 1] = acc;
@@ -37,9 +36,8 @@ __attribute__((target("avx2"))) inline __m256d Scan4(__m256d a) {
 // chain instead of eight.
 __attribute__((target("avx2"))) void Avx2Integrate(const double* v, std::int64_t n,
                                                    double reference, double* out) {
-  out[0] = 0.0;
   const __m256d ref = _mm256_set1_pd(reference);
-  __m256d carry = _mm256_setzero_pd();
+  __m256d carry = _mm256_set1_pd(out[0]);
   std::int64_t k = 0;
   for (; k + 8 <= n; k += 8) {
     __m256d a = Scan4(_mm256_sub_pd(_mm256_loadu_pd(v + k), ref));
@@ -76,7 +74,7 @@ double MeanOf(std::span<const double> values) {
   return total.Value() / static_cast<double>(n);
 }
 
-void IntegrateAbout(std::span<const double> values, double reference, std::span<double> out) {
+void ContinueIntegral(std::span<const double> values, double reference, std::span<double> out) {
   const auto n = static_cast<std::int64_t>(values.size());
 #ifdef ALLANLAB_HAVE_AVX2_SCAN
   static const bool have_avx2 = [] {
@@ -89,6 +87,11 @@ void IntegrateAbout(std::span<const double> values, double reference, std::span<
   }
 #endif
   PortableIntegrate(values.data(), n, reference, out.data());
+}
+
+void IntegrateAbout(std::span<const double> values, double reference, std::span<double> out) {
+  out[0] = 0.0;
+  ContinueIntegral(values, reference, out);
 }
 
 void IntegrateMeanRemoved(std::span<const double> rate, std::span<double> phase) {

@@ -12,12 +12,19 @@
 
 namespace allanlab::estimators {
 
-// Mean of the samples, accumulated in independent lanes with a compensated total.
+// Mean of the samples: lanes per block of 4096, blocks added with compensation (a few 1e-15
+// relative; any error is a drift of the phase that the statistics cancel). NaN or infinite
+// when a sample is, or when finite samples overflow the sum.
 double MeanOf(std::span<const double> values);
 
-// out[0] = 0, out[k+1] = out[k] + (values[k] - reference). out.size() == values.size() + 1.
-// Vectorised (the running sum is a dependency chain otherwise): the additions are grouped
-// differently from a plain loop, which changes x only by rounding.
+// out[k+1] = out[k] + (values[k] - reference) for k = 0..values.size()-1, starting from the
+// out[0] the caller left there. out.size() == values.size() + 1.
+// Vectorised (the running sum is a dependency chain otherwise): additions are grouped eight at a
+// time from values[0], so an integral built in pieces that start at multiples of 8 has the same
+// bits as one built in one call.
+void ContinueIntegral(std::span<const double> values, double reference, std::span<double> out);
+
+// out[0] = 0, then ContinueIntegral.
 void IntegrateAbout(std::span<const double> values, double reference, std::span<double> out);
 
 // The phase of a rate record with its mean removed: IntegrateAbout(rate, MeanOf(rate), phase).

@@ -92,10 +92,20 @@ TEST(AllanFamily, LongRecordsAcrossBlockBoundariesMatchDirectFormulas) {
   }
 }
 
+// Lags from 32768 on that are octave multiples take the row passes (tiers of 32768 x 128^k),
+// other long lags the far block pass; both must agree with the definitions.
+TEST(AllanFamily, LongLagsOfEveryPassMatchDirectFormulas) {
+  const std::int64_t n = 300000;
+  const std::vector<double> y = TestRecord(n, 11);
+  ExpectMatchesDirect(Statistic::kAllanOverlapping, y,
+                      {1, 2, 3, 4, 8, 16384, 32767, 32768, 40000, 65536, 131072, 149999, 150000});
+  ExpectMatchesDirect(Statistic::kHadamardOverlapping, y, {1, 32768, 65536, 70000, 100000});
+}
+
 // A tau's value does not depend on which other taus are computed with it (the octave pass
 // pairs m with 2m; the pair and the single kernel must give the same bits).
 TEST(AllanFamily, ValueDoesNotDependOnTheRestOfTheGrid) {
-  const std::vector<double> y = TestRecord(10000, 3);
+  const std::vector<double> y = TestRecord(200000, 3);
   for (Statistic s : kAll) {
     AvarOptions octave;
     octave.statistic = s;

@@ -1,8 +1,8 @@
 #pragma once
 // The Allan-family statistics written out as NIST SP 1065 states them (cluster means of rate,
-// the phase sums for MVAR, the explicit doubly reflected record for TOTVAR), in long double and
-// O(N m) per tau: slow, obvious, and independent of estimators/ (no prefix sums, no blocking,
-// no SIMD), so the fast code can be checked against them.
+// the phase sums for MVAR, the explicit doubly reflected record for TOTVAR), in long double:
+// obvious, and independent of estimators/ (no blocking, no SIMD, no shared passes), so the fast
+// code can be checked against them. O(N) per tau, O(N m) for MVAR and TVAR.
 #include <cstdint>
 #include <span>
 
