@@ -28,12 +28,9 @@ using estimators::ConfidenceMethod;
 using estimators::InputKind;
 using estimators::Statistic;
 
-struct Failure {
-  int code = kExitOk;
-  std::string message;
-};
-Failure Usage(std::string message) { return {kExitUsageError, std::move(message)}; }
-Failure Runtime(std::string message) { return {kExitRuntimeError, std::move(message)}; }
+using Failure = CommandFailure;
+Failure Usage(std::string message) { return UsageFailure(std::move(message)); }
+Failure Runtime(std::string message) { return RuntimeFailure(std::move(message)); }
 
 void PrintWarning(const std::string& message, const std::string& command = kCommand) {
   std::cerr << "allanlab " << command << ": warning: " << message << std::endl;
@@ -389,17 +386,7 @@ int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& c
 }
 
 int RunAvar(const AvarCommandOptions& options, const std::string& command_line) {
-  std::optional<Failure> failure;
-  try {
-    failure = Avar(options, command_line);
-  } catch (const std::bad_alloc&) {
-    failure = Runtime("out of memory (for records larger than memory, use --stream)");
-  } catch (const std::exception& e) {
-    failure = Runtime(std::string("internal error: ") + e.what());
-  }
-  if (!failure) return kExitOk;
-  PrintError(kCommand, failure->message);
-  return failure->code;
+  return RunCommand(kCommand, " (for records larger than memory, use --stream)", [&] { return Avar(options, command_line); });
 }
 
 }  // namespace allanlab::app

@@ -28,10 +28,7 @@ constexpr const char* kCommand = "fit";
 using estimators::Coefficient;
 using estimators::FitMethod;
 
-struct Failure {
-  int code = kExitOk;
-  std::string message;
-};
+using Failure = CommandFailure;
 
 bool ParseMethod(const std::string& text, FitMethod* method) {
   if (text == "slope") *method = FitMethod::kSlope;
@@ -281,17 +278,7 @@ Subcommand AddFitCommand(CLI::App* parent) {
 }
 
 int RunFit(const FitCommandOptions& options, const std::string& command_line) {
-  std::optional<Failure> failure;
-  try {
-    failure = Fit(options, command_line);
-  } catch (const std::bad_alloc&) {
-    failure = Failure{kExitRuntimeError, "out of memory"};
-  } catch (const std::exception& e) {
-    failure = Failure{kExitRuntimeError, std::string("internal error: ") + e.what()};
-  }
-  if (!failure) return kExitOk;
-  PrintError(kCommand, failure->message);
-  return failure->code;
+  return RunCommand(kCommand, "", [&] { return Fit(options, command_line); });
 }
 
 }  // namespace allanlab::app

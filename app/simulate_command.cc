@@ -30,14 +30,10 @@ constexpr const char* kCommand = "simulate";
 
 enum class RecordFormat { kCsv, kFloat64 };
 
-// A failed run: the exit code and the one line to print.
-struct Failure {
-  int code = kExitOk;
-  std::string message;
-};
+using Failure = CommandFailure;
 
-Failure Usage(std::string message) { return {kExitUsageError, std::move(message)}; }
-Failure Runtime(std::string message) { return {kExitRuntimeError, std::move(message)}; }
+Failure Usage(std::string message) { return UsageFailure(std::move(message)); }
+Failure Runtime(std::string message) { return RuntimeFailure(std::move(message)); }
 
 std::string Join(const std::vector<std::string>& items, const char* separator) {
   std::string out;
@@ -406,18 +402,7 @@ Subcommand AddSimulateCommand(CLI::App* parent) {
 }
 
 int RunSimulate(const SimulateOptions& options, const std::string& command_line) {
-  std::optional<Failure> failure;
-  // Unwinding runs the AtomicFile destructors, which remove the temporaries.
-  try {
-    failure = Simulate(options, command_line);
-  } catch (const std::bad_alloc&) {
-    failure = Runtime("out of memory");
-  } catch (const std::exception& e) {
-    failure = Runtime(std::string("internal error: ") + e.what());
-  }
-  if (!failure) return kExitOk;
-  PrintError(kCommand, failure->message);
-  return failure->code;
+  return RunCommand(kCommand, "", [&] { return Simulate(options, command_line); });
 }
 
 }  // namespace allanlab::app

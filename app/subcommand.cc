@@ -1,5 +1,7 @@
 #include "app/subcommand.h"
 
+#include <new>
+
 #include <iostream>
 
 namespace allanlab::app {
@@ -12,6 +14,21 @@ void PrintError(const std::string& command, const std::string& message) {
   }
   std::cerr << "allanlab" << (command.empty() ? "" : " " + command) << ": error: " << line
             << std::endl;
+}
+
+int RunCommand(const std::string& command, const std::string& out_of_memory_hint,
+               const std::function<std::optional<CommandFailure>()>& body) {
+  std::optional<CommandFailure> failure;
+  try {
+    failure = body();
+  } catch (const std::bad_alloc&) {
+    failure = RuntimeFailure("out of memory" + out_of_memory_hint);
+  } catch (const std::exception& e) {
+    failure = RuntimeFailure(std::string("internal error: ") + e.what());
+  }
+  if (!failure) return kExitOk;
+  PrintError(command, failure->message);
+  return failure->code;
 }
 
 }  // namespace allanlab::app

@@ -34,6 +34,34 @@ std::vector<double> Model(const Problem& p, const std::array<double, kTerms>& th
   return e;
 }
 
+// Terms not asked are held at zero; asked ones are bounded below by zero (c^2 >= 0).
+bool SolveBounded(const Problem& p, ceres::Problem* problem, std::array<double, kTerms>* theta,
+                  std::string* why) {
+  for (int i = 0; i < kTerms; ++i) {
+    const bool asked = std::find(p.asked.begin(), p.asked.end(), i) != p.asked.end();
+    if (!asked) {
+      (*theta)[i] = 0.0;
+      problem->SetParameterBlockConstant(&(*theta)[i]);
+    } else {
+      problem->SetParameterLowerBound(&(*theta)[i], 0, 0.0);
+    }
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 500;
+  solver.function_tolerance = 1e-15;
+  solver.gradient_tolerance = 1e-16;
+  solver.parameter_tolerance = 1e-13;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    if (why) *why = "Ceres: " + summary.message;
+    return false;
+  }
+  return true;
+}
+
 // One weighted solve with Ceres; weights fixed from `expected` (linear) or nu (log).
 bool Solve(const FitOptions& options, const AvarCurve& curve, const Problem& p,
            const std::vector<double>& expected, std::array<double, kTerms>* theta, std::string* why) {
@@ -61,29 +89,7 @@ bool Solve(const FitOptions& options, const AvarCurve& curve, const Problem& p,
     problem.AddResidualBlock(cost, nullptr, &(*theta)[0], &(*theta)[1], &(*theta)[2], &(*theta)[3],
                              &(*theta)[4]);
   }
-  for (int i = 0; i < kTerms; ++i) {
-    const bool asked = std::find(p.asked.begin(), p.asked.end(), i) != p.asked.end();
-    if (!asked) {
-      (*theta)[i] = 0.0;
-      problem.SetParameterBlockConstant(&(*theta)[i]);
-    } else {
-      problem.SetParameterLowerBound(&(*theta)[i], 0, 0.0);
-    }
-  }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = 500;
-  solver.function_tolerance = 1e-15;
-  solver.gradient_tolerance = 1e-16;
-  solver.parameter_tolerance = 1e-13;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  if (!summary.IsSolutionUsable()) {
-    if (why) *why = "Ceres: " + summary.message;
-    return false;
-  }
-  return true;
+  return SolveBounded(p, &problem, theta, why);
 }
 
 // theta' -> squared SI coefficients for the covariance model.
@@ -121,28 +127,7 @@ bool SolveWhitened(const AvarCurve& curve, const Problem& p, const Eigen::Matrix
   ceres::Problem problem;
   problem.AddResidualBlock(new WhitenedAvarResiduals(w * a, w * shapes), nullptr, &(*theta)[0],
                            &(*theta)[1], &(*theta)[2], &(*theta)[3], &(*theta)[4]);
-  for (int i = 0; i < kTerms; ++i) {
-    if (std::find(p.asked.begin(), p.asked.end(), i) == p.asked.end()) {
-      (*theta)[i] = 0.0;
-      problem.SetParameterBlockConstant(&(*theta)[i]);
-    } else {
-      problem.SetParameterLowerBound(&(*theta)[i], 0, 0.0);
-    }
-  }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = 500;
-  solver.function_tolerance = 1e-15;
-  solver.gradient_tolerance = 1e-16;
-  solver.parameter_tolerance = 1e-13;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  if (!summary.IsSolutionUsable()) {
-    if (why) *why = "Ceres: " + summary.message;
-    return false;
-  }
-  return true;
+  return SolveBounded(p, &problem, theta, why);
 }
 
 }  // namespace
