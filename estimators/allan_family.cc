@@ -45,15 +45,19 @@ std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t 
 // The variances from the sums of squared phase differences (x in rate x tau0 units, so tau0
 // cancels): NIST SP 1065 eqs. for AVAR/OAVAR (sum / 2 m^2 T), HVAR/OHVAR (sum / 6 m^2 T), MVAR
 // (sum / 2 m^4 T, the inner sum of m second differences), TOTVAR (sum / 2 m^2 (n - 1)).
-std::vector<double> Variances(Statistic s, std::span<const double> rate, double mean,
+// Empty when the record is not finite (a NaN or infinity anywhere reaches the end of the phase).
+std::vector<double> Variances(Statistic s, std::span<const double> rate,
                               std::span<const std::int64_t> ms, AllanFamilyWorkspace* workspace) {
   const auto n = static_cast<std::int64_t>(rate.size());
   const std::span<double> phase = workspace->Phase(rate.size() + 1);
+  const double reference = ReferenceLevel(rate);
   std::vector<double> sums(ms.size());
   if (s == Statistic::kAllanOverlapping || s == Statistic::kHadamardOverlapping) {
-    IntegrateAndSumOverlappingDifferences(rate, mean, DifferenceOrder(s), ms, phase, sums);
+    IntegrateAndSumOverlappingDifferences(rate, reference, DifferenceOrder(s), ms, phase, sums);
+    if (!std::isfinite(phase.back())) return {};
   } else {
-    IntegrateAbout(rate, mean, phase);
+    IntegrateAbout(rate, reference, phase);
+    if (!std::isfinite(phase.back())) return {};
     switch (s) {
       case Statistic::kAllanNonOverlapping:
       case Statistic::kHadamardNonOverlapping:
@@ -116,21 +120,6 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
     summary->message = "need at least 3 rate samples, got " + std::to_string(n);
     return false;
   }
-  // A non-finite sample makes the mean non-finite, so only then is the record searched (one
-  // pass over the data instead of two).
-  const double mean = MeanOf(rate);
-  if (!std::isfinite(mean)) {
-    for (std::int64_t k = 0; k < n; ++k) {
-      if (!std::isfinite(rate[k])) {
-        summary->message =
-            "rate sample " + std::to_string(k) + " is not finite (" + Shortest(rate[k]) + ")";
-        return false;
-      }
-    }
-    summary->message = "rate samples too large: their sum overflows";
-    return false;
-  }
-
   const Statistic s = options.statistic;
   const double tau0 = options.sample_period_s;
   // Generated grids stop at the statistic's largest m; explicit taus all come back, so that
@@ -153,7 +142,20 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
     return false;
   }
 
-  const std::vector<double> values = Variances(s, rate, mean, used, workspace);
+  const std::vector<double> values = Variances(s, rate, used, workspace);
+  if (values.empty()) {
+    // Only now is the record searched: finite data pay for no separate pass.
+    summary->dropped.clear();
+    for (std::int64_t k = 0; k < n; ++k) {
+      if (!std::isfinite(rate[k])) {
+        summary->message =
+            "rate sample " + std::to_string(k) + " is not finite (" + Shortest(rate[k]) + ")";
+        return false;
+      }
+    }
+    summary->message = "rate samples too large: their running sum overflows";
+    return false;
+  }
   summary->points.reserve(used.size());
   for (std::size_t k = 0; k < used.size(); ++k) {
     AvarPoint point;

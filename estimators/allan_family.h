@@ -1,6 +1,7 @@
 #pragma once
-// The statistic values alone (no intervals): exact, O(N) per tau with prefix sums of the
-// mean-removed record (a bias of 1e4 x the noise level changes nothing beyond 1e-9 relative).
+// The statistic values alone (no intervals): exact, O(N) per tau with prefix sums of the record
+// about a level near its mean (estimators/phase_integral.h: a bias of 1e4 x the noise level
+// changes nothing beyond 1e-9 relative).
 // Definitions: NIST SP 1065 (Riley 2008) eqs. for AVAR, OAVAR, MVAR, HVAR, OHVAR, TOTVAR, TVAR,
 // with rate samples as fractional frequency and angle as phase.
 #include <cstddef>

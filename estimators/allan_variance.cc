@@ -9,8 +9,8 @@
 
 namespace allanlab::estimators {
 
-// The same sums as the statistic values of allan_family.h (one cache-blocked pass over the
-// mean-removed phase for all m), without the tau grid and the summary.
+// The same sums as the statistic values of allan_family.h (cache-blocked passes over the phase
+// about ReferenceLevel, shared by all m), without the tau grid and the summary.
 std::vector<double> AllanVariance(std::span<const double> rate, std::span<const std::int64_t> ms,
                                   AvarEstimatorKind kind) {
   const auto n = static_cast<std::int64_t>(rate.size());
@@ -23,11 +23,11 @@ std::vector<double> AllanVariance(std::span<const double> rate, std::span<const 
   const auto storage = std::make_unique_for_overwrite<double[]>(rate.size() + 1);
   const std::span<double> phase(storage.get(), rate.size() + 1);
   std::vector<double> sums(ms.size());
-  const double mean = MeanOf(rate);
+  const double reference = ReferenceLevel(rate);
   if (kind == AvarEstimatorKind::kOverlapping) {
-    IntegrateAndSumOverlappingDifferences(rate, mean, 2, ms, phase, sums);
+    IntegrateAndSumOverlappingDifferences(rate, reference, 2, ms, phase, sums);
   } else {
-    IntegrateAbout(rate, mean, phase);
+    IntegrateAbout(rate, reference, phase);
     StridedDifferenceSums(phase, 2, ms, sums);
   }
   std::vector<double> result(ms.size());

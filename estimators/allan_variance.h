@@ -14,9 +14,10 @@ namespace allanlab::estimators {
 using sim::AvarEstimatorKind;
 
 // AVAR at each averaging factor in `ms` (each 1 <= m <= N/2), in the squared units of `rate`.
-// One prefix sum of the mean-removed record serves all m (the mean is removed so that a large
-// bias does not eat the digits of the differences), summed in the cache-blocked passes of
-// allan_family.h. Throws std::invalid_argument for an m out of range.
+// One prefix sum of the record about a level near its mean serves all m (the level is removed
+// so that a large bias does not eat the digits of the differences; phase_integral.h), summed in
+// the cache-blocked passes of allan_family.h. Throws std::invalid_argument for an m out of
+// range.
 std::vector<double> AllanVariance(std::span<const double> rate, std::span<const std::int64_t> ms,
                                   AvarEstimatorKind kind);
 

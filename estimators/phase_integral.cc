@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "estimators/difference_kernel.h"
+#include "estimators/difference_kernel.h"  // Lanes, CompensatedSum
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -72,6 +72,16 @@ double MeanOf(std::span<const double> values) {
     total.Add(SumLanes(lanes));
   }
   return total.Value() / static_cast<double>(n);
+}
+
+double ReferenceLevel(std::span<const double> values) {
+  const std::size_t n = values.size();
+  if (n == 0) return 0.0;
+  const std::size_t stride = (n + kReferenceSamples - 1) / kReferenceSamples;
+  CompensatedSum sum;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < n; k += stride, ++count) sum.Add(values[k]);
+  return sum.Value() / static_cast<double>(count);
 }
 
 void ContinueIntegral(std::span<const double> values, double reference, std::span<double> out) {

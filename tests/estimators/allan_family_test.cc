@@ -102,6 +102,17 @@ TEST(AllanFamily, LongLagsOfEveryPassMatchDirectFormulas) {
   ExpectMatchesDirect(Statistic::kHadamardOverlapping, y, {1, 32768, 65536, 70000, 100000});
 }
 
+// A warm-up transient of 1000 x the noise in the first 20 % of the record: the reference level
+// follows the whole record (phase_integral.h), so the phase stays small and no digits are lost.
+TEST(AllanFamily, WarmUpTransientCostsNoDigits) {
+  const std::int64_t n = 300000;
+  std::vector<double> y = TestRecord(n, 12);
+  for (std::int64_t k = 0; k < n / 5; ++k) y[k] += 1000.0;
+  ExpectMatchesDirect(Statistic::kAllanOverlapping, y, {1, 2, 16, 1000, 65536});
+  ExpectMatchesDirect(Statistic::kAllanNonOverlapping, y, {1, 3, 1000});
+  ExpectMatchesDirect(Statistic::kTotal, y, {1, 100, 100000});
+}
+
 // A tau's value does not depend on which other taus are computed with it (the octave pass
 // pairs m with 2m; the pair and the single kernel must give the same bits).
 TEST(AllanFamily, ValueDoesNotDependOnTheRestOfTheGrid) {

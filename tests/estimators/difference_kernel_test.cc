@@ -174,7 +174,7 @@ TEST(AllanFamily, OverflowingSumIsReported) {
   const std::vector<double> y(10, std::numeric_limits<double>::max() / 2);
   AvarSummary summary;
   EXPECT_FALSE(ComputeStatisticValues(AvarOptions{}, y, &summary));
-  EXPECT_EQ(summary.message, "rate samples too large: their sum overflows");
+  EXPECT_EQ(summary.message, "rate samples too large: their running sum overflows");
 }
 
 }  // namespace
