@@ -13,7 +13,10 @@
 namespace allanlab::estimators {
 
 // Fills summary->points (value, terms; alpha/edf/ci left zero) and summary->dropped.
-// `rate` are rate samples (angle input already differenced by the caller).
+// `rate` are rate samples (angle input already differenced by the caller). Returns summary->ok:
+// false, with the reason in summary->message, for invalid options, fewer than 3 samples, a
+// non-finite sample (its index is named) or when no tau has enough terms (all are in dropped).
+// Largest m per statistic and the term counts: statistic.h (MaxAveragingFactor, TermCount).
 // Cost: O(N) per tau; the overlapping Allan and Hadamard statistics share cache-blocked passes
 // (an octave OAVAR curve of 1e8 samples takes a few ns per sample). Extra memory: N + 1 doubles
 // for the phase, plus up to N doubles of work space for MVAR and TVAR.
