@@ -3,10 +3,10 @@
 // closed form.
 #include "estimators/exact_edf.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "tests/support/monte_carlo.h"
 

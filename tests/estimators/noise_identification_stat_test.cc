@@ -10,11 +10,13 @@
 //   -1.5 rounding boundary (Riley & Greenhall 2004 use the same rounding; Stable32 shows the
 //   same -1/-2 alternation on the OCXO reference data).
 //   B1 ratio (20 averaged points, 100 records): the right class is the most frequent (71-86 %).
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 #include "estimators/noise_identification.h"
 #include "tests/support/monte_carlo.h"
