@@ -26,7 +26,9 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
 // Scratch memory of ComputeStatisticValues, kept between calls. Touching fresh pages costs more
 // than the whole computation on long records (measured 5-12 ns per sample in our VM, against a
 // few ns for the octave OAVAR curve itself), so a loop over many records (Monte Carlo trials)
-// should keep one per thread. Its contents between calls are unspecified.
+// should keep one per thread. After a successful call, Phase(N + 1) holds that call's integrated
+// record x (x_0 = 0, x_{k+1} = x_k + y_k - reference, reference a level near the mean), which
+// noise identification reuses; other contents between calls are unspecified.
 class AllanFamilyWorkspace {
  public:
   // `size` doubles, not initialised; the storage grows and is never shrunk.

@@ -19,7 +19,7 @@ void AppendNote(const std::string& note, std::string* message) {
 // cannot run (fewer than three m-averages, e.g. TOTVAR beyond n/3), the nearest shorter tau's
 // exponent stands in: noise type changes slowly with tau, and white FM (0) is the neutral start.
 int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rate,
-                         std::vector<AvarPoint>* points) {
+                         std::span<const double> phase, std::vector<AvarPoint>* points) {
   int unidentified = 0;
   int previous = 0;
   for (AvarPoint& point : *points) {
@@ -27,7 +27,7 @@ int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rat
       point.alpha = options.alpha;
       continue;
     }
-    const NoiseId id = IdentifyNoise(rate, point.m);
+    const NoiseId id = IdentifyNoise(rate, phase, point.m);
     point.alpha_identified = id.identified;
     if (id.identified) {
       previous = id.alpha;
@@ -60,9 +60,12 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
     differenced = AngleToRate(data, options.sample_period_s);
     rate = differenced;
   }
-  if (!ComputeStatisticValues(options, rate, summary)) return false;
+  // The workspace keeps the integrated record, from which identification takes its averages.
+  AllanFamilyWorkspace workspace;
+  if (!ComputeStatisticValues(options, rate, summary, &workspace)) return false;
+  const std::span<const double> phase = workspace.Phase(rate.size() + 1);
 
-  const int unidentified = AssignNoiseExponents(options, rate, &summary->points);
+  const int unidentified = AssignNoiseExponents(options, rate, phase, &summary->points);
   if (unidentified > 0) {
     AppendNote("noise type not identifiable at " + std::to_string(unidentified) +
                    " tau(s) (too few averages): the next shorter tau's alpha used",

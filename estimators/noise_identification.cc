@@ -174,17 +174,34 @@ NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
   return id;
 }
 
-}  // namespace
 
-NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
-  if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};
-  std::vector<double> means = ClusterMeans(rate, m);
+// Identification from the m-averages (any constant offset: the trend removal, the ACF and the
+// B1 ratio do not see it).
+NoiseId IdentifyFromMeans(std::span<const double> rate, std::int64_t m, std::vector<double> means) {
   if (means.size() >= kMinAcfPoints) {
     RemoveLinearTrend(means);
     return {AcfAlpha(std::move(means)), true, false};
   }
   if (means.size() >= kMinB1Points) return B1Identification(rate, m, means);
   return {};
+}
+
+}  // namespace
+
+NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
+  if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};
+  return IdentifyFromMeans(rate, m, ClusterMeans(rate, m));
+}
+
+NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phase, std::int64_t m) {
+  if (m < 1 || rate.size() < static_cast<std::size_t>(m) || phase.size() != rate.size() + 1) {
+    return IdentifyNoise(rate, m);
+  }
+  const std::size_t count = rate.size() / static_cast<std::size_t>(m);
+  std::vector<double> means(count);
+  const auto mu = static_cast<std::size_t>(m);
+  for (std::size_t k = 0; k < count; ++k) means[k] = (phase[(k + 1) * mu] - phase[k * mu]) / m;
+  return IdentifyFromMeans(rate, m, std::move(means));
 }
 
 }  // namespace allanlab::estimators

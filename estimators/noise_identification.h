@@ -17,4 +17,9 @@ struct NoiseId {
 // needed differenced, rates). Needs at least about 30 averaged points for the ACF method.
 NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m);
 
+// The same from the integrated record as well (phase[k] = sum_{i<k} (rate_i - c) for any constant
+// c, N + 1 values): the m-averages come from phase differences in O(N/m) instead of O(N), so a
+// whole curve costs O(N) rather than O(N) per tau. Same result up to rounding.
+NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phase, std::int64_t m);
+
 }  // namespace allanlab::estimators
