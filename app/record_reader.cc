@@ -1,5 +1,8 @@
 #include "app/record_reader.h"
 
+#include <filesystem>
+#include <system_error>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -266,6 +269,15 @@ bool ReadRecord(const RecordReaderOptions& options, const std::function<void(dou
 bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
                       RecordInfo* info, RecordError* error) {
   values->clear();
+  // A raw record's size tells the sample count (exactly when uncompressed, a lower bound when
+  // compressed): reserving it spares the growth copies and page faults of push_back, which cost
+  // more than the Allan pass itself on 1e8-sample files.
+  const std::size_t width = options.format == RecordFormat::kFloat64   ? 8
+                            : options.format == RecordFormat::kFloat32 ? 4
+                                                                      : 0;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(options.path, ec);
+  if (width > 0 && !ec) values->reserve(static_cast<std::size_t>(bytes) / width);
   return ReadRecord(
       options, [values](double v) { values->push_back(v); }, info, error);
 }

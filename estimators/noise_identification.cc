@@ -198,10 +198,53 @@ NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phas
     return IdentifyNoise(rate, m);
   }
   const std::size_t count = rate.size() / static_cast<std::size_t>(m);
-  std::vector<double> means(count);
   const auto mu = static_cast<std::size_t>(m);
-  for (std::size_t k = 0; k < count; ++k) means[k] = (phase[(k + 1) * mu] - phase[k * mu]) / m;
-  return IdentifyFromMeans(rate, m, std::move(means));
+  auto mean_at = [&](std::size_t k) { return (phase[(k + 1) * mu] - phase[k * mu]) / m; };
+  if (count < kMinAcfPoints) {
+    std::vector<double> means(count);
+    for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
+    return IdentifyFromMeans(rate, m, std::move(means));
+  }
+  // The lag-1 ACF method without storing the m-averages (at m = 1 they would be a second copy of
+  // the record): each differencing order is evaluated on the fly, in two passes (mean, then
+  // products), from the same arithmetic as the stored version: the detrended averages at d = 0;
+  // their differences at d >= 1, where the trend's slope is a constant the ACF's own mean
+  // removal takes away.
+  const double n = static_cast<double>(count);
+  const double t_mean = 0.5 * (n - 1.0);
+  long double x_mean = 0.0L, stt = 0.0L, sxt = 0.0L;
+  for (std::size_t i = 0; i < count; ++i) x_mean += mean_at(i);
+  x_mean /= n;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = i - t_mean;
+    stt += t * t;
+    sxt += t * (mean_at(i) - x_mean);
+  }
+  const double slope = stt > 0.0L ? static_cast<double>(sxt / stt) : 0.0;
+  auto series = [&](int d, std::size_t k) -> double {
+    if (d == 0) return mean_at(k) - (static_cast<double>(x_mean) + slope * (k - t_mean));
+    if (d == 1) return mean_at(k + 1) - mean_at(k);
+    return mean_at(k + 2) - 2.0 * mean_at(k + 1) + mean_at(k);
+  };
+  for (int d = 0;; ++d) {
+    const std::size_t len = count - static_cast<std::size_t>(d);
+    long double mean = 0.0L;
+    for (std::size_t i = 0; i < len; ++i) mean += series(d, i);
+    mean /= static_cast<long double>(len);
+    long double num = 0.0L, den = 0.0L;
+    long double c = series(d, 0) - mean;
+    for (std::size_t i = 0; i < len; ++i) {
+      den += c * c;
+      if (i + 1 < len) {
+        const long double next = series(d, i + 1) - mean;
+        num += c * next;
+        c = next;
+      }
+    }
+    const double r1 = den > 0.0L ? static_cast<double>(num / den) : 0.0;
+    const double delta = r1 > -1.0 + 1e-12 ? r1 / (1.0 + r1) : -1e9;
+    if (delta < kDeltaLimit || d >= kMaxDifferences) return {ClampAlpha(-2.0 * (delta + d)), true, false};
+  }
 }
 
 }  // namespace allanlab::estimators
