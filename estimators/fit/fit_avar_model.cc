@@ -157,10 +157,39 @@ std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact)
 }
 
 namespace {
+
+// Work that depends on the curve and the requested terms only, shared by every fit of one
+// FitAvarModel call (term selection refits many subsets): the exact term shapes and the GLS
+// covariance model, built on first use.
+class CurveCache {
+ public:
+  CurveCache(const AvarCurve& curve, const FitOptions& options) : curve_(curve), options_(options) {}
+
+  const std::vector<double>& Shape(int i) {
+    if (!has_shape_[i]) {
+      shape_[i] = TermShape(static_cast<Coefficient>(i), curve_, options_.exact_shapes);
+      has_shape_[i] = true;
+    }
+    return shape_[i];
+  }
+  // Built with every requested term; a subset's covariance passes zeros for the others.
+  const AvarCovarianceModel& Covariance() {
+    if (!covariance_) covariance_ = std::make_unique<AvarCovarianceModel>(curve_, options_.terms);
+    return *covariance_;
+  }
+
+ private:
+  const AvarCurve& curve_;
+  const FitOptions& options_;
+  std::array<std::vector<double>, kTerms> shape_;
+  std::array<bool, kTerms> has_shape_{};
+  std::unique_ptr<AvarCovarianceModel> covariance_;
+};
+
 // `weight_model_si` (squared SI coefficients): weights (WLS) or covariance (GLS) fixed from this
 // model instead of iterated, so that nested fits are compared under the same weights.
-bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary,
-                   const std::array<double, kTerms>* weight_model_si = nullptr);
+bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
+                   FitSummary* summary, const std::array<double, kTerms>* weight_model_si = nullptr);
 
 std::array<double, kTerms> SquaredCoefficients(const FitSummary& s) {
   std::array<double, kTerms> theta{};
@@ -173,11 +202,13 @@ std::array<double, kTerms> SquaredCoefficients(const FitSummary& s) {
 
 bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
   if (!options.select_terms || options.method == FitMethod::kSlope) {
-    return FitFixedTerms(options, curve, summary);
+    CurveCache cache(curve, options);
+    return FitFixedTerms(options, curve, &cache, summary);
   }
   FitOptions current = options;
   current.select_terms = false;
-  if (!FitFixedTerms(current, curve, summary)) return false;
+  CurveCache cache(curve, options);
+  if (!FitFixedTerms(current, curve, &cache, summary)) return false;
   // Critical value of 0.5 chi2_0 + 0.5 chi2_1 at the level: the chi2_1 quantile at 2 * level.
   const double critical =
       boost::math::quantile(boost::math::complement(boost::math::chi_squared(1.0), 2.0 * options.selection_level));
@@ -187,14 +218,14 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
     // those of one weighted least-squares problem (never negative).
     const std::array<double, kTerms> weights = SquaredCoefficients(*summary);
     FitSummary reference;
-    if (!FitFixedTerms(current, curve, &reference, &weights)) break;
+    if (!FitFixedTerms(current, curve, &cache, &reference, &weights)) break;
     double best_increase = 0.0;
     std::size_t best = current.terms.size();
     for (std::size_t t = 0; t < current.terms.size(); ++t) {
       FitOptions without = current;
       without.terms.erase(without.terms.begin() + static_cast<std::ptrdiff_t>(t));
       FitSummary trial;
-      if (!FitFixedTerms(without, curve, &trial, &weights)) continue;
+      if (!FitFixedTerms(without, curve, &cache, &trial, &weights)) continue;
       const double increase = trial.chi2 - reference.chi2;
       if (best == current.terms.size() || increase < best_increase) {
         best_increase = increase;
@@ -208,7 +239,7 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
         " < " + std::to_string(critical) + " (likelihood-ratio test at " +
         std::to_string(options.selection_level) + ")";
     current.terms.erase(current.terms.begin() + static_cast<std::ptrdiff_t>(best));
-    if (!FitFixedTerms(current, curve, summary)) return false;  // refit, weights iterated again
+    if (!FitFixedTerms(current, curve, &cache, summary)) return false;  // refit, weights iterated
   }
   for (Coefficient c : options.terms) {
     CoefficientEstimate& e = summary->coefficients[static_cast<int>(c)];
@@ -225,8 +256,8 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
 
 namespace {
 
-bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary* summary,
-                   const std::array<double, kTerms>* weight_model_si) {
+bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
+                   FitSummary* summary, const std::array<double, kTerms>* weight_model_si) {
   *summary = FitSummary{};
   summary->method = options.method;
   std::string why;
@@ -270,7 +301,7 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
     edf_note = " (no EDF given: weights from K - 1 clusters)";
   }
   for (int i : p.asked) {
-    p.shape[i] = TermShape(static_cast<Coefficient>(i), curve, options.exact_shapes);
+    p.shape[i] = cache->Shape(i);
     double scale = 0.0;
     for (std::size_t k = 0; k < taus; ++k) {
       if (p.shape[i][k] > 0.0) {
@@ -288,7 +319,7 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
     expected.assign(taus, 0.0);
     for (int i = 0; i < kTerms; ++i) {
       if ((*weight_model_si)[i] <= 0.0) continue;
-      const std::vector<double> shape = TermShape(static_cast<Coefficient>(i), curve, options.exact_shapes);
+      const std::vector<double>& shape = cache->Shape(i);
       for (std::size_t k = 0; k < taus; ++k) expected[k] += (*weight_model_si)[i] * shape[k];
     }
     for (double& e : expected) e = std::max(e, 1e-300);
@@ -324,14 +355,7 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, FitSummary
       summary->message = "fit: GLS needs an overlapping Allan curve with its record length";
       return false;
     }
-    std::vector<Coefficient> terms;
-    for (int i = 0; i < kTerms; ++i) {
-      const bool asked = std::find(p.asked.begin(), p.asked.end(), i) != p.asked.end();
-      if (asked || (weight_model_si && (*weight_model_si)[i] > 0.0)) {
-        terms.push_back(static_cast<Coefficient>(i));
-      }
-    }
-    const AvarCovarianceModel covariance(curve, terms);
+    const AvarCovarianceModel& covariance = cache->Covariance();
     settled = false;
     const int gls_passes = weight_model_si ? 1 : options.max_reweightings;
     for (int gls = 0; gls < gls_passes && !settled; ++gls, ++iteration) {
