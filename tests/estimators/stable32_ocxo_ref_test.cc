@@ -35,6 +35,8 @@ namespace {
 using testing_support::ReadDataColumn;
 using testing_support::ReadStable32Table;
 using testing_support::Stable32Interval;
+using testing_support::MatchesStable32Interval;
+using testing_support::NearRelative;
 using testing_support::Stable32Row;
 
 const std::string kDir = std::string(ALLANLAB_TEST_DATA_DIR) + "/reference/ocxo/";
@@ -62,13 +64,6 @@ AvarOptions OcxoOptions(Statistic statistic, std::vector<double> taus) {
   return options;
 }
 
-::testing::AssertionResult Near(const char* what, double actual, double expected, double tol) {
-  if (std::abs(actual / expected - 1.0) <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure()
-         << what << ": expected " << expected << ", got " << actual << ", relative error "
-         << actual / expected - 1.0 << ", tolerance " << tol;
-}
-
 void ExpectTableMatches(Statistic statistic, const std::string& name) {
   const std::vector<Stable32Row> rows = ReadStable32Table(kDir + name + "_octave.txt");
   const std::vector<double>& y = FractionalFrequency();
@@ -85,7 +80,7 @@ void ExpectTableMatches(Statistic statistic, const std::string& name) {
     SCOPED_TRACE(name + " m=" + std::to_string(r.m));
     EXPECT_EQ(p.terms, r.terms);
     if (statistic != Statistic::kTotal) {
-      EXPECT_TRUE(Near("sigma", std::sqrt(p.value), r.sigma, 2e-3));
+      EXPECT_TRUE(NearRelative("sigma", std::sqrt(p.value), r.sigma, 2e-3));
     }
     if (kKnownAlphaDifferences.count({name, r.m}) == 0) {
       EXPECT_EQ(p.alpha, r.alpha) << "averages: " << y.size() / r.m;
@@ -104,8 +99,8 @@ void ExpectTableMatches(Statistic statistic, const std::string& name) {
     const double sigma = std::sqrt(q.value);
     const double tol = 2e-4 + 2e-3 / q.edf;
     SCOPED_TRACE("alpha=" + std::to_string(r.alpha) + " edf=" + std::to_string(q.edf));
-    EXPECT_TRUE(Near("min/sigma", std::sqrt(s32.low) / sigma, r.min_sigma / r.sigma, tol));
-    EXPECT_TRUE(Near("max/sigma", std::sqrt(s32.high) / sigma, r.max_sigma / r.sigma, tol));
+    EXPECT_TRUE(NearRelative("min/sigma", std::sqrt(s32.low) / sigma, r.min_sigma / r.sigma, tol));
+    EXPECT_TRUE(NearRelative("max/sigma", std::sqrt(s32.high) / sigma, r.max_sigma / r.sigma, tol));
   }
 }
 

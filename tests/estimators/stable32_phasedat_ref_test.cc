@@ -22,6 +22,8 @@ namespace {
 using testing_support::ReadDataColumn;
 using testing_support::ReadStable32Table;
 using testing_support::Stable32Interval;
+using testing_support::MatchesStable32Interval;
+using testing_support::NearRelative;
 using testing_support::Stable32Row;
 
 const std::string kDir = std::string(ALLANLAB_TEST_DATA_DIR) + "/reference/phasedat/";
@@ -35,15 +37,6 @@ AvarOptions PhaseDatOptions(Statistic statistic, const std::vector<Stable32Row>&
   options.taus.kind = TauGridKind::kExplicit;
   for (const Stable32Row& row : rows) options.taus.explicit_taus_s.push_back(row.tau_s);
   return options;
-}
-
-double RelativeError(double actual, double expected) { return std::abs(actual / expected - 1.0); }
-
-::testing::AssertionResult Near(const char* what, double actual, double expected, double tol) {
-  if (RelativeError(actual, expected) <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure()
-         << what << ": expected " << expected << ", got " << actual << ", relative error "
-         << actual / expected - 1.0 << ", tolerance " << tol;
 }
 
 void ExpectTableMatches(Statistic statistic, const std::string& file) {
@@ -61,11 +54,8 @@ void ExpectTableMatches(Statistic statistic, const std::string& file) {
     EXPECT_EQ(p.terms, r.terms);
     EXPECT_EQ(p.alpha, r.alpha);
     EXPECT_TRUE(p.alpha_identified);
-    EXPECT_TRUE(Near("sigma", std::sqrt(p.value), r.sigma, 1e-4));
-    const Interval s32 = Stable32Interval(p.value, p.edf);
-    const double tol = 1.5e-4 + 2e-3 / p.edf;
-    EXPECT_TRUE(Near("min sigma", std::sqrt(s32.low), r.min_sigma, tol));
-    EXPECT_TRUE(Near("max sigma", std::sqrt(s32.high), r.max_sigma, tol));
+    EXPECT_TRUE(NearRelative("sigma", std::sqrt(p.value), r.sigma, 1e-4));
+    EXPECT_TRUE(MatchesStable32Interval(p.value, p.edf, r));
   }
 }
 
@@ -115,12 +105,12 @@ TEST(Stable32PhaseDat, OverlappingAllanWhiteFmForced) {
     SCOPED_TRACE("tau=" + std::to_string(expected[i].tau_s));
     EXPECT_FALSE(p.alpha_identified);
     EXPECT_EQ(p.alpha, 0);
-    EXPECT_TRUE(Near("sigma", std::sqrt(p.value), expected[i].sigma, 1e-4));
-    EXPECT_TRUE(Near("exact min sigma", std::sqrt(p.ci_low), expected[i].min_sigma, 4e-4));
-    EXPECT_TRUE(Near("exact max sigma", std::sqrt(p.ci_high), expected[i].max_sigma, 4e-4));
+    EXPECT_TRUE(NearRelative("sigma", std::sqrt(p.value), expected[i].sigma, 1e-4));
+    EXPECT_TRUE(NearRelative("exact min sigma", std::sqrt(p.ci_low), expected[i].min_sigma, 4e-4));
+    EXPECT_TRUE(NearRelative("exact max sigma", std::sqrt(p.ci_high), expected[i].max_sigma, 4e-4));
     const Interval s32 = Stable32Interval(p.value, p.edf);
-    EXPECT_TRUE(Near("Stable32 min sigma", std::sqrt(s32.low), expected[i].min_sigma, 1e-4));
-    EXPECT_TRUE(Near("Stable32 max sigma", std::sqrt(s32.high), expected[i].max_sigma, 1e-4));
+    EXPECT_TRUE(NearRelative("Stable32 min sigma", std::sqrt(s32.low), expected[i].min_sigma, 1e-4));
+    EXPECT_TRUE(NearRelative("Stable32 max sigma", std::sqrt(s32.high), expected[i].max_sigma, 1e-4));
   }
 }
 

@@ -63,4 +63,23 @@ estimators::Interval Stable32Interval(double variance, double edf) {
   return {variance * edf / quantile(z), variance * edf / quantile(-z)};
 }
 
+::testing::AssertionResult NearRelative(const char* what, double actual, double expected,
+                                        double tol) {
+  if (std::abs(actual / expected - 1.0) <= tol) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << what << ": expected " << expected << ", got " << actual << ", relative error "
+         << actual / expected - 1.0 << ", tolerance " << tol;
+}
+
+::testing::AssertionResult MatchesStable32Interval(double variance, double edf,
+                                                   const Stable32Row& row) {
+  const estimators::Interval s32 = Stable32Interval(variance, edf);
+  const double tol = 1.5e-4 + 2e-3 / edf;
+  auto low = NearRelative("min sigma", std::sqrt(s32.low), row.min_sigma, tol);
+  if (!low) return low << " (edf " << edf << ")";
+  auto high = NearRelative("max sigma", std::sqrt(s32.high), row.max_sigma, tol);
+  if (!high) return high << " (edf " << edf << ")";
+  return ::testing::AssertionSuccess();
+}
+
 }  // namespace allanlab::testing_support

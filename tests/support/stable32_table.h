@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "estimators/confidence.h"
 
 namespace allanlab::testing_support {
@@ -33,5 +35,15 @@ std::vector<double> ReadDataColumn(const std::string& path);
 // OCXO tables: every row with EDF > 100 (137 ... 12706) agrees to <= 5e-5 this way, rows up to
 // EDF 98 agree with exact quantiles.
 estimators::Interval Stable32Interval(double variance, double edf);
+
+// |actual / expected - 1| <= tol, with both numbers and the error in the failure message.
+::testing::AssertionResult NearRelative(const char* what, double actual, double expected,
+                                        double tol);
+
+// The row's MinSigma and MaxSigma equal Stable32's interval for `variance` with `edf` degrees of
+// freedom, within the printed digits plus the residual of the interval arithmetic at small EDF:
+// 1.5e-4 + 2e-3/EDF relative.
+::testing::AssertionResult MatchesStable32Interval(double variance, double edf,
+                                                   const Stable32Row& row);
 
 }  // namespace allanlab::testing_support
