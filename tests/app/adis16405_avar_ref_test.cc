@@ -32,6 +32,7 @@
 
 #include "app/provenance.h"
 #include "app/record_reader.h"
+#include "tests/support/read_file.h"
 
 namespace allanlab::app {
 namespace {
@@ -45,12 +46,7 @@ fs::path DataDir() {
          "data";
 }
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
+using testing_support::ReadAll;
 
 // tau [s] -> avar [(deg/s)^2] for one channel of the reference file.
 std::map<double, double> Reference(const fs::path& path, const std::string& channel) {

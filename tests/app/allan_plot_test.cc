@@ -9,17 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/read_file.h"
+
 namespace allanlab::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
+using testing_support::ReadAll;
 
 AllanPlot WhiteNoisePlot() {
   AllanPlot plot;

@@ -18,18 +18,14 @@
 
 #include "app/allan_plot.h"
 #include "estimators/allan_variance.h"
+#include "tests/support/read_file.h"
 
 namespace allanlab::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
+using testing_support::ReadAll;
 
 std::string Quote(const std::string& s) { return "'" + s + "'"; }
 

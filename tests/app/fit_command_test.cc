@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/read_file.h"
+
 namespace allanlab::app {
 namespace {
 
@@ -35,12 +37,7 @@ class FitCommandTest : public ::testing::Test {
     const int status = std::system(command.str().c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
-  std::string Read(const std::string& name) {
-    std::ifstream in(dir_ / name);
-    std::ostringstream os;
-    os << in.rdbuf();
-    return os.str();
-  }
+  std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
   std::string Path(const std::string& name) {
     std::string quoted = "'";
     quoted += (dir_ / name).string();

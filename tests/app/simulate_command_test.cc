@@ -17,6 +17,7 @@
 
 #include "app/allan_plot.h"
 #include "sim/sensor_spec.h"
+#include "tests/support/read_file.h"
 
 namespace allanlab::app {
 namespace {
@@ -43,12 +44,7 @@ terms:
 band_limit: {type: first_order, cutoff: 500 Hz, oversampling: 4, sampling: point}
 )";
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
+using testing_support::ReadAll;
 
 std::vector<std::string> Lines(const std::string& text) {
   std::vector<std::string> lines;
