@@ -1,0 +1,42 @@
+#pragma once
+// A validation experiment = a trial driver + the report that turns its aggregated rows into
+// tables (CSV for machines + Markdown for people, same content) and plots. The registry
+// (experiments/registry.h) maps the spec's `driver:` name to one of these.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "experiments/aggregate.h"
+#include "experiments/runner.h"
+#include "experiments/sweep_spec.h"
+#include "experiments/trial_driver.h"
+
+namespace allanlab::experiments {
+
+// What every table carries (DESIGN.md convention 8) and where it goes.
+struct ReportContext {
+  std::string output_dir;      // e.g. results/validation; created if missing
+  std::string git_sha;         // of the built commit
+  std::string build_type;
+  std::string command_line;    // the one command that regenerates the table
+  std::string date_utc;        // ISO 8601
+  int threads = 1;
+  int ranks = 1;
+};
+
+class Experiment {
+ public:
+  virtual ~Experiment() = default;
+  virtual std::string Name() const = 0;  // == spec.driver
+  // The question, method, reference and pass criterion, one paragraph (goes into the report).
+  virtual std::string Question() const = 0;
+  virtual const TrialDriver& Driver() const = 0;
+  // Writes <output_dir>/<spec.name>.csv and .md (and plots); every file is written to a
+  // temporary and renamed into place, so a failure leaves earlier files intact. Returns false
+  // with *why on failure.
+  virtual bool WriteReport(const SweepSpec& spec, const RunSummary& run,
+                           const std::vector<PointStats>& stats, const ReportContext& context,
+                           std::string* why) const = 0;
+};
+
+}  // namespace allanlab::experiments
