@@ -65,6 +65,20 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
     }
     plan->read.rate_hz = o.rate_hz;
   }
+  if (!o.time_units.empty()) {
+    static constexpr std::pair<std::string_view, double> kTimeUnits[] = {
+        {"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"ns", 1e-9}};
+    for (const auto& [name, seconds] : kTimeUnits) {
+      if (o.time_units == name) plan->read.time_unit_s = seconds;
+    }
+    if (!plan->read.time_unit_s) {
+      return Usage("--time-units must be s, ms, us or ns, got '" + o.time_units + "'");
+    }
+    if (plan->read.format != RecordFormat::kText) {
+      return Usage("--time-units applies to a text record's time column; raw " + o.format +
+                   " has none");
+    }
+  }
   if (o.type == "rate") {
     plan->input = InputKind::kRate;
     plan->input_units = o.units.empty() ? "deg/s" : o.units;
@@ -298,7 +312,7 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
       ->required();
   cmd->add_option("--column", options->column,
                   "text column by header name or 0-based index (default: the first column that "
-                  "is not the time column t, t_s, time, time_s or timestamp)")
+                  "is not the time column t, t_s, time, time_s, timestamp, t_ms, time_ns, %time ...)")
       ->type_name("NAME|INDEX");
   cmd->add_option("--units", options->units,
                   "input units: deg/s (default), deg/h or rad/s for rate; deg (default), rad or "
@@ -311,6 +325,10 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
                   "sample rate in Hz; needed without a time column; with one it must agree to "
                   "1e-3 relative")
       ->type_name("HZ");
+  cmd->add_option("--time-units", options->time_units,
+                  "unit of the time column (default: from its name: t_ms, time_us, time_ns, "
+                  "%time (ROS, ns) ...; bare t, time, timestamp are seconds)")
+      ->type_name("s|ms|us|ns");
   cmd->add_option("--type", options->type, "the column holds rate (default) or angle samples")
       ->type_name("rate|angle");
   cmd->add_option("--taus", options->taus,

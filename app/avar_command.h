@@ -33,6 +33,7 @@ struct AvarCommandOptions {
   std::string units;  // empty: deg/s for rate, deg for angle
   std::string out_units = "deg/h";
   std::optional<double> rate_hz;
+  std::string time_units;  // --time-units s|ms|us|ns; empty: from the time column's name
   std::string type = "rate";
   std::string estimator = "overlapping";
   std::string taus = "octave";

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "app/provenance.h"
@@ -122,7 +123,14 @@ class Reader {
         ++info_->dropped_nonfinite;
         return true;
       }
-      if (row.has_time && !steps_.Add(row.time, row.line, &stop)) return false;
+      if (row.has_time) {
+        if (time_unit_s_ == 0.0) {
+          const TimeColumnName* name = parser_ptr->time_column_name();
+          time_unit_s_ = o_.time_unit_s.value_or(name->seconds_per_unit);
+          unit_is_guess_ = !o_.time_unit_s && !name->unit_in_name;
+        }
+        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) return false;
+      }
       Accept(row.value, row.line);
       return true;
     });
@@ -146,6 +154,7 @@ class Reader {
     info_->lines = parser.lines();
     info_->column = parser.value_column();
     info_->time_column = parser.time_column();
+    if (time_unit_s_ > 0.0) info_->time_unit_s = time_unit_s_;
     if (parser.data_rows() == 0) {
       return Runtime(error, In() + "no data rows (" + std::to_string(parser.lines()) +
                                 " line(s) of comments, blank lines or header)");
@@ -183,10 +192,16 @@ class Reader {
     if (!info_->time_column.empty()) {
       info_->time = steps_.Summarize();
       const TimeSteps::Summary& t = info_->time;
+      if (t.nominal_step_s > kLongestPlausibleStepS && unit_is_guess_) {
+        return Usage(error, In() + "time column " + info_->time_column + " steps by " +
+                                ShortestDecimal(t.nominal_step_s) +
+                                " (as seconds: implausible for a gyro record; it looks like "
+                                "ms, us or ns): give --time-units ms|us|ns, or s to confirm");
+      }
       if (t.nominal_step_s > 0) {
         const double from_time = RoundToSignificantDigits(1.0 / t.nominal_step_s, 10);
         info_->sample_rate_hz = from_time;
-        info_->rate_source = "time column " + info_->time_column;
+        info_->rate_source = "time column " + info_->time_column + TimeUnitNote();
         if (o_.rate_hz) {
           if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time) {
             return Usage(error, In() + "--rate " + ShortestDecimal(*o_.rate_hz) +
@@ -222,15 +237,33 @@ class Reader {
     return true;
   }
 
+  // " in ns" when the time column is not in seconds.
+  std::string TimeUnitNote() const {
+    static constexpr std::pair<double, std::string_view> kNames[] = {
+        {1e-3, "ms"}, {1e-6, "us"}, {1e-9, "ns"}};
+    for (const auto& [seconds, name] : kNames) {
+      if (info_->time_unit_s == seconds) return " in " + std::string(name);
+    }
+    return "";
+  }
+
   static std::string TimeColumnList() {
     std::string out;
-    for (std::string_view name : kTimeColumnNames)
-      out += (out.empty() ? "" : ", ") + std::string(name);
-    return out;
+    for (const TimeColumnName& name : kTimeColumnNames) {
+      if (name.seconds_per_unit == 1.0 && name.name != "timestamp_s")
+        out += (out.empty() ? "" : ", ") + std::string(name.name);
+    }
+    return out + ", or with a unit: t_ms, time_us, timestamp_ns, %time ...";
   }
+
+  // A bare-named time column (t, time, timestamp) is read as seconds; a step longer than this
+  // means it is not (a 100 Hz record with ms, us or ns stamps).
+  static constexpr double kLongestPlausibleStepS = 10.0;
 
   const RecordReaderOptions& o_;
   const std::function<void(double)>& sink_;
+  double time_unit_s_ = 0.0;  // set at the first row with a time
+  bool unit_is_guess_ = false;
   RecordInfo* info_;
   NonFiniteLog nonfinite_;
   TimeSteps steps_;

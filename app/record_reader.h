@@ -44,6 +44,9 @@ struct RecordReaderOptions {
   RecordFormat format = RecordFormat::kText;
   std::string column;             // text only: header name or 0-based index; empty = first data
   std::optional<double> rate_hz;  // --rate [Hz], finite and > 0 (checked by the caller)
+  // --time-units: seconds per unit of the time column, overriding the unit its name implies
+  // (t_ms, time_ns, %time, ...; bare t, time, timestamp are seconds). Finite and > 0.
+  std::optional<double> time_unit_s;
   bool drop_nonfinite = false;    // skip rows whose value (or time) is NaN/inf, and count them
   std::int64_t min_samples = 3;   // fewer kept samples is an error
 };
@@ -55,6 +58,7 @@ struct RecordInfo {
   bool has_header = false;
   std::string column;        // "Gyro_X", "column 2" (text without header) or "float64 samples"
   std::string time_column;   // empty when the rate did not come from a time column
+  double time_unit_s = 1.0;  // seconds per unit of the time column
   std::int64_t lines = 0;    // text: physical lines read
   std::int64_t samples = 0;  // values passed to the sink
   std::int64_t dropped_nonfinite = 0;  // rows skipped by drop_nonfinite

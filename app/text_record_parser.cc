@@ -169,6 +169,26 @@ void TextRecordParser::Split(std::string_view line, std::vector<std::string_view
   }
 }
 
+bool TextRecordParser::ParseTimeField(std::string_view field, double* time) {
+  std::string_view s = Trim(field);
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = Trim(s.substr(1, s.size() - 2));
+  std::int64_t stamp = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), stamp);
+  const bool integer = !s.empty() && ec == std::errc() && end == s.data() + s.size();
+  if (!time_origin_set_ && integer) {
+    time_origin_set_ = true;
+    time_origin_ = stamp;
+  }
+  std::int64_t since_origin = 0;
+  if (integer && time_origin_set_ && !__builtin_sub_overflow(stamp, time_origin_, &since_origin)) {
+    *time = static_cast<double>(since_origin);
+    return true;
+  }
+  if (!ParseNumberField(field, time)) return false;
+  if (time_origin_set_) *time -= static_cast<double>(time_origin_);
+  return true;
+}
+
 bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first, bool header) {
   has_header_ = header;
   std::vector<std::string> names;
@@ -178,10 +198,11 @@ bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first,
   }
   if (header) {
     for (std::size_t i = 0; i < names.size() && time_index_ < 0; ++i) {
-      for (std::string_view t : kTimeColumnNames) {
-        if (EqualsIgnoreCase(names[i], t)) {
+      for (const TimeColumnName& t : kTimeColumnNames) {
+        if (EqualsIgnoreCase(names[i], t.name)) {
           time_index_ = static_cast<int>(i);
           time_column_ = names[i];
+          time_name_ = &t;
           break;
         }
       }
@@ -238,6 +259,7 @@ bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first,
   if (value_index_ == time_index_) {
     time_index_ = -1;
     time_column_.clear();
+    time_name_ = nullptr;
   }
   value_column_ = header ? names[value_index_] : "column " + std::to_string(value_index_);
   return true;
@@ -293,7 +315,7 @@ bool TextRecordParser::ParseLine(std::string_view line) {
   }
   if (time_index_ >= 0) {
     row.has_time = true;
-    if (!ParseNumberField(fields_[time_index_], &row.time)) {
+    if (!ParseTimeField(fields_[time_index_], &row.time)) {
       return Fail("line " + std::to_string(line_) + ": time column " + time_column_ + ": '" +
                   Shown(Trim(fields_[time_index_])) + "' is not a number");
     }

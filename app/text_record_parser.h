@@ -23,14 +23,31 @@
 
 namespace allanlab::app {
 
-// The header names that mark a time column, in seconds (compared case-insensitively).
-inline constexpr std::string_view kTimeColumnNames[] = {"t", "t_s", "time", "time_s", "timestamp"};
+// The header names that mark a time column (compared case-insensitively) and the unit each
+// implies. Bare names (t, time, timestamp) are taken as seconds unless the caller is told
+// otherwise: app/record_reader.h rejects a bare-named column whose step is implausible as seconds.
+// "%time" is the nanosecond receive time `rostopic echo -p` writes.
+struct TimeColumnName {
+  std::string_view name;
+  double seconds_per_unit;
+  bool unit_in_name;
+};
+inline constexpr TimeColumnName kTimeColumnNames[] = {
+    {"t", 1.0, false},        {"t_s", 1.0, true},       {"time", 1.0, false},
+    {"time_s", 1.0, true},    {"timestamp", 1.0, false}, {"timestamp_s", 1.0, true},
+    {"t_ms", 1e-3, true},     {"time_ms", 1e-3, true},  {"timestamp_ms", 1e-3, true},
+    {"t_us", 1e-6, true},     {"time_us", 1e-6, true},  {"timestamp_us", 1e-6, true},
+    {"t_ns", 1e-9, true},     {"time_ns", 1e-9, true},  {"timestamp_ns", 1e-9, true},
+    {"%time", 1e-9, true}};
 
 struct TextRow {
   std::int64_t line = 0;  // 1-based physical line number in the (decompressed) text
   double value = 0.0;     // may be NaN or +-inf
   bool has_time = false;
-  double time = 0.0;  // [s], when has_time; may be non-finite
+  // In the time column's own unit, when has_time; may be non-finite. Integer time stamps are
+  // given relative to the first row's, exactly: a 19-digit nanosecond stamp does not fit a
+  // double, but its steps do.
+  double time = 0.0;
 };
 
 class TextRecordParser {
@@ -62,8 +79,9 @@ class TextRecordParser {
   // The chosen column: its header name, or "column K" without a header; and its 0-based index.
   const std::string& value_column() const { return value_column_; }
   int value_column_index() const { return value_index_; }
-  // The time column's header name, empty when there is none.
+  // The time column's header name, empty when there is none, and its entry in kTimeColumnNames.
   const std::string& time_column() const { return time_column_; }
+  const TimeColumnName* time_column_name() const { return time_name_; }
   std::int64_t lines() const { return line_; }  // physical lines read so far
   std::int64_t data_rows() const { return data_rows_; }
 
@@ -71,6 +89,7 @@ class TextRecordParser {
   bool ParseLine(std::string_view line);
   bool ChooseColumns(const std::vector<std::string_view>& first_fields, bool header);
   bool Fail(std::string message);
+  bool ParseTimeField(std::string_view field, double* time);
   void Split(std::string_view line, std::vector<std::string_view>* fields) const;
 
   std::string column_spec_;
@@ -87,6 +106,9 @@ class TextRecordParser {
   int value_index_ = -1;
   std::string time_column_;
   int time_index_ = -1;
+  const TimeColumnName* time_name_ = nullptr;
+  bool time_origin_set_ = false;
+  std::int64_t time_origin_ = 0;  // the first integer time stamp
   std::int64_t line_ = 0;
   std::int64_t data_rows_ = 0;
   std::vector<std::string_view> fields_;  // reused per line

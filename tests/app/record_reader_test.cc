@@ -250,10 +250,12 @@ TEST_F(RecordReaderTest, BadInputs) {
        "time is not increasing: line 4 has t = 0.5 s after t = 1 s at line 3 (sort the record "
        "first)"},
       {"norate.csv", "a,b\n0,1\n1,2\n2,3\n", "", false, kExitUsageError,
-       "no time column (t, t_s, time, time_s, timestamp) in the header: give the sample rate "
+       "no time column (t, t_s, time, time_s, timestamp, or with a unit: t_ms, time_us, "
+       "timestamp_ns, %time ...) in the header: give the sample rate "
        "with --rate HZ"},
       {"nohead.csv", "0,1\n1,2\n2,3\n", "", false, kExitUsageError,
-       "no time column (t, t_s, time, time_s, timestamp) in the file (it has no header row): "
+       "no time column (t, t_s, time, time_s, timestamp, or with a unit: t_ms, time_us, "
+       "timestamp_ns, %time ...) in the file (it has no header row): "
        "give the sample rate with --rate HZ"},
       {"column.csv", "t,x\n0,1\n", "y", false, kExitUsageError,
        "--column y: no such column (t = 0, x = 1)"},
@@ -321,6 +323,50 @@ TEST_F(RecordReaderTest, ParseRecordFormat) {
   EXPECT_EQ(f, RecordFormat::kFloat32);
   EXPECT_FALSE(ParseRecordFormat("csv", &f, &why));
   EXPECT_EQ(why, "unknown format 'csv' (expected text, f32 or f64)");
+}
+
+}  // namespace
+}  // namespace allanlab::app
+
+namespace allanlab::app {
+namespace {
+
+// A `rostopic echo -p` style record: '%time' in integer nanoseconds since the epoch (19 digits,
+// beyond a double's 53 bits), then the rate column.
+std::string RosCsv(const std::string& time_name, int n, std::int64_t step_ns) {
+  std::string text = time_name + ",field.angular_velocity.x\n";
+  const std::int64_t start_ns = 1700000000123456789;
+  for (int k = 0; k < n; ++k) {
+    text += std::to_string(start_ns + k * step_ns) + "," + std::to_string(0.001 * (k % 7)) + "\n";
+  }
+  return text;
+}
+
+TEST_F(RecordReaderTest, NanosecondTimeColumnsGiveTheExactRate) {
+  const Result r = Read(Options(Write("ros.csv", RosCsv("%time", 2000, 10'000'000))));
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.sample_rate_hz, 100.0);
+  EXPECT_EQ(r.info.time_unit_s, 1e-9);
+  EXPECT_EQ(r.info.time.irregular_steps, 0);
+  EXPECT_EQ(r.info.rate_source, "time column %time in ns");
+
+  const Result ms = Read(Options(Write("ms.csv", RosCsv("t_ms", 100, 5))));
+  ASSERT_TRUE(ms.ok) << ms.error.message;
+  EXPECT_EQ(ms.info.sample_rate_hz, 200.0);
+}
+
+TEST_F(RecordReaderTest, BareTimeColumnInNanosecondsIsRejectedUnlessTheUnitIsGiven) {
+  const std::string path = Write("bare.csv", RosCsv("timestamp", 500, 2'500'000));
+  const Result bare = Read(Options(path));
+  EXPECT_FALSE(bare.ok);
+  EXPECT_EQ(bare.error.exit_code, kExitUsageError);
+  EXPECT_NE(bare.error.message.find("--time-units"), std::string::npos) << bare.error.message;
+
+  RecordReaderOptions o = Options(path);
+  o.time_unit_s = 1e-9;
+  const Result told = Read(o);
+  ASSERT_TRUE(told.ok) << told.error.message;
+  EXPECT_EQ(told.info.sample_rate_hz, 400.0);
 }
 
 }  // namespace
