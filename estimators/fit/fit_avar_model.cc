@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include <Eigen/Dense>
 #include <boost/math/distributions/chi_squared.hpp>
@@ -92,13 +93,6 @@ bool Solve(const FitOptions& options, const AvarCurve& curve, const Problem& p,
   return SolveBounded(p, &problem, theta, why);
 }
 
-// theta' -> squared SI coefficients for the covariance model.
-std::array<double, kTerms> SquaredSi(const Problem& p, const std::array<double, kTerms>& theta) {
-  std::array<double, kTerms> si{};
-  for (int i : p.asked) si[i] = theta[i] * p.scale[i];
-  return si;
-}
-
 // W = L^{-1} with Omega = L L' (a tiny ridge if Omega is numerically singular: adjacent
 // overlapping taus are strongly correlated).
 bool Whitening(const Eigen::MatrixXd& omega, Eigen::MatrixXd* w) {
@@ -115,19 +109,75 @@ bool Whitening(const Eigen::MatrixXd& omega, Eigen::MatrixXd* w) {
   return false;
 }
 
-// One GLS solve for a fixed whitening W.
-bool SolveWhitened(const AvarCurve& curve, const Problem& p, const Eigen::MatrixXd& w,
-                   std::array<double, kTerms>* theta, std::string* why) {
-  const auto taus = static_cast<Eigen::Index>(curve.size());
-  Eigen::VectorXd a = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), taus);
-  Eigen::MatrixXd shapes = Eigen::MatrixXd::Zero(taus, kTerms);
-  for (int i : p.asked) {
-    for (Eigen::Index k = 0; k < taus; ++k) shapes(k, i) = p.shape[i][k] * p.scale[i];
+// Non-negative least squares min |A x - y|^2, x >= 0, by the Lawson-Hanson active-set method on
+// column-normalised A: exact for the linear (WLS, GLS) problems, where a bounded iterative solver
+// stops short on the badly scaled designs of long curves (and then a nested fit can look better
+// than the full one).
+Eigen::VectorXd NonNegativeLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
+  const Eigen::Index n = a.cols();
+  Eigen::VectorXd norm(n);
+  for (Eigen::Index j = 0; j < n; ++j) norm(j) = a.col(j).norm() > 0.0 ? a.col(j).norm() : 1.0;
+  const Eigen::MatrixXd as = a * norm.cwiseInverse().asDiagonal();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  std::vector<bool> passive(static_cast<std::size_t>(n), false);
+  auto solve_passive = [&](Eigen::VectorXd* z) {
+    std::vector<Eigen::Index> idx;
+    for (Eigen::Index j = 0; j < n; ++j) if (passive[j]) idx.push_back(j);
+    z->setZero(n);
+    if (idx.empty()) return;
+    Eigen::MatrixXd sub(as.rows(), static_cast<Eigen::Index>(idx.size()));
+    for (std::size_t c = 0; c < idx.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = as.col(idx[c]);
+    const Eigen::VectorXd zs = sub.colPivHouseholderQr().solve(y);
+    for (std::size_t c = 0; c < idx.size(); ++c) (*z)(idx[c]) = zs(static_cast<Eigen::Index>(c));
+  };
+  const double tolerance = 1e-12 * std::max(1.0, (as.transpose() * y).cwiseAbs().maxCoeff());
+  for (int outer = 0; outer < 3 * n + 3; ++outer) {
+    const Eigen::VectorXd w = as.transpose() * (y - as * x);
+    Eigen::Index best = -1;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (!passive[j] && w(j) > tolerance && (best < 0 || w(j) > w(best))) best = j;
+    }
+    if (best < 0) break;
+    passive[best] = true;
+    for (int inner = 0; inner < 3 * n + 3; ++inner) {
+      Eigen::VectorXd z;
+      solve_passive(&z);
+      bool feasible = true;
+      for (Eigen::Index j = 0; j < n; ++j) if (passive[j] && z(j) <= 0.0) feasible = false;
+      if (feasible) {
+        x = z;
+        break;
+      }
+      double alpha = 1.0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (passive[j] && z(j) <= 0.0) alpha = std::min(alpha, x(j) / (x(j) - z(j)));
+      }
+      x += alpha * (z - x);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (passive[j] && x(j) <= 1e-14) {
+          passive[j] = false;
+          x(j) = 0.0;
+        }
+      }
+    }
   }
-  ceres::Problem problem;
-  problem.AddResidualBlock(new WhitenedAvarResiduals(w * a, w * shapes), nullptr, &(*theta)[0],
-                           &(*theta)[1], &(*theta)[2], &(*theta)[3], &(*theta)[4]);
-  return SolveBounded(p, &problem, theta, why);
+  return x.cwiseQuotient(norm);
+}
+
+// Solves the linear problem whitened by `w` (rows: taus) for the asked terms, theta' >= 0.
+void SolveLinear(const AvarCurve& curve, const Problem& p, const Eigen::MatrixXd& w,
+                 std::array<double, kTerms>* theta) {
+  const auto taus = static_cast<Eigen::Index>(curve.size());
+  const Eigen::VectorXd a = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), taus);
+  Eigen::MatrixXd shapes(taus, static_cast<Eigen::Index>(p.asked.size()));
+  for (std::size_t j = 0; j < p.asked.size(); ++j) {
+    for (Eigen::Index k = 0; k < taus; ++k) {
+      shapes(k, static_cast<Eigen::Index>(j)) = p.shape[p.asked[j]][k] * p.scale[p.asked[j]];
+    }
+  }
+  const Eigen::VectorXd x = NonNegativeLeastSquares(w * shapes, w * a);
+  theta->fill(0.0);
+  for (std::size_t j = 0; j < p.asked.size(); ++j) (*theta)[p.asked[j]] = x(static_cast<Eigen::Index>(j));
 }
 
 }  // namespace
@@ -326,53 +376,57 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
   }
   bool settled = false;
   int iteration = 0;
-  const int passes =
-      options.method == FitMethod::kLogWls || weight_model_si ? 1 : options.max_reweightings;
-  for (; iteration < passes && !settled; ++iteration) {
-    const std::array<double, kTerms> before = theta;
-    if (!Solve(options, curve, p, expected, &theta, &why)) {
-      summary->message = "fit failed: " + why;
-      return false;
-    }
-    if (weight_model_si) {
-      settled = true;
-      continue;
-    }
-    expected = Model(p, theta, taus);
-    for (double& e : expected) e = std::max(e, 1e-300);
-    settled = iteration > 0;
-    for (int i : p.asked) {
-      if (std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
-        settled = false;
-      }
-    }
-  }
-  if (options.method == FitMethod::kLogWls) settled = true;
-
   Eigen::MatrixXd whitening;  // GLS only
   if (options.method == FitMethod::kGls) {
     if (curve.estimator != sim::AvarEstimatorKind::kOverlapping || curve.num_samples <= 0) {
       summary->message = "fit: GLS needs an overlapping Allan curve with its record length";
       return false;
     }
-    const AvarCovarianceModel& covariance = cache->Covariance();
-    settled = false;
-    const int gls_passes = weight_model_si ? 1 : options.max_reweightings;
-    for (int gls = 0; gls < gls_passes && !settled; ++gls, ++iteration) {
+    // Omega is fixed at a pilot model and held (see the header): the log-domain WLS fit, whose
+    // weights nu/2 do not depend on the model, or the caller's weight model in term selection.
+    std::array<double, kTerms> anchor{};
+    if (weight_model_si) {
+      anchor = *weight_model_si;
+    } else {
+      FitOptions pilot = options;
+      pilot.method = FitMethod::kLogWls;
+      FitSummary pilot_summary;
+      if (!FitFixedTerms(pilot, curve, cache, &pilot_summary)) {
+        summary->message = "fit: the pilot log-WLS fit failed: " + pilot_summary.message;
+        return false;
+      }
+      anchor = SquaredCoefficients(pilot_summary);
+    }
+    if (!Whitening(cache->Covariance().Covariance(anchor), &whitening)) {
+      summary->message = "fit: the model covariance is not positive definite";
+      return false;
+    }
+    SolveLinear(curve, p, whitening, &theta);
+    iteration = 1;
+    settled = true;
+  } else if (options.method == FitMethod::kLogWls) {
+    if (!Solve(options, curve, p, expected, &theta, &why)) {
+      summary->message = "fit failed: " + why;
+      return false;
+    }
+    iteration = 1;
+    settled = true;
+  } else {
+    const int passes = weight_model_si ? 1 : options.max_reweightings;
+    for (; iteration < passes && !settled; ++iteration) {
       const std::array<double, kTerms> before = theta;
-      if (!Whitening(covariance.Covariance(weight_model_si ? *weight_model_si : SquaredSi(p, theta)),
-                     &whitening)) {
-        summary->message = "fit: the model covariance is not positive definite";
-        return false;
+      Eigen::VectorXd sqrt_w(static_cast<Eigen::Index>(taus));
+      for (std::size_t k = 0; k < taus; ++k) sqrt_w(static_cast<Eigen::Index>(k)) = std::sqrt(0.5 * p.edf[k]) / expected[k];
+      SolveLinear(curve, p, sqrt_w.asDiagonal().toDenseMatrix(), &theta);
+      if (weight_model_si) {
+        settled = true;
+        continue;
       }
-      if (!SolveWhitened(curve, p, whitening, &theta, &why)) {
-        summary->message = "fit failed: " + why;
-        return false;
-      }
-      settled = gls > 0 || weight_model_si;
+      expected = Model(p, theta, taus);
+      for (double& e : expected) e = std::max(e, 1e-300);
+      settled = iteration > 0;
       for (int i : p.asked) {
-        if (!weight_model_si &&
-            std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
+        if (std::abs(theta[i] - before[i]) > options.reweight_tolerance * std::max(theta[i], 1e-12)) {
           settled = false;
         }
       }
@@ -438,13 +492,16 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
   summary->ok = true;
   summary->message = (settled ? "converged" : "weights did not settle within max_reweightings") +
                      edf_note;
-  // chi2 far above its expectation (5 SD of chi2_dof): the model does not describe the curve,
-  // and coefficients and sigmas are those of the closest wrong model.
-  if (summary->dof > 0 && chi2 > summary->dof + 5.0 * std::sqrt(2.0 * summary->dof)) {
-    summary->message += "; POOR FIT: chi2 = " + std::to_string(chi2) + " on " +
-                        std::to_string(summary->dof) +
-                        " dof, the model does not describe this curve (sigmas are not meaningful;"
-                        " look for effects beyond the model)";
+  if (summary->dof > 0) {
+    summary->p_value =
+        boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), chi2));
+  }
+  if (summary->dof > 0 && summary->p_value < 1e-6) {
+    std::ostringstream os;
+    os << "; POOR FIT: chi2 = " << chi2 << " on " << summary->dof << " dof (p = " << summary->p_value
+       << "), the model does not describe this curve (sigmas are not meaningful; look for effects "
+          "beyond the model)";
+    summary->message += os.str();
   }
   return true;
 }

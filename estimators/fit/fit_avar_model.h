@@ -7,10 +7,22 @@
 //            so that E comes from the fitted model (THEORY.md §4.4 (i)).
 //   kLogWls: the log-domain variant, weights nu/2, with the psi(nu/2) - ln(nu/2) bias removed
 //            (THEORY.md §4.4 (ii)).
-//   kGls:    generalised least squares with the full covariance of the overlapping AVAR estimates
-//            across taus computed from the fitted model (avar_covariance.h, THEORY.md §2.1),
-//            iterated: the consistent estimator the GMWM literature calls for (Guerrier et al.
-//            2013) without its wavelet detour. Overlapping curves only.
+//   kGls:    generalised least squares with the full covariance Omega of the overlapping AVAR
+//            estimates across taus (avar_covariance.h, THEORY.md §2.1), the consistent estimator
+//            the GMWM literature calls for (Guerrier et al. 2013) without its wavelet detour.
+//            Omega is computed ONCE from a pilot fit (log-WLS, whose weights nu/2 do not depend
+//            on the model) and then held, as GMWM holds its weight matrix. Iterating Omega(theta)
+//            to a fixed point is not a likelihood method: the quadratic cost r' Omega(theta)^-1 r
+//            falls as Omega grows, and without the Gaussian ln det Omega(theta) term nothing
+//            stops it, so on a misspecified curve the iteration inflates the flicker term (ADIS
+//            16405 Gyro_X: B ~ 190 deg/h) and shrinks chi2 until it no longer flags the misfit
+//            (MTi-G: 78 on 49 dof). A full Gaussian likelihood would fix that too but is not
+//            convex, needs d Omega / d theta, and the AVAR estimates are chi-square-like rather
+//            than Gaussian at long taus; two-step feasible GLS with a consistent pilot is
+//            asymptotically as efficient. With Omega fixed the problem is linear: solved exactly
+//            by non-negative least squares. Overlapping curves only: the covariance model is
+//            built for overlapping starts (non-overlapping would need another pair count and is
+//            not worth it: the overlapping estimator dominates it at every tau).
 // Uncertainties: the covariance (S' W S)^{-1} of the squared coefficients (W = Omega^{-1} for
 // GLS), propagated to c_i = sqrt(c_i^2) to first order.
 // WLS treats the taus as independent, which overlapping curves are not; the experiments measure
@@ -63,6 +75,10 @@ struct FitSummary {
   bool converged = false;
   double chi2 = 0.0;  // sum of squared weighted (GLS: whitened) residuals at the solution
   int dof = 0;        // taus - fitted coefficients
+  // P(chi2_dof >= chi2): the goodness of fit. Tiny (POOR FIT in the message below 1e-6) when the
+  // model does not describe the curve; then coefficients and sigmas are those of the closest
+  // wrong model.
+  double p_value = 1.0;
   bool ok = false;
   std::string message;
 };
