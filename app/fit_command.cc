@@ -20,6 +20,7 @@
 #include "app/rate_units.h"
 #include "estimators/fit/bandwidth_estimate.h"
 #include "estimators/fit/fit_avar_model.h"
+#include "estimators/fit/parametric_fit.h"
 
 namespace allanlab::app {
 namespace {
@@ -39,18 +40,22 @@ bool ParseMethod(const std::string& text, FitMethod* method) {
   return true;
 }
 
-bool ParseTerms(const std::string& text, std::vector<Coefficient>* terms, std::string* why) {
+bool ParseTerms(const std::string& text, std::vector<Coefficient>* terms,
+                std::vector<std::shared_ptr<const estimators::ParametricTerm>>* extra, std::string* why) {
   std::stringstream ss(text);
   std::string id;
   while (std::getline(ss, id, ',')) {
     Coefficient c;
-    if (!estimators::ParseCoefficient(id, &c)) {
-      *why = "unknown term '" + id + "' (expected a comma list of Q, N, B, K, R)";
+    if (estimators::ParseCoefficient(id, &c)) {
+      terms->push_back(c);
+    } else if (auto t = estimators::MakeParametricTerm(id); t && id.size() <= 3) {
+      extra->push_back(std::move(t));
+    } else {
+      *why = "unknown term '" + id + "' (expected a comma list of Q, N, B, K, R, H, GM, BW, BW2)";
       return false;
     }
-    terms->push_back(c);
   }
-  if (terms->empty()) {
+  if (terms->empty() && extra->empty()) {
     *why = "no terms";
     return false;
   }
@@ -81,6 +86,7 @@ std::string Format(double v) {
 }
 
 void WriteTable(std::ostream& os, const estimators::FitSummary& s,
+                const std::vector<estimators::ParametricEstimate>& extra,
                 const estimators::BandwidthEstimate& bw) {
   os << "coefficient  value          +- sigma      unit            slope method\n";
   for (Coefficient c : estimators::kAllCoefficients) {
@@ -97,7 +103,19 @@ void WriteTable(std::ostream& os, const estimators::FitSummary& s,
     os << line;
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
   }
-  os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof, "
+  for (const auto& e : extra) {
+    for (std::size_t q = 0; q < e.parameters.size(); ++q) {
+      const auto& spec = e.parameters[q];
+      char line[256];
+      std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-15s %s\n", (e.short_name + " " + spec.name).c_str(),
+                    e.fitted ? Format(e.value_si[q] / spec.si_per_datasheet).c_str() : "-",
+                    e.fitted ? ("+- " + Format(e.sigma_si[q] / spec.si_per_datasheet)).c_str() : "",
+                    spec.datasheet_unit.c_str(), "-");
+      os << line;
+    }
+    if (!e.note.empty()) os << "             (" << e.note << ")\n";
+  }
+  os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
      << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
      << s.message << "\n";
   if (bw.found) {
@@ -112,6 +130,7 @@ void WriteTable(std::ostream& os, const estimators::FitSummary& s,
 }
 
 nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::FitSummary& s,
+                               const std::vector<estimators::ParametricEstimate>& extra,
                                const estimators::BandwidthEstimate& bw, const Provenance& p) {
   nlohmann::ordered_json j;
   j["method"] = o.method;
@@ -129,6 +148,19 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
     if (slope.found) entry["slope_method"] = estimators::ToDatasheetUnit(c, slope.value_si);
     coefficients[std::string(estimators::CoefficientId(c))] = entry;
   }
+  for (const auto& e : extra) {
+    nlohmann::ordered_json entry;
+    entry["id"] = e.id;
+    entry["fitted"] = e.fitted;
+    for (std::size_t q = 0; q < e.parameters.size(); ++q) {
+      const auto& spec = e.parameters[q];
+      entry[spec.name] = {{"value", e.fitted ? e.value_si[q] / spec.si_per_datasheet : 0.0},
+                          {"sigma", e.fitted ? e.sigma_si[q] / spec.si_per_datasheet : 0.0},
+                          {"unit", spec.datasheet_unit}};
+    }
+    if (!e.note.empty()) entry["note"] = e.note;
+    coefficients[e.short_name] = entry;
+  }
   j["coefficients"] = coefficients;
   nlohmann::ordered_json bandwidth;
   bandwidth["found"] = bw.found;
@@ -141,14 +173,14 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
     bandwidth["note"] = bw.note;
   }
   j["bandwidth_hz"] = bandwidth;
-  j["fit"] = {{"chi2", s.chi2}, {"dof", s.dof}, {"converged", s.converged},
+  j["fit"] = {{"chi2", s.chi2}, {"dof", s.dof}, {"p_value", s.p_value}, {"converged", s.converged},
               {"taus_used", s.taus_used}, {"message", s.message}};
   j["provenance"] = ProvenanceJson(p);
   return j;
 }
 
 AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
-                  const estimators::FitSummary& s) {
+                  const estimators::FitSummary& s, const sim::SensorModel* fitted_model) {
   AllanPlot plot = AvarPlot(report);  // data with interval bars
   plot.title = "allanlab fit: " + report.record.path;
   const double unit = FromRadPerSecond(report.output_unit, 1.0);
@@ -166,6 +198,19 @@ AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
     }
     plot.series.push_back(term);
   }
+  if (fitted_model) {  // parametric terms: each sim term of the fitted model, and its exact total
+    total = estimators::ModelAvarOnCurve(*fitted_model, curve);
+    for (const sim::NoiseTerm& t : fitted_model->terms) {
+      const std::string_view id = sim::TermId(t);
+      if (id != sim::GaussMarkov::kId && id != sim::Harmonic::kId) continue;
+      sim::SensorModel one = *fitted_model;
+      one.terms = {t};
+      const std::vector<double> v = estimators::ModelAvarOnCurve(one, curve);
+      PlotSeries term{std::string(id) + " term", PlotStyle::kDashedLine, curve.tau_s, {}};
+      for (double x : v) term.y.push_back(std::sqrt(std::max(x, 0.0)) * unit);
+      plot.series.push_back(term);
+    }
+  }
   PlotSeries fitted{"fitted total", PlotStyle::kLine, curve.tau_s, {}};
   for (double v : total) fitted.y.push_back(std::sqrt(v) * unit);
   plot.series.push_back(fitted);
@@ -179,7 +224,11 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
   }
   fit.terms.clear();
-  if (!ParseTerms(o.terms, &fit.terms, &why)) return Failure{kExitUsageError, "--terms: " + why};
+  estimators::ParametricFitOptions parametric;
+  if (!ParseTerms(o.terms, &fit.terms, &parametric.extra, &why)) return Failure{kExitUsageError, "--terms: " + why};
+  if (!parametric.extra.empty() && fit.method == FitMethod::kSlope) {
+    return Failure{kExitUsageError, "--terms: H, GM and BW need a fit method (gls, wls or logwls), not slope"};
+  }
   fit.select_terms = o.select_terms;
 
   std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.curve.path}};
@@ -206,8 +255,21 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
                                           " usable taus (constant or too short): nothing to fit"};
   }
   estimators::FitSummary summary;
-  if (!estimators::FitAvarModel(fit, curve, &summary)) {
-    return Failure{kExitRuntimeError, o.curve.path + ": " + summary.message};
+  estimators::ParametricFitSummary parametric_summary;
+  std::optional<sim::SensorModel> fitted_model;
+  if (parametric.extra.empty()) {
+    if (!estimators::FitAvarModel(fit, curve, &summary)) {
+      return Failure{kExitRuntimeError, o.curve.path + ": " + summary.message};
+    }
+  } else {
+    // No term selection with parametric terms (parametric_fit.h): every requested term is kept.
+    parametric.method = fit.method;
+    parametric.terms = fit.terms;
+    if (!estimators::FitAvarModelWithTerms(parametric, curve, &parametric_summary)) {
+      return Failure{kExitRuntimeError, o.curve.path + ": " + parametric_summary.base.message};
+    }
+    summary = parametric_summary.base;
+    fitted_model = estimators::FittedModel(parametric, curve, parametric_summary);
   }
   const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
 
@@ -221,9 +283,9 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   p.Add("method", o.method);
   p.Add("terms", o.terms + (o.select_terms ? " (with term selection)" : ""));
 
-  WriteTable(std::cout, summary, bandwidth);
+  WriteTable(std::cout, summary, parametric_summary.extra, bandwidth);
   std::cout.flush();
-  if (json.is_open()) json.stream() << FitJson(o, summary, bandwidth, p).dump(2) << "\n";
+  if (json.is_open()) json.stream() << FitJson(o, summary, parametric_summary.extra, bandwidth, p).dump(2) << "\n";
   if (kalibr.is_open()) {
     KalibrGyroNoise noise;
     const auto& n = summary.at(Coefficient::kN);
@@ -235,7 +297,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     noise.update_rate_hz = report.record.sample_rate_hz;
     kalibr.stream() << KalibrImuYaml(noise, p);
   }
-  if (png.is_open() && !RenderAllanPlot(FitPlot(report, curve, summary), &png, &why)) {
+  if (png.is_open() && !RenderAllanPlot(FitPlot(report, curve, summary, fitted_model ? &*fitted_model : nullptr), &png, &why)) {
     return Failure{kExitRuntimeError, why};
   }
   for (AtomicFile* file : {&json, &kalibr, &png}) {
@@ -258,7 +320,9 @@ Subcommand AddFitCommand(CLI::App* parent) {
                   "gls (default: generalised least squares with the model covariance), wls, "
                   "logwls or slope (the graphical method, no uncertainty)")
       ->type_name("gls|wls|logwls|slope");
-  cmd->add_option("--terms", options->terms, "terms to fit, a comma list of Q,N,B,K,R (default all)")
+  cmd->add_option("--terms", options->terms, "terms to fit, a comma list of Q,N,B,K,R (default all) and parametric terms H "
+                  "(harmonic Omega0, f0), GM (Gauss-Markov sigma, Tc), BW or BW2 (band-limit fc, "
+                  "first order or 2nd-order Butterworth; no term selection with these)")
       ->type_name("LIST");
   cmd->add_flag("!--no-select", options->select_terms,
                 "keep every requested term (default: drop terms the data do not support, by a "
@@ -272,7 +336,8 @@ Subcommand AddFitCommand(CLI::App* parent) {
   cmd->add_option("--plot", options->plot_path,
                   "also draw the data with intervals, the fitted total and each term (PNG, gnuplot)")
       ->type_name("OUT.png");
-  cmd->footer("Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.\nExit status: 0 ok, "
+  cmd->footer("Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2; H Omega0 deg/h, "
+              "f0 Hz; GM sigma deg/h, Tc s; BW fc Hz.\nExit status: 0 ok, "
               "1 bad file or failed fit, 2 usage error.");
   return {cmd, [options](const std::string& command_line) { return RunFit(*options, command_line); }};
 }

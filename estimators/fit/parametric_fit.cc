@@ -1,0 +1,449 @@
+#include "estimators/fit/parametric_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/special_functions/digamma.hpp>
+
+#include "estimators/fit/avar_covariance.h"
+#include "estimators/fit/model_avar_residuals.h"
+
+namespace allanlab::estimators {
+namespace {
+
+constexpr int kTerms = 5;
+
+double EdfAt(const AvarCurve& c, std::size_t k) {
+  return c.edf.empty() ? std::max(1.0, static_cast<double>(c.num_samples / c.m[k] - 1)) : c.edf[k];
+}
+
+// The model pieces at u, cached per modifier parameters (the shapes of the linear terms change
+// only with the band-limit).
+class ModelPieces {
+ public:
+  ModelPieces(const AvarCurve& curve, std::vector<int> linear, std::vector<double> scale,
+              std::vector<const ParametricTerm*> extra)
+      : curve_(curve), linear_(std::move(linear)), scale_(std::move(scale)), extra_(std::move(extra)) {
+    for (const ParametricTerm* t : extra_) {
+      offset_.push_back(nonlinear_);
+      nonlinear_ += static_cast<int>(t->parameters().size());
+    }
+  }
+  int nonlinear() const { return nonlinear_; }
+  const std::vector<int>& offsets() const { return offset_; }
+
+  // SI parameters of extra term t from u.
+  std::vector<double> Params(const double* u, std::size_t t) const {
+    std::vector<double> p;
+    const auto& specs = extra_[t]->parameters();
+    for (std::size_t q = 0; q < specs.size(); ++q) {
+      const double v = u[offset_[t] + static_cast<int>(q)];
+      p.push_back(specs[q].log_scale ? std::exp(v) : v);
+    }
+    return p;
+  }
+  sim::SensorModel Base(const double* u) const {
+    sim::SensorModel m;
+    m.sample_rate_hz = 1.0 / curve_.sample_period_s;
+    for (std::size_t t = 0; t < extra_.size(); ++t) {
+      if (extra_[t]->modifies_other_terms()) extra_[t]->ApplyTo(Params(u, t), &m);
+    }
+    return m;
+  }
+  void Evaluate(const double* u, Eigen::MatrixXd* shapes, Eigen::VectorXd* extra) {
+    const auto taus = static_cast<Eigen::Index>(curve_.size());
+    const sim::SensorModel base = Base(u);
+    std::vector<double> key;
+    if (base.band_limit.enabled()) key = {base.band_limit.cutoff_hz};
+    auto it = shapes_.find(key);
+    if (it == shapes_.end()) {
+      Eigen::MatrixXd s(taus, static_cast<Eigen::Index>(linear_.size()));
+      for (std::size_t j = 0; j < linear_.size(); ++j) {
+        sim::SensorModel m = base;
+        m.terms = {TermFor(static_cast<Coefficient>(linear_[j]), 1.0)};
+        const std::vector<double> e = ModelAvarOnCurve(m, curve_);
+        for (Eigen::Index k = 0; k < taus; ++k) s(k, static_cast<Eigen::Index>(j)) = e[k] * scale_[j];
+      }
+      if (shapes_.size() > 64) shapes_.clear();
+      it = shapes_.emplace(key, s).first;
+    }
+    *shapes = it->second;
+    sim::SensorModel m = base;
+    for (std::size_t t = 0; t < extra_.size(); ++t) {
+      if (!extra_[t]->modifies_other_terms()) extra_[t]->ApplyTo(Params(u, t), &m);
+    }
+    extra->setZero(taus);
+    if (!m.terms.empty()) {
+      const std::vector<double> e = ModelAvarOnCurve(m, curve_);
+      for (Eigen::Index k = 0; k < taus; ++k) (*extra)(k) = e[k];
+    }
+  }
+
+ private:
+  const AvarCurve& curve_;
+  std::vector<int> linear_;
+  std::vector<double> scale_;
+  std::vector<const ParametricTerm*> extra_;
+  std::vector<int> offset_;
+  int nonlinear_ = 0;
+  std::map<std::vector<double>, Eigen::MatrixXd> shapes_;
+};
+
+bool Whiten(const Eigen::MatrixXd& omega, Eigen::MatrixXd* w) {
+  const Eigen::Index n = omega.rows();
+  for (double ridge = 0.0; ridge < 1e-3; ridge = ridge == 0.0 ? 1e-14 : ridge * 100.0) {
+    Eigen::LLT<Eigen::MatrixXd> llt(omega + ridge * omega.diagonal().mean() * Eigen::MatrixXd::Identity(n, n));
+    if (llt.info() == Eigen::Success) {
+      *w = llt.matrixL().solve(Eigen::MatrixXd::Identity(n, n));
+      return true;
+    }
+  }
+  return false;
+}
+
+struct Stage {
+  bool usable = false;
+  bool converged = false;
+  int iterations = 0;
+  std::string message;
+};
+
+Stage SolveStage(ModelAvarResiduals* cost, std::vector<double>* theta, std::vector<double>* u,
+                 const std::vector<double>& u_lo, const std::vector<double>& u_hi, int max_iterations) {
+  ceres::Problem::Options po;
+  ceres::Problem problem(po);
+  std::vector<double*> blocks;
+  if (!theta->empty()) blocks.push_back(theta->data());
+  if (!u->empty()) blocks.push_back(u->data());
+  problem.AddResidualBlock(cost, nullptr, blocks);
+  for (std::size_t i = 0; i < theta->size(); ++i) problem.SetParameterLowerBound(theta->data(), static_cast<int>(i), 0.0);
+  for (std::size_t i = 0; i < u->size(); ++i) {
+    problem.SetParameterLowerBound(u->data(), static_cast<int>(i), u_lo[i]);
+    problem.SetParameterUpperBound(u->data(), static_cast<int>(i), u_hi[i]);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = max_iterations;
+  so.function_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.parameter_tolerance = 1e-10;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary s;
+  ceres::Solve(so, &problem, &s);
+  Stage out;
+  out.usable = s.IsSolutionUsable();
+  out.converged = s.termination_type == ceres::CONVERGENCE;
+  out.iterations = static_cast<int>(s.iterations.size());
+  out.message = s.message;
+  return out;
+}
+
+}  // namespace
+
+bool ParametricFitOptions::IsValid(std::string* why) const {
+  if (method == FitMethod::kSlope) {
+    if (why) *why = "fit: parametric terms need a fit method (wls, logwls or gls), not slope";
+    return false;
+  }
+  if (terms.empty() && extra.empty()) {
+    if (why) *why = "fit: no terms requested";
+    return false;
+  }
+  int modifiers = 0;
+  for (const auto& t : extra) {
+    if (!t) {
+      if (why) *why = "fit: null parametric term";
+      return false;
+    }
+    modifiers += t->modifies_other_terms() ? 1 : 0;
+  }
+  if (modifiers > 1) {
+    if (why) *why = "fit: at most one band-limit term";
+    return false;
+  }
+  if (max_iterations < 1) {
+    if (why) *why = "fit: max_iterations must be >= 1";
+    return false;
+  }
+  return true;
+}
+
+std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCurve& curve) {
+  const sim::RecordShape shape{curve.num_samples, curve.estimator};
+  if (!model.band_limit.enabled()) return model.ExpectedAvar(curve.m, shape);
+  // Exact filtered AVAR up to 2000 filter time constants, unfiltered beyond (header).
+  const double cap_tau = 2000.0 / (2.0 * std::numbers::pi * model.band_limit.cutoff_hz);
+  std::vector<std::int64_t> near, far;
+  for (std::size_t k = 0; k < curve.size(); ++k) (curve.tau_s[k] <= cap_tau ? near : far).push_back(curve.m[k]);
+  std::vector<double> out;
+  if (!near.empty()) out = model.ExpectedAvar(near, shape);
+  if (!far.empty()) {
+    sim::SensorModel unfiltered = model;
+    unfiltered.band_limit.kind = sim::LowPassKind::kNone;
+    const std::vector<double> f = unfiltered.ExpectedAvar(far, shape);
+    out.insert(out.end(), f.begin(), f.end());
+  }
+  return out;
+}
+
+bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve& curve,
+                           ParametricFitSummary* summary) {
+  *summary = ParametricFitSummary{};
+  FitSummary& base = summary->base;
+  base.method = options.method;
+  std::string why;
+  if (!options.IsValid(&why) || !curve.IsValid(&why)) {
+    base.message = why;
+    return false;
+  }
+  if (options.method == FitMethod::kGls &&
+      (curve.estimator != sim::AvarEstimatorKind::kOverlapping || curve.num_samples <= 0)) {
+    base.message = "fit: GLS needs an overlapping Allan curve with its record length";
+    return false;
+  }
+  base.slope = ReadSlopes(curve);
+  const std::size_t taus = curve.size();
+  base.taus_used = static_cast<int>(taus);
+
+  // 1. Baseline: the linear terms alone (log-WLS).
+  std::vector<int> linear;
+  for (Coefficient c : options.terms) linear.push_back(static_cast<int>(c));
+  std::sort(linear.begin(), linear.end());
+  linear.erase(std::unique(linear.begin(), linear.end()), linear.end());
+  for (int i : linear) base.coefficients[i].asked = true;
+  std::vector<double> baseline_e(taus, 0.0);
+  sim::SensorModel without;
+  without.sample_rate_hz = 1.0 / curve.sample_period_s;
+  std::array<double, kTerms> baseline_si{};
+  if (!linear.empty()) {
+    FitOptions b;
+    b.method = FitMethod::kLogWls;
+    b.terms = options.terms;
+    b.select_terms = false;
+    FitSummary bs;
+    if (!FitAvarModel(b, curve, &bs)) {
+      base.message = "fit: the baseline fit failed: " + bs.message;
+      return false;
+    }
+    for (int i : linear) {
+      if (!bs.coefficients[i].fitted) continue;
+      baseline_si[i] = bs.coefficients[i].value_si * bs.coefficients[i].value_si;
+      without.terms.push_back(TermFor(static_cast<Coefficient>(i), bs.coefficients[i].value_si));
+    }
+    baseline_e = ModelAvarOnCurve(without, curve);
+  }
+  std::vector<double> residual(taus);
+  for (std::size_t k = 0; k < taus; ++k) residual[k] = curve.avar[k] - baseline_e[k];
+
+  // Parametric terms with a starting point.
+  std::vector<const ParametricTerm*> active;
+  std::vector<std::size_t> active_index;
+  std::vector<double> u0, u_lo, u_hi;
+  summary->extra.resize(options.extra.size());
+  for (std::size_t t = 0; t < options.extra.size(); ++t) {
+    const ParametricTerm& term = *options.extra[t];
+    ParametricEstimate& pe = summary->extra[t];
+    pe.id = std::string(term.id());
+    pe.short_name = std::string(term.short_name());
+    pe.parameters = term.parameters();
+    pe.value_si.assign(pe.parameters.size(), 0.0);
+    pe.sigma_si.assign(pe.parameters.size(), 0.0);
+    std::vector<double> start, lo, hi;
+    std::string reason;
+    if (!term.InitialGuess(curve, residual, without, &start, &reason)) {
+      pe.note = "not fitted: " + reason;
+      continue;
+    }
+    term.Bounds(curve, &lo, &hi);
+    for (std::size_t q = 0; q < start.size(); ++q) {
+      const bool log_scale = pe.parameters[q].log_scale;
+      u0.push_back(log_scale ? std::log(start[q]) : start[q]);
+      u_lo.push_back(log_scale ? std::log(lo[q]) : lo[q]);
+      u_hi.push_back(log_scale ? std::log(hi[q]) : hi[q]);
+    }
+    active.push_back(&term);
+    active_index.push_back(t);
+  }
+  const std::size_t n_params = linear.size() + u0.size();
+  if (taus < n_params + 1) {
+    std::ostringstream os;
+    os << "fit: " << taus << " taus cannot support " << n_params << " parameters (need at least one more tau)";
+    base.message = os.str();
+    return false;
+  }
+
+  // Scales: c_i^2 = scale_i theta'_i with theta' ~ 1 where the term reaches the curve.
+  std::vector<double> scale;
+  for (int i : linear) {
+    const std::vector<double> s = TermShape(static_cast<Coefficient>(i), curve, true);
+    double sc = 0.0;
+    for (std::size_t k = 0; k < taus; ++k) {
+      if (s[k] > 0.0) sc = sc == 0.0 ? curve.avar[k] / s[k] : std::min(sc, curve.avar[k] / s[k]);
+    }
+    scale.push_back(sc > 0.0 ? sc : 1.0);
+  }
+  ModelPieces pieces(curve, linear, scale, active);
+  ModelAvarFunction function;
+  function.linear = static_cast<int>(linear.size());
+  function.nonlinear = pieces.nonlinear();
+  function.evaluate = [&pieces](const double* u, Eigen::MatrixXd* s, Eigen::VectorXd* e) {
+    pieces.Evaluate(u, s, e);
+  };
+  std::vector<double> theta(linear.size()), u = u0;
+  for (std::size_t j = 0; j < linear.size(); ++j) theta[j] = std::max(baseline_si[linear[j]] / scale[j], 1e-3);
+
+  // 2. Pilot on log residuals.
+  const auto n = static_cast<Eigen::Index>(taus);
+  Eigen::VectorXd log_target(n), sqrt_half_nu(n), a(n);
+  for (std::size_t k = 0; k < taus; ++k) {
+    const double half_nu = 0.5 * EdfAt(curve, k);
+    const auto kk = static_cast<Eigen::Index>(k);
+    log_target(kk) = std::log(curve.avar[k]) - (boost::math::digamma(half_nu) - std::log(half_nu));
+    sqrt_half_nu(kk) = std::sqrt(half_nu);
+    a(kk) = curve.avar[k];
+  }
+  auto* log_cost = new ModelAvarResiduals(function, ModelAvarResiduals::Domain::kLog, log_target,
+                                          sqrt_half_nu.asDiagonal().toDenseMatrix());
+  Stage stage = SolveStage(log_cost, &theta, &u, u_lo, u_hi, options.max_iterations);
+  if (!stage.usable) {
+    base.message = "fit failed (pilot): Ceres: " + stage.message;
+    return false;
+  }
+  int iterations = stage.iterations;
+  Eigen::MatrixXd w = sqrt_half_nu.asDiagonal().toDenseMatrix();
+  Eigen::VectorXd target = log_target;
+  ModelAvarResiduals::Domain domain = ModelAvarResiduals::Domain::kLog;
+
+  // 3. Final stage with weights fixed at the pilot.
+  if (options.method != FitMethod::kLogWls) {
+    Eigen::MatrixXd s;
+    Eigen::VectorXd e;
+    pieces.Evaluate(u.empty() ? nullptr : u.data(), &s, &e);
+    for (std::size_t j = 0; j < linear.size(); ++j) e += s.col(static_cast<Eigen::Index>(j)) * theta[j];
+    Eigen::VectorXd sd(n);
+    for (Eigen::Index k = 0; k < n; ++k) sd(k) = std::max(e(k), 1e-300) / sqrt_half_nu(k);
+    if (options.method == FitMethod::kWls) {
+      w = sd.cwiseInverse().asDiagonal().toDenseMatrix();
+    } else {
+      Eigen::MatrixXd r = Eigen::MatrixXd::Identity(n, n);
+      std::array<double, kTerms> pilot{};
+      bool any = false;
+      for (std::size_t j = 0; j < linear.size(); ++j) {
+        pilot[linear[j]] = theta[j] * scale[j];
+        any = any || (pilot[linear[j]] > 0.0 && linear[j] != static_cast<int>(Coefficient::kR));
+      }
+      if (any) {
+        const Eigen::MatrixXd omega = AvarCovarianceModel(curve, options.terms).Covariance(pilot);
+        const Eigen::VectorXd d = omega.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+        r = d.asDiagonal() * omega * d.asDiagonal();
+      }
+      if (!Whiten(sd.asDiagonal() * r * sd.asDiagonal(), &w)) {
+        base.message = "fit: the pilot covariance is not positive definite";
+        return false;
+      }
+    }
+    target = a;
+    domain = ModelAvarResiduals::Domain::kLinear;
+    auto* cost = new ModelAvarResiduals(function, domain, target, w);
+    stage = SolveStage(cost, &theta, &u, u_lo, u_hi, options.max_iterations);
+    if (!stage.usable) {
+      base.message = "fit failed: Ceres: " + stage.message;
+      return false;
+    }
+    iterations += stage.iterations;
+  }
+
+  // Residuals and Jacobian at the solution; covariance (J'J)^-1.
+  ModelAvarResiduals final_cost(function, domain, target, w);
+  const int blocks = (linear.empty() ? 0 : 1) + (u.empty() ? 0 : 1);
+  std::vector<const double*> params;
+  if (!linear.empty()) params.push_back(theta.data());
+  if (!u.empty()) params.push_back(u.data());
+  Eigen::VectorXd res(n);
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor jl(n, std::max<Eigen::Index>(1, static_cast<Eigen::Index>(linear.size())));
+  RowMajor ju(n, std::max<Eigen::Index>(1, static_cast<Eigen::Index>(u.size())));
+  std::vector<double*> jac;
+  if (!linear.empty()) jac.push_back(jl.data());
+  if (!u.empty()) jac.push_back(ju.data());
+  (void)blocks;
+  if (!final_cost.Evaluate(params.data(), res.data(), jac.data())) {
+    base.message = "fit: the model cannot be evaluated at the solution";
+    return false;
+  }
+  const auto p_all = static_cast<Eigen::Index>(linear.size() + u.size());
+  Eigen::MatrixXd j(n, p_all);
+  if (!linear.empty()) j.leftCols(static_cast<Eigen::Index>(linear.size())) = jl;
+  if (!u.empty()) j.rightCols(static_cast<Eigen::Index>(u.size())) = ju;
+  const Eigen::MatrixXd cov = (j.transpose() * j).completeOrthogonalDecomposition().pseudoInverse();
+
+  int fitted = 0;
+  for (std::size_t q = 0; q < linear.size(); ++q) {
+    CoefficientEstimate& ce = base.coefficients[linear[q]];
+    const double theta_si = theta[q] * scale[q];
+    const double sigma_theta = std::sqrt(std::max(cov(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(q)), 0.0)) * scale[q];
+    if (theta[q] <= 1e-12) {
+      ce.fitted = false;
+      ce.sigma_si = std::sqrt(sigma_theta);
+      ce.note = "at zero: not supported by the data (sigma is the coefficient whose square is 1 sigma)";
+      continue;
+    }
+    ++fitted;
+    ce.fitted = true;
+    ce.value_si = std::sqrt(theta_si);
+    ce.sigma_si = sigma_theta / (2.0 * ce.value_si);
+  }
+  for (std::size_t t = 0; t < active.size(); ++t) {
+    ParametricEstimate& pe = summary->extra[active_index[t]];
+    pe.fitted = true;
+    const std::vector<double> values = pieces.Params(u.data(), t);
+    for (std::size_t q = 0; q < values.size(); ++q) {
+      const auto idx = static_cast<Eigen::Index>(linear.size()) + pieces.offsets()[t] + static_cast<Eigen::Index>(q);
+      const double su = std::sqrt(std::max(cov(idx, idx), 0.0));
+      pe.value_si[q] = values[q];
+      pe.sigma_si[q] = pe.parameters[q].log_scale ? values[q] * su : su;
+      const std::size_t g = static_cast<std::size_t>(idx) - linear.size();
+      if (u[g] <= u_lo[g] + 1e-6 || u[g] >= u_hi[g] - 1e-6) {
+        pe.note += (pe.note.empty() ? "" : "; ") + pe.parameters[q].name + " at its bound";
+      }
+      ++fitted;
+    }
+  }
+  base.chi2 = res.squaredNorm();
+  base.dof = static_cast<int>(taus) - fitted;
+  base.iterations = iterations;
+  base.converged = stage.converged;
+  if (base.dof > 0) {
+    base.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(base.dof), base.chi2));
+  }
+  base.ok = summary->ok = true;
+  std::ostringstream os;
+  os << (stage.converged ? "converged" : "Ceres did not converge: " + stage.message);
+  if (base.dof > 0 && base.p_value < 1e-6) {
+    os << "; POOR FIT: chi2 = " << base.chi2 << " on " << base.dof << " dof (p = " << base.p_value
+       << "), the model does not describe this curve (sigmas are not meaningful; look for effects "
+          "beyond the model)";
+  }
+  base.message = os.str();
+  return true;
+}
+
+sim::SensorModel FittedModel(const ParametricFitOptions& options, const AvarCurve& curve,
+                             const ParametricFitSummary& summary) {
+  sim::SensorModel m;
+  m.sample_rate_hz = 1.0 / curve.sample_period_s;
+  for (Coefficient c : kAllCoefficients) {
+    const CoefficientEstimate& e = summary.base.at(c);
+    if (e.fitted) m.terms.push_back(TermFor(c, e.value_si));
+  }
+  for (std::size_t t = 0; t < options.extra.size() && t < summary.extra.size(); ++t) {
+    if (summary.extra[t].fitted) options.extra[t]->ApplyTo(summary.extra[t].value_si, &m);
+  }
+  return m;
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,76 @@
+#pragma once
+// One fit of the linear IEEE 952 terms (c_i^2 >= 0) together with parametric terms
+// (parametric_term.h: Gauss-Markov, harmonic, band-limit, ...): the entry the sim-to-real
+// diagnosis (issue 6) uses to try candidate effects on top of a baseline model.
+//
+// The model is a sim::SensorModel built from the parameters, so its expected AVAR is sim/'s exact
+// one (band-limit and finite record included). Stages:
+//   1. baseline: the linear terms alone by log-WLS; its residual seeds each parametric term's
+//      InitialGuess;
+//   2. pilot: all parameters by Ceres on the log-domain residuals sqrt(nu/2)(ln a - bias - ln E),
+//      whose weights do not depend on the model;
+//   3. final (kWls, kGls): linear-domain residuals whitened by a weight matrix fixed at the pilot
+//      (as in fit_avar_model.h: never iterated, see there why). kWls: diagonal nu/(2 E_pilot^2).
+//      kGls: Omega = D R D with D = diag(E_pilot sqrt(2/nu)) (the pilot's variances, parametric
+//      terms included) and R the correlation matrix of the exact covariance of the pilot's
+//      linear terms (avar_covariance.h); R ignores how the parametric terms correlate the taus,
+//      which is second order where they are small and is what the bootstrap option is for.
+// Jacobian: analytic in the linear terms, central differences in the parametric parameters
+// (ln scale); the residual functor passes Ceres' gradient check (tests). Uncertainties:
+// (J' J)^{-1} of the whitened problem at the solution, mapped back to SI.
+// No term selection here: the caller compares chi2 of nested fits (issue 6 does).
+// With the band-limit, the exact filtered AVAR is computed for taus up to 2000 filter time
+// constants (1/(2 pi fc)); beyond, the unfiltered exact shapes are used (relative difference
+// below 1e-3 there, far under the EDF noise of those taus).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+#include "estimators/fit/fit_avar_model.h"
+#include "estimators/fit/parametric_term.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::estimators {
+
+struct ParametricFitOptions {
+  FitMethod method = FitMethod::kGls;  // kWls, kLogWls or kGls (kSlope is not a fit)
+  std::vector<Coefficient> terms = {Coefficient::kQ, Coefficient::kN, Coefficient::kB,
+                                    Coefficient::kK, Coefficient::kR};
+  std::vector<std::shared_ptr<const ParametricTerm>> extra;  // at most one band-limit
+  int max_iterations = 200;  // Ceres iterations per stage
+  bool IsValid(std::string* why) const;
+};
+
+struct ParametricEstimate {
+  std::string id;                 // ParametricTerm::id()
+  std::string short_name;         // ParametricTerm::short_name()
+  std::vector<ParameterSpec> parameters;
+  std::vector<double> value_si;   // in parameters order
+  std::vector<double> sigma_si;   // standard uncertainties (0 if not fitted)
+  bool fitted = false;
+  std::string note;               // why not fitted, or caveats (at a bound)
+};
+
+struct ParametricFitSummary {
+  // Linear coefficients, chi2, dof (taus - all fitted parameters), p_value, converged, message.
+  FitSummary base;
+  std::vector<ParametricEstimate> extra;  // in options.extra order
+  bool ok = false;                        // = base.ok
+};
+
+// Returns summary->ok; failures (invalid options or curve, too few taus, solver failure) give a
+// message. Precondition for kGls: an overlapping curve with its record length.
+bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve& curve,
+                           ParametricFitSummary* summary);
+
+// The fitted model as a sim::SensorModel at the curve's sample rate: the fitted linear terms and
+// parametric terms (what the bootstrap simulates, what plots draw).
+sim::SensorModel FittedModel(const ParametricFitOptions& options, const AvarCurve& curve,
+                             const ParametricFitSummary& summary);
+
+// Expected AVAR of a model on the curve's averaging factors and record (SensorModel::ExpectedAvar
+// with the long-tau band-limit shortcut described above).
+std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCurve& curve);
+
+}  // namespace allanlab::estimators

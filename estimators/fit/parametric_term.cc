@@ -1,0 +1,228 @@
+#include "estimators/fit/parametric_term.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "estimators/fit/parametric_fit.h"
+#include "sim/units.h"
+
+namespace allanlab::estimators {
+namespace {
+
+double MaxAvar(const AvarCurve& c) { return *std::max_element(c.avar.begin(), c.avar.end()); }
+double MinAvar(const AvarCurve& c) { return *std::min_element(c.avar.begin(), c.avar.end()); }
+double Edf(const AvarCurve& c, std::size_t k) {
+  return c.edf.empty() ? std::max(1.0, static_cast<double>(c.num_samples / c.m[k] - 1)) : c.edf[k];
+}
+
+// Best amplitude^2 of a unit shape against the residual, by the weighted projection with
+// weights nu/(2 a^2); returns the weighted-SSE reduction (0 if the amplitude would be < 0).
+double Project(const AvarCurve& c, std::span<const double> residual, const std::vector<double>& shape,
+               double* amplitude2) {
+  double sr = 0.0, ss = 0.0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const double w = 0.5 * Edf(c, k) / (c.avar[k] * c.avar[k]);
+    sr += w * shape[k] * residual[k];
+    ss += w * shape[k] * shape[k];
+  }
+  if (!(ss > 0.0) || sr <= 0.0) return 0.0;
+  *amplitude2 = sr / ss;
+  return sr * sr / ss;
+}
+
+// A log grid from lo to hi with `per_decade` points.
+std::vector<double> LogGrid(double lo, double hi, double per_decade) {
+  std::vector<double> g;
+  for (double x = lo; x <= hi * (1.0 + 1e-12); x *= std::pow(10.0, 1.0 / per_decade)) g.push_back(x);
+  return g;
+}
+
+// A term with one amplitude and one scale parameter whose continuous AVAR shape (unit amplitude)
+// seeds the grid search of its initial guess.
+class AmplitudeScaleTerm : public ParametricTerm {
+ public:
+  const std::vector<ParameterSpec>& parameters() const override { return specs_; }
+  bool InitialGuess(const AvarCurve& curve, std::span<const double> residual,
+                    const sim::SensorModel&, std::vector<double>* params, std::string* why) const override {
+    std::vector<double> lower, upper;
+    Bounds(curve, &lower, &upper);
+    double best = 0.0, best_scale = 0.0, best_amp2 = 0.0;
+    for (double scale : LogGrid(lower[1], upper[1], 20.0)) {
+      std::vector<double> shape;
+      for (double tau : curve.tau_s) shape.push_back(UnitAsymptote(scale, tau));
+      double amp2 = 0.0;
+      const double gain = Project(curve, residual, shape, &amp2);
+      if (gain > best) {
+        best = gain;
+        best_scale = scale;
+        best_amp2 = amp2;
+      }
+    }
+    if (best <= 0.0) {
+      if (why) *why = "no positive residual this term's shape could explain";
+      return false;
+    }
+    const double amp = std::clamp(std::sqrt(best_amp2), lower[0] * 1.01, upper[0] * 0.99);
+    *params = {amp, best_scale};
+    return true;
+  }
+  void Bounds(const AvarCurve& curve, std::vector<double>* lower, std::vector<double>* upper) const override {
+    const double lo_amp = std::sqrt(MinAvar(curve)) * 1e-4, hi_amp = std::sqrt(MaxAvar(curve)) * 30.0;
+    double lo_scale = 0.0, hi_scale = 0.0;
+    ScaleBounds(curve, &lo_scale, &hi_scale);
+    *lower = {lo_amp, lo_scale};
+    *upper = {hi_amp, hi_scale};
+  }
+
+ protected:
+  virtual double UnitAsymptote(double scale, double tau) const = 0;
+  virtual void ScaleBounds(const AvarCurve& curve, double* lo, double* hi) const = 0;
+  std::vector<ParameterSpec> specs_;
+};
+
+ParameterSpec RateAmplitude(const char* name) {
+  return {name, "rad/s", "deg/h", units::DegPerHour(1.0), 0.0,
+          std::numeric_limits<double>::infinity(), true};
+}
+
+class GaussMarkovTerm final : public AmplitudeScaleTerm {
+ public:
+  GaussMarkovTerm() {
+    specs_ = {RateAmplitude("sigma"),
+              {"Tc", "s", "s", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
+  }
+  std::string_view id() const override { return sim::GaussMarkov::kId; }
+  std::string_view short_name() const override { return "GM"; }
+  void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
+    model->terms.push_back(sim::GaussMarkov{p[0], p[1]});
+  }
+
+ private:
+  double UnitAsymptote(double tc, double tau) const override {
+    return sim::GaussMarkov{1.0, tc}.AsymptoticAvar(tau);
+  }
+  // The AVAR peak (1.89 Tc) within a decade of the curve's taus.
+  void ScaleBounds(const AvarCurve& c, double* lo, double* hi) const override {
+    *lo = c.tau_s.front() / 10.0;
+    *hi = c.tau_s.back() * 10.0;
+  }
+};
+
+class HarmonicTerm final : public AmplitudeScaleTerm {
+ public:
+  HarmonicTerm() {
+    specs_ = {RateAmplitude("Omega0"),
+              {"f0", "Hz", "Hz", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
+  }
+  std::string_view id() const override { return sim::Harmonic::kId; }
+  std::string_view short_name() const override { return "H"; }
+  void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
+    model->terms.push_back(sim::Harmonic{p[0], p[1], std::nullopt});
+  }
+
+ private:
+  double UnitAsymptote(double f0, double tau) const override {
+    return sim::Harmonic{1.0, f0, std::nullopt}.AsymptoticAvar(tau);
+  }
+  // From a tenth of a cycle over the longest tau to just below the output Nyquist frequency.
+  void ScaleBounds(const AvarCurve& c, double* lo, double* hi) const override {
+    *lo = 0.1 / c.tau_s.back();
+    *hi = 0.499 / c.sample_period_s;
+  }
+};
+
+constexpr int kBandLimitOversampling = 8;
+
+class BandLimitTerm final : public ParametricTerm {
+ public:
+  explicit BandLimitTerm(sim::LowPassKind kind) : kind_(kind) {
+    specs_ = {{"fc", "Hz", "Hz", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
+  }
+  std::string_view id() const override { return "bandwidth"; }
+  std::string_view short_name() const override {
+    return kind_ == sim::LowPassKind::kButterworth2 ? "BW2" : "BW";
+  }
+  const std::vector<ParameterSpec>& parameters() const override { return specs_; }
+  bool modifies_other_terms() const override { return true; }
+  // From a tenth of the inverse longest tau to 0.45 of the internal rate (L = 8).
+  void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
+    *lower = {0.1 / c.tau_s.back()};
+    *upper = {0.45 * kBandLimitOversampling / c.sample_period_s};
+  }
+  void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
+    model->band_limit = sim::BandLimit{kind_, p[0], kBandLimitOversampling, sim::OutputSampling::kPoint};
+  }
+  // The cutoff whose band-limited baseline (rescaled as a whole) fits the curve best, on a grid
+  // from fs/100 to the upper bound; false if no cutoff beats the unfiltered baseline.
+  bool InitialGuess(const AvarCurve& curve, std::span<const double>, const sim::SensorModel& without,
+                    std::vector<double>* params, std::string* why) const override {
+    auto score = [&](const sim::SensorModel& model) {
+      const std::vector<double> e = ModelAvarOnCurve(model, curve);
+      double ea = 0.0, ee = 0.0;
+      for (std::size_t k = 0; k < curve.size(); ++k) {
+        const double w = 0.5 * Edf(curve, k) / (curve.avar[k] * curve.avar[k]);
+        ea += w * e[k] * curve.avar[k];
+        ee += w * e[k] * e[k];
+      }
+      const double s = ee > 0.0 ? ea / ee : 0.0;
+      double sse = 0.0;
+      for (std::size_t k = 0; k < curve.size(); ++k) {
+        const double w = 0.5 * Edf(curve, k) / (curve.avar[k] * curve.avar[k]);
+        sse += w * (curve.avar[k] - s * e[k]) * (curve.avar[k] - s * e[k]);
+      }
+      return sse;
+    };
+    std::vector<double> lower, upper;
+    Bounds(curve, &lower, &upper);
+    const double baseline = score(without);
+    double best = baseline, best_fc = 0.0;
+    for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_period_s), upper[0], 6.0)) {
+      sim::SensorModel model = without;
+      const double p[] = {fc};
+      ApplyTo(p, &model);
+      const double s = score(model);
+      if (s < best) {
+        best = s;
+        best_fc = fc;
+      }
+    }
+    if (best_fc == 0.0) {
+      if (why) *why = "no cutoff improves the fit of the short taus";
+      return false;
+    }
+    *params = {best_fc};
+    return true;
+  }
+
+ private:
+  sim::LowPassKind kind_;
+  std::vector<ParameterSpec> specs_;
+};
+
+}  // namespace
+
+void ParametricTerm::Bounds(const AvarCurve&, std::vector<double>* lower, std::vector<double>* upper) const {
+  lower->clear();
+  upper->clear();
+  for (const ParameterSpec& s : parameters()) {
+    lower->push_back(s.lower_si);
+    upper->push_back(s.upper_si);
+  }
+}
+
+std::unique_ptr<ParametricTerm> MakeGaussMarkovTerm() { return std::make_unique<GaussMarkovTerm>(); }
+std::unique_ptr<ParametricTerm> MakeHarmonicTerm() { return std::make_unique<HarmonicTerm>(); }
+std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind) {
+  return std::make_unique<BandLimitTerm>(kind);
+}
+
+std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name) {
+  if (name == "GM" || name == "gauss_markov") return MakeGaussMarkovTerm();
+  if (name == "H" || name == "harmonic") return MakeHarmonicTerm();
+  if (name == "BW" || name == "bandwidth") return MakeBandLimitTerm(sim::LowPassKind::kFirstOrder);
+  if (name == "BW2") return MakeBandLimitTerm(sim::LowPassKind::kButterworth2);
+  return nullptr;
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,83 @@
+#pragma once
+// Effects with nonlinear parameters that a fit adds on top of the linear IEEE 952 sum model
+// (sum_i c_i^2 S_i(tau), noise_coefficient.h): a Gauss-Markov process (sigma, Tc), a harmonic
+// (Omega0, f0), the band-limit (fc, for a given filter order) and, later, any other sim effect.
+// Generic on purpose: the sim-to-real diagnosis (issue 6) fits candidate effects through the same
+// interface. A term knows nothing about fitting; it says
+//   - what its parameters are (names, SI and datasheet units, bounds, scale),
+//   - where a fit should start, from the curve and the residual AVAR a baseline fit leaves,
+//   - how to add itself to a sim::SensorModel with given parameter values.
+// The last point makes sim/ the one place that knows each effect's exact expected AVAR
+// (SensorModel::ExpectedAvar, band-limit and finite record included) and lets a parametric
+// bootstrap simulate the fitted model (SensorModel::Generate) with no second implementation.
+// The band-limit is not additive (it filters every held and wideband term), which is why a term
+// edits the model rather than returning a curve of its own.
+// Stable interface: ids and members are only ever added, never renamed.
+#include <limits>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+#include "sim/band_limit.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::estimators {
+
+struct ParameterSpec {
+  std::string name;            // "sigma", "Tc", "Omega0", "f0", "fc"
+  std::string si_unit;         // "rad/s", "s", "Hz"
+  std::string datasheet_unit;  // issue 4's JSON units: "deg/h", "s", "Hz"
+  double si_per_datasheet = 1.0;  // value_si = value_datasheet * si_per_datasheet
+  // Admissible SI range. Bounds may depend on the curve (see Bounds()); these are the static ones.
+  double lower_si = 0.0;
+  double upper_si = std::numeric_limits<double>::infinity();
+  // Fitted as ln(value) (positive scale parameters: amplitudes, times, frequencies). All the
+  // present terms' parameters are; a future signed parameter sets false.
+  bool log_scale = true;
+};
+
+class ParametricTerm {
+ public:
+  virtual ~ParametricTerm() = default;
+
+  // Stable effect id: the sim term id for additive terms ("gauss_markov", "harmonic"), or
+  // "bandwidth" for the band-limit.
+  virtual std::string_view id() const = 0;
+  // The CLI name in `allanlab fit --terms`: "GM", "H", "BW" (first order), "BW2" (Butterworth).
+  virtual std::string_view short_name() const = 0;
+  virtual const std::vector<ParameterSpec>& parameters() const = 0;
+  // Bounds on this curve (e.g. Tc within the curve's tau span, f0 below Nyquist); defaults to
+  // the static ones. lower[i] <= upper[i], both finite for log-scale parameters after this call.
+  virtual void Bounds(const AvarCurve& curve, std::vector<double>* lower_si,
+                      std::vector<double>* upper_si) const;
+  // Where the fit starts: from the curve, `residual_avar` = data - baseline (same taus, may be
+  // negative) and `model_without` = the baseline as a model (the linear terms at their baseline
+  // values). Returns false with why when the curve shows nothing this term could explain; the
+  // term is then left out of the fit.
+  virtual bool InitialGuess(const AvarCurve& curve, std::span<const double> residual_avar,
+                            const sim::SensorModel& model_without, std::vector<double>* params_si,
+                            std::string* why) const = 0;
+  // Adds the effect with these parameters (SI, in parameters() order) to the model.
+  virtual void ApplyTo(std::span<const double> params_si, sim::SensorModel* model) const = 0;
+  // True when the term multiplies into the other terms (band-limit) rather than adding to them.
+  virtual bool modifies_other_terms() const { return false; }
+};
+
+// First-order Gauss-Markov rate noise, sim::GaussMarkov: parameters sigma (rad/s; datasheet
+// deg/h) and Tc (s). Its AVAR peaks at tau ~ 1.89 Tc at 0.381 sigma^2.
+std::unique_ptr<ParametricTerm> MakeGaussMarkovTerm();
+// Random-phase sinusoid, sim::Harmonic: parameters Omega0 (peak, rad/s; deg/h) and f0 (Hz).
+// AVAR = Omega0^2 (sin^2(x)/x)^2, x = pi f0 tau (exact point-sampled form in sim/).
+std::unique_ptr<ParametricTerm> MakeHarmonicTerm();
+// The band-limit (sim::BandLimit, point sampling, oversampling 8) of the given filter kind:
+// parameter fc (Hz).
+std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind);
+
+// By CLI name ("GM", "H", "BW", "BW2") or id ("gauss_markov", "harmonic", "bandwidth" = first
+// order); nullptr if unknown.
+std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name);
+
+}  // namespace allanlab::estimators
