@@ -14,6 +14,7 @@
 #include "app/provenance.h"
 #include "app/rate_units.h"
 #include "app/record_reader.h"
+#include "estimators/allan_family.h"
 #include "estimators/avar.h"
 #include "estimators/confidence.h"
 #include "estimators/streaming_avar.h"
@@ -400,6 +401,26 @@ int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& c
     return failure->code;
   }
   WarnAboutRecord(report->record, command);
+  return kExitOk;
+}
+
+int ReadRateFromFile(const AvarCommandOptions& options, const std::string& command,
+                     std::vector<double>* rate, RecordInfo* info, std::string* error) {
+  Plan plan;
+  if (std::optional<Failure> failure = MakePlan(options, &plan)) {
+    *error = failure->message;
+    return failure->code;
+  }
+  RecordError read_error;
+  if (!ReadRecordValues(plan.read, rate, info, &read_error)) {
+    *error = read_error.message;
+    return read_error.exit_code;
+  }
+  for (double& v : *rate) {
+    v = plan.input == InputKind::kAngle ? v * plan.to_si : ToRadPerSecond(plan.rate_unit, v);
+  }
+  if (plan.input == InputKind::kAngle) *rate = estimators::AngleToRate(*rate, 1.0 / info->sample_rate_hz);
+  WarnAboutRecord(*info, command);
   return kExitOk;
 }
 

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/subcommand.h"
 
@@ -58,5 +59,12 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options);
 struct AvarReport;
 int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& command,
                          AvarReport* report, std::string* error);
+
+// Reading the record alone, as `avar` reads it, converted to rate samples in rad/s (angle input
+// differenced); *info describes the file (sample rate, dropped values, time steps). Returns
+// kExitOk, or the exit code with *error set. Warnings are printed under `command`.
+struct RecordInfo;
+int ReadRateFromFile(const AvarCommandOptions& options, const std::string& command,
+                     std::vector<double>* rate_rad_per_s, RecordInfo* info, std::string* error);
 
 }  // namespace allanlab::app

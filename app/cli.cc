@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/avar_command.h"
+#include "app/diagnose_command.h"
 #include "app/fit_command.h"
 #include "app/provenance.h"
 #include "app/simulate_command.h"
@@ -19,6 +20,7 @@ constexpr SubcommandFactory kSubcommands[] = {
     AddSimulateCommand,
     AddAvarCommand,
     AddFitCommand,
+    AddDiagnoseCommand,
 };
 
 }  // namespace

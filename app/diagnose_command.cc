@@ -1,0 +1,424 @@
+#include "app/diagnose_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/allan_plot.h"
+#include "app/atomic_file.h"
+#include "app/output_paths.h"
+#include "app/provenance.h"
+#include "app/rate_units.h"
+#include "app/record_reader.h"
+#include "estimators/fit/noise_coefficient.h"
+#include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/envelope.h"
+
+namespace allanlab::app {
+namespace {
+
+constexpr const char* kCommand = "diagnose";
+using Failure = CommandFailure;
+using estimators::Coefficient;
+using namespace allanlab::experiments;
+using Json = nlohmann::ordered_json;
+
+std::string Format(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+
+bool ParseModel(const std::string& text, std::vector<Coefficient>* terms, std::string* why) {
+  std::stringstream ss(text);
+  std::string id;
+  while (std::getline(ss, id, ',')) {
+    Coefficient c;
+    if (!estimators::ParseCoefficient(id, &c)) {
+      *why = "unknown term '" + id + "' (expected a comma list of Q, N, B, K, R)";
+      return false;
+    }
+    terms->push_back(c);
+  }
+  if (terms->empty()) {
+    *why = "no terms";
+    return false;
+  }
+  return true;
+}
+
+// An Allan-deviation table: '#' comments, a header naming tau_s and `column`, numeric rows.
+std::optional<Failure> ReadCurveTable(const DiagnoseCommandOptions& o, double rate_hz,
+                                      estimators::AvarCurve* curve) {
+  std::ifstream in(o.curve_path);
+  if (!in) return RuntimeFailure(o.curve_path + ": cannot open");
+  RateUnit unit;
+  std::string why;
+  if (!ParseRateUnit(o.curve_units, &unit, &why)) return UsageFailure("--curve-units: " + why);
+  std::string line;
+  int tau_col = -1, dev_col = -1;
+  const double tau0 = 1.0 / rate_hz;
+  curve->sample_period_s = tau0;
+  curve->num_samples = static_cast<std::int64_t>(std::llround(*o.record_length_s * rate_hz));
+  curve->estimator = sim::AvarEstimatorKind::kOverlapping;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (tau_col < 0) {
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        if (cells[i] == "tau_s") tau_col = static_cast<int>(i);
+        if (cells[i] == o.curve_column) dev_col = static_cast<int>(i);
+      }
+      if (tau_col < 0 || dev_col < 0) {
+        return RuntimeFailure(o.curve_path + ": header needs columns tau_s and " + o.curve_column);
+      }
+      continue;
+    }
+    if (static_cast<int>(cells.size()) <= std::max(tau_col, dev_col)) {
+      return RuntimeFailure(o.curve_path + ":" + std::to_string(line_no) + ": too few columns");
+    }
+    char* end = nullptr;
+    const double tau = std::strtod(cells[tau_col].c_str(), &end);
+    const double dev = std::strtod(cells[dev_col].c_str(), &end);
+    if (!std::isfinite(tau) || !std::isfinite(dev) || !(tau > 0) || !(dev > 0)) continue;
+    const std::int64_t m = std::llround(tau / tau0);
+    if (m < 1 || 2 * m > curve->num_samples || (!curve->m.empty() && m <= curve->m.back())) continue;
+    curve->m.push_back(m);
+    curve->tau_s.push_back(static_cast<double>(m) * tau0);
+    const double si = ToRadPerSecond(unit, dev);
+    curve->avar.push_back(si * si);
+    // Initial weights only (the GLS fit uses the model covariance): white-noise EDF.
+    curve->edf.push_back(std::max(1.0, static_cast<double>(curve->num_samples) / m - 1.0));
+  }
+  if (curve->m.empty()) return RuntimeFailure(o.curve_path + ": no usable rows for " + o.curve_column);
+  return std::nullopt;
+}
+
+Json MetricsJson(const GapMetrics& m) {
+  return Json{{"chi2", m.chi2}, {"points", m.points}, {"fraction_in_95", m.fraction_in_95},
+              {"max_abs_z", m.max_abs_z}};
+}
+
+Json GapJson(const ModelGap& g) {
+  Json j = Json::object();
+  for (const ViewResiduals& v : g.views) j[std::string(ViewId(v.view))] = MetricsJson(Metrics(v.z));
+  j["all"] = MetricsJson(g.All());
+  return j;
+}
+
+Json ParamsJson(const std::vector<EffectInstance>& effects) {
+  auto one = [](const EffectInstance& e) {
+    Json p = Json::object();
+    for (const std::string& name : EffectParameterNames(e.effect)) p[name] = e.params.at(name);
+    return p;
+  };
+  if (effects.size() == 1) return one(effects[0]);
+  Json j = Json::object();
+  for (const auto& e : effects) j[std::string(EffectId(e.effect))] = one(e);
+  return j;
+}
+
+Json CoefficientsJson(const estimators::FitSummary& fit) {
+  Json j = Json::object();
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = fit.at(c);
+    if (!e.asked) continue;
+    j[std::string(estimators::CoefficientId(c))] = {
+        {"value", e.fitted ? estimators::ToDatasheetUnit(c, e.value_si) : 0.0},
+        {"sigma", estimators::ToDatasheetUnit(c, e.sigma_si)},
+        {"unit", std::string(estimators::DatasheetUnit(c))},
+        {"fitted", e.fitted}};
+  }
+  return j;
+}
+
+Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation) {
+  Json j;
+  Json regions = Json::array();
+  for (const GapRegion& r : s.regions) {
+    Json region{{"view", std::string(ViewId(r.view))}};
+    if (r.view == View::kPsd) {
+      region["tau_min_s"] = 1.0 / (2.0 * r.x_max);
+      region["tau_max_s"] = 1.0 / (2.0 * r.x_min);
+      region["frequency_min_hz"] = r.x_min;
+      region["frequency_max_hz"] = r.x_max;
+    } else {
+      region["tau_min_s"] = r.x_min;
+      region["tau_max_s"] = r.x_max;
+    }
+    region["max_abs_z"] = r.max_abs_z;
+    region["mean_z"] = r.mean_z;
+    regions.push_back(region);
+  }
+  j["gap"] = {{"significant", s.significant}, {"regions", regions}, {"threshold_z", s.threshold},
+              {"points", s.total_points}, {"views", GapJson(s.before)}};
+  if (s.before.has_heldout) j["gap"]["heldout"] = MetricsJson(s.before.heldout);
+  Json verdict{{"effect", s.verdict}};
+  verdict["params"] = Json::object();
+  if (s.verdict_candidate >= 0 && s.verdict != "unexplained") {
+    verdict["params"] = ParamsJson(s.candidates[s.verdict_candidate].effects);
+  }
+  Json also = Json::array(), separating = Json::object();
+  for (const auto& a : s.also_consistent) {
+    also.push_back(a.effect);
+    if (!a.separating_view.empty()) separating[a.effect] = a.separating_view;
+  }
+  verdict["also_consistent"] = also;
+  verdict["separating_views"] = separating;
+  if (s.verdict == "unexplained" && s.verdict_candidate >= 0) {
+    verdict["best_tried"] = s.candidates[s.verdict_candidate].id();
+  }
+  j["verdict"] = verdict;
+  Json candidates = Json::array();
+  for (const CandidateResult& c : s.candidates) {
+    Json cj{{"effect", c.id()}, {"params", ParamsJson(c.effects)}};
+    cj["gap_before"] = GapJson(s.before);
+    cj["gap_after"] = GapJson(c.after);
+    cj["heldout_gap_before"] = s.before.has_heldout ? MetricsJson(s.before.heldout) : Json(nullptr);
+    cj["heldout_gap_after"] = c.after.has_heldout ? MetricsJson(c.after.heldout) : Json(nullptr);
+    cj["score"] = c.score;
+    cj["full_score"] = c.full_score;
+    cj["monte_carlo_views"] = c.full_views;
+    cj["closes_gap"] = c.closes_gap;
+    cj["coefficients"] = CoefficientsJson(c.fit);
+    candidates.push_back(cj);
+  }
+  j["candidates"] = candidates;
+  Json skipped = Json::array();
+  for (const auto& k : s.skipped) skipped.push_back({{"effect", std::string(EffectId(k.effect))}, {"reason", k.reason}});
+  j["skipped"] = skipped;
+  j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline)},
+                   {"fit", {{"chi2", s.baseline.chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
+  if (!validation.is_null()) j["validation"] = validation;
+  j["notes"] = s.notes;
+  j["provenance"] = ProvenanceJson(p);
+  return j;
+}
+
+void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
+  const std::string h = markdown ? "## " : "";
+  if (markdown) os << "# allanlab diagnose\n\n";
+  os << h << "verdict: " << s.verdict;
+  if (s.verdict_candidate >= 0) {
+    const auto& c = s.candidates[s.verdict_candidate];
+    os << (s.verdict == "unexplained" ? " (best tried: " + c.id() + ")" : "");
+    for (const auto& e : c.effects) {
+      os << "\n  " << EffectId(e.effect) << ":";
+      for (const auto& name : EffectParameterNames(e.effect)) os << " " << name << "=" << Format(e.params.at(name));
+    }
+  }
+  os << "\n";
+  for (const auto& a : s.also_consistent) {
+    os << "  also consistent: " << a.effect
+       << (a.separating_view.empty() ? "" : " (the " + a.separating_view + " view could separate them)") << "\n";
+  }
+  if (markdown) os << "\n";
+  os << h << "gap: " << (s.significant ? "significant" : "none") << " (|z| > " << Format(s.threshold)
+     << ", Bonferroni over " << s.total_points << " points)\n";
+  if (markdown) os << "\n| view | points | chi2 | in 95 % | max abs z |\n|---|---|---|---|---|\n";
+  for (const ViewResiduals& v : s.before.views) {
+    const GapMetrics m = Metrics(v.z);
+    if (markdown) {
+      os << "| " << ViewId(v.view) << " | " << m.points << " | " << Format(m.chi2) << " | "
+         << Format(m.fraction_in_95) << " | " << Format(m.max_abs_z) << " |\n";
+    } else {
+      os << "  " << ViewId(v.view) << ": chi2 " << Format(m.chi2) << " on " << m.points
+         << " points, " << Format(100 * m.fraction_in_95) << " % inside 95 %, max |z| "
+         << Format(m.max_abs_z) << "\n";
+    }
+  }
+  for (const GapRegion& r : s.regions) {
+    os << (markdown ? "- " : "  ") << "region " << ViewId(r.view) << " " << Format(r.x_min) << " .. "
+       << Format(r.x_max) << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << Format(r.max_abs_z)
+       << (r.mean_z > 0 ? " (record above model)" : " (record below model)") << "\n";
+  }
+  if (markdown) os << "\n" << h << "candidates\n\n| effect | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes |\n|---|---|---|---|---|---|---|\n";
+  else if (!s.candidates.empty()) os << "candidates (score = OAVAR chi2 improvement - 2k):\n";
+  for (const CandidateResult& c : s.candidates) {
+    const std::string held = c.after.has_heldout && s.before.has_heldout
+                                 ? Format(s.before.heldout.chi2) + " -> " + Format(c.after.heldout.chi2)
+                                 : "-";
+    if (markdown) {
+      os << "| " << c.id() << " | " << Format(c.score) << " | " << Format(c.after.View(View::kOavar).chi2)
+         << " | " << Format(c.after.All().chi2) << " | " << Format(c.after.All().max_abs_z) << " | " << held
+         << " | " << (c.closes_gap ? "yes" : "no") << " |\n";
+    } else {
+      os << "  " << c.id() << ": score " << Format(c.score) << ", max |z| after " << Format(c.after.All().max_abs_z)
+         << (c.full_views ? " (all views)" : " (OAVAR)") << ", held-out chi2 " << held
+         << (c.closes_gap ? ", closes the gap" : "") << "\n";
+    }
+  }
+  for (const auto& k : s.skipped) os << (markdown ? "- " : "  ") << "not tried: " << EffectId(k.effect) << " (" << k.reason << ")\n";
+  for (const auto& n : s.notes) os << (markdown ? "- " : "  ") << "note: " << n << "\n";
+}
+
+AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
+  AllanPlot plot;
+  plot.title = title;
+  const double unit = FromRadPerSecond(RateUnit::kDegPerHour, 1.0);
+  auto adev = [&](const std::vector<double>& avar) {
+    std::vector<double> y;
+    for (double v : avar) y.push_back(std::sqrt(v) * unit);
+    return y;
+  };
+  plot.series.push_back({"record", PlotStyle::kPoints, s.curve.tau_s, adev(s.curve.avar)});
+  const sim::RecordShape shape{s.num_samples, sim::AvarEstimatorKind::kOverlapping};
+  plot.series.push_back({"baseline model", PlotStyle::kDashedLine, s.curve.tau_s,
+                         adev(s.baseline_model.ExpectedAvar(s.curve.m, shape))});
+  if (s.verdict_candidate >= 0) {
+    const auto& c = s.candidates[s.verdict_candidate];
+    plot.series.push_back({"with " + c.id(), PlotStyle::kLine, s.curve.tau_s, adev(c.model.ExpectedAvar(s.curve.m, shape))});
+  }
+  for (const GapRegion& r : s.regions) {
+    if (r.view != View::kOavar) continue;
+    std::vector<double> x, y;
+    for (std::size_t i = 0; i < s.curve.size(); ++i) {
+      if (s.curve.tau_s[i] >= r.x_min && s.curve.tau_s[i] <= r.x_max) {
+        x.push_back(s.curve.tau_s[i]);
+        y.push_back(std::sqrt(s.curve.avar[i]) * unit);
+      }
+    }
+    plot.series.push_back({"gap (OAVAR)", PlotStyle::kLine, x, y});
+  }
+  return plot;
+}
+
+std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::string& command_line) {
+  std::string why;
+  DiagnoseOptions d;
+  d.terms.clear();
+  if (!ParseModel(o.model, &d.terms, &why)) return UsageFailure("--model: " + why);
+  d.trials = o.trials;
+  d.seed = o.seed;
+  d.false_alarm = o.false_alarm;
+  if (!d.IsValid(&why)) return UsageFailure(why);
+  const bool curve_mode = !o.curve_path.empty();
+  if (curve_mode && !o.record.path.empty()) return UsageFailure("give FILE or --curve, not both");
+  if (!curve_mode && o.record.path.empty()) return UsageFailure("FILE (or --curve) is required");
+  if (curve_mode && (!o.record_length_s || !o.record.rate_hz || !(*o.record_length_s > 0) || !(*o.record.rate_hz > 0))) {
+    return UsageFailure("--curve needs --record-length S > 0 and --rate HZ > 0");
+  }
+  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", curve_mode ? o.curve_path : o.record.path}};
+  if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
+  if (!o.report_path.empty()) outputs.emplace_back("--report", o.report_path);
+  if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
+  if (!CheckDistinctOutputs(outputs, &why)) return UsageFailure(why);
+  if (!o.plot_path.empty() && !FindGnuplot(&why)) return RuntimeFailure(why);
+  AtomicFile json, report, png;
+  if (!o.json_path.empty() && !json.Open(o.json_path, &why)) return RuntimeFailure(why);
+  if (!o.report_path.empty() && !report.Open(o.report_path, &why)) return RuntimeFailure(why);
+  if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return RuntimeFailure(why);
+
+  Provenance p = MakeProvenance(kCommand, command_line);
+  DiagnosisSummary s;
+  if (curve_mode) {
+    estimators::AvarCurve curve;
+    if (auto f = ReadCurveTable(o, *o.record.rate_hz, &curve)) return f;
+    if (!DiagnoseCurve(d, curve, &s)) return RuntimeFailure(o.curve_path + ": " + s.message);
+    p.Add("curve", o.curve_path + " column " + o.curve_column + " (" + o.curve_units + ")");
+    p.Add("record_length", ShortestDecimal(*o.record_length_s) + " s");
+  } else {
+    std::vector<double> rate;
+    RecordInfo info;
+    if (const int code = ReadRateFromFile(o.record, kCommand, &rate, &info, &why); code != kExitOk) {
+      return Failure{code, why};
+    }
+    if (!DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s)) return RuntimeFailure(o.record.path + ": " + s.message);
+    p.Add("input", info.path);
+    p.Add("column", info.column);
+    p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
+    p.Add("samples", std::to_string(rate.size()));
+    if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
+  }
+  p.Add("model", o.model);
+  p.Add("trials", std::to_string(o.trials));
+  p.Add("seed", std::to_string(o.seed));
+  p.Add("false_alarm", ShortestDecimal(o.false_alarm));
+
+  Json validation;
+  if (!o.validate_path.empty()) {
+    AvarCommandOptions v = o.record;
+    v.path = o.validate_path;
+    std::vector<double> rate2;
+    RecordInfo info2;
+    if (const int code = ReadRateFromFile(v, kCommand, &rate2, &info2, &why); code != kExitOk) return Failure{code, why};
+    estimators::AvarCurve c2;
+    if (!RecordCurve(rate2, 1.0 / info2.sample_rate_hz, &c2, &why)) return RuntimeFailure(o.validate_path + ": " + why);
+    auto score = [&](sim::SensorModel model) {
+      model.sample_rate_hz = info2.sample_rate_hz;
+      std::vector<double> z;
+      std::string ignored;
+      if (!model.IsValid(&ignored)) return Json(nullptr);
+      const OavarTheory t = ExactOavar(model, c2.m, c2.num_samples);
+      for (std::size_t i = 0; i < c2.size(); ++i) z.push_back(ZFromChiSquare(c2.avar[i], t.mean[i], t.edf[i]));
+      return MetricsJson(Metrics(z));
+    };
+    validation = {{"file", o.validate_path}, {"baseline", score(s.baseline_model)}};
+    if (s.verdict_candidate >= 0) validation["with_" + s.candidates[s.verdict_candidate].id()] = score(s.candidates[s.verdict_candidate].model);
+    p.Add("validate_on", o.validate_path);
+  }
+
+  WriteText(std::cout, s, false);
+  if (!validation.is_null()) std::cout << "validation on " << o.validate_path << ": " << validation.dump() << "\n";
+  std::cout.flush();
+  if (json.is_open()) json.stream() << DiagnosisJson(s, p, validation).dump(2) << "\n";
+  if (report.is_open()) {
+    WriteText(report.stream(), s, true);
+    report.stream() << "\n## provenance\n\n";
+    for (const auto& [k, v] : p.fields) report.stream() << "- " << k << ": " << v << "\n";
+    report.stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
+  }
+  if (png.is_open() && !RenderAllanPlot(DiagnosePlot(s, "allanlab diagnose: " + (curve_mode ? o.curve_path : o.record.path)), &png, &why)) {
+    return RuntimeFailure(why);
+  }
+  for (AtomicFile* file : {&json, &report, &png}) {
+    if (file->is_open() && !file->Commit(&why)) return RuntimeFailure(why);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Subcommand AddDiagnoseCommand(CLI::App* parent) {
+  auto options = std::make_shared<DiagnoseCommandOptions>();
+  CLI::App* cmd = parent->add_subcommand(
+      kCommand,
+      "Where a recording departs from its fitted IEEE 952 model (several views, multiplicity "
+      "controlled), which unmodelled effect explains the gap, and how far it shrinks.");
+  AddRecordCurveOptions(cmd, &options->record);
+  // FILE is optional here: --curve replaces it.
+  cmd->get_option("FILE")->required(false);
+  cmd->add_option("--model", options->model, "baseline terms, a comma list of Q,N,B,K,R (default all)")->type_name("LIST");
+  cmd->add_option("--trials", options->trials, "simulated records per Monte Carlo envelope (default 30; 0: OAVAR view only)");
+  cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)");
+  cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)");
+  cmd->add_option("--json", options->json_path, "write the diagnosis as JSON (issue 6 contract)")->type_name("OUT.json");
+  cmd->add_option("--report", options->report_path, "write a Markdown report")->type_name("OUT.md");
+  cmd->add_option("--plot", options->plot_path, "draw record, baseline and verdict model (PNG, gnuplot)")->type_name("OUT.png");
+  cmd->add_option("--validate-on", options->validate_path, "score the verdict's model on a second recording of the same sensor")->type_name("FILE2");
+  cmd->add_option("--curve", options->curve_path, "curve mode: an Allan-deviation CSV (tau_s + deviation columns) instead of FILE")->type_name("CSV");
+  cmd->add_option("--curve-column", options->curve_column, "deviation column of --curve (default adev_x)");
+  cmd->add_option("--curve-units", options->curve_units, "unit of the --curve deviations (default deg/h)");
+  cmd->add_option("--record-length", options->record_length_s, "curve mode: length of the record the curve came from [s]")->type_name("S");
+  cmd->footer("Verdict: none (no significant gap), an effect id (bandwidth, gauss_markov, random_telegraph, harmonic,\n"
+              "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers) or unexplained.\n"
+              "Exit status: 0 ok (any verdict), 1 bad file or unusable record, 2 usage error.");
+  return {cmd, [options](const std::string& command_line) { return RunDiagnose(*options, command_line); }};
+}
+
+int RunDiagnose(const DiagnoseCommandOptions& options, const std::string& command_line) {
+  return RunCommand(kCommand, "", [&] { return Diagnose(options, command_line); });
+}
+
+}  // namespace allanlab::app

@@ -1,0 +1,45 @@
+#pragma once
+// `allanlab diagnose FILE`: where a recording departs from its fitted IEEE 952 model, which
+// unmodelled effect explains the gap and how far it shrinks (experiments/diagnosis/diagnose.h,
+// issue 6). Input options are those of `avar` (app/avar_command.h).
+//   --model Q,N,B,K,R   baseline terms (default all five)
+//   --trials N --seed S simulated records per Monte Carlo envelope (default 30; 0: OAVAR only)
+//   --false-alarm A     chance that a record of the model itself is flagged (default 0.05)
+//   --json OUT          the issue 6 contract: gap{significant, threshold_z, regions[{view,
+//                       tau_min_s, tau_max_s, max_abs_z}], views}, verdict{effect, params,
+//                       also_consistent, separating_views}, candidates[{effect, params,
+//                       gap_before, gap_after, heldout_gap_before, heldout_gap_after, score}],
+//                       baseline{coefficients}, provenance. PSD regions also carry
+//                       frequency_min_hz/frequency_max_hz, with tau = 1/(2 f).
+//   --report OUT.md     the same for people;  --plot OUT.png  ADEV: record, baseline, verdict model
+//   --validate-on FILE2 a second recording of the same sensor: the verdict's model (linear terms
+//                       refitted on FILE, effect included) scored on FILE2's OAVAR
+// Curve mode (no record): --curve CSV --record-length S --rate HZ [--curve-column adev_x]
+// [--curve-units deg/h]: an Allan-deviation table (tau_s, deviation columns) as published by
+// other tools; OAVAR view only.
+// Exit codes: 2 usage, 1 unreadable file or a record the diagnosis cannot use (too short,
+// constant, non-finite values without --drop-nonfinite), 0 otherwise (whatever the verdict).
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+#include "app/avar_command.h"
+#include "app/subcommand.h"
+
+namespace allanlab::app {
+
+struct DiagnoseCommandOptions {
+  AvarCommandOptions record;  // FILE and the input options of `avar`
+  std::string model = "Q,N,B,K,R";
+  int trials = 30;
+  std::uint64_t seed = 1;
+  double false_alarm = 0.05;
+  std::string json_path, report_path, plot_path, validate_path;
+  std::string curve_path, curve_column = "adev_x", curve_units = "deg/h";
+  std::optional<double> record_length_s;
+};
+
+Subcommand AddDiagnoseCommand(CLI::App* parent);
+int RunDiagnose(const DiagnoseCommandOptions& options, const std::string& command_line);
+
+}  // namespace allanlab::app

@@ -1,0 +1,288 @@
+#include "experiments/diagnosis/candidate_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "estimators/fit/bandwidth_estimate.h"
+#include "sim/fft.h"
+#include "sim/gauss_markov.h"
+
+namespace allanlab::experiments {
+namespace {
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+std::vector<double> BlockMeans(std::span<const double> y, std::size_t blocks) {
+  const std::size_t m = y.size() / blocks;
+  std::vector<double> means(blocks, 0.0);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    double s = 0.0;
+    for (std::size_t k = 0; k < m; ++k) s += y[b * m + k];
+    means[b] = s / static_cast<double>(m);
+  }
+  return means;
+}
+
+// The tau where the curve rises most above the baseline, relative to it.
+std::optional<EffectInstance> Bump(Effect effect, const EstimateInputs& in, std::string* why) {
+  const auto& c = *in.curve;
+  int best = -1;
+  double best_ratio = 0.0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const double ratio = (c.avar[i] - in.baseline_avar[i]) / in.baseline_avar[i];
+    if (ratio > best_ratio) {
+      best_ratio = ratio;
+      best = static_cast<int>(i);
+    }
+  }
+  if (best < 0) {
+    *why = "the curve never rises above the baseline";
+    return std::nullopt;
+  }
+  // The OU Allan variance peaks (in tau * AVAR, i.e. where it dominates a white floor most) near
+  // tau = 1.89 Tc, as the first-order low-pass of THEORY.md §1g.
+  const double tc = c.tau_s[best] / 1.89;
+  sim::GaussMarkov unit;
+  unit.sigma_rad_per_s = 1.0;
+  unit.correlation_time_s = tc;
+  const sim::RecordShape shape{c.num_samples, c.estimator};
+  const double s = unit.ExpectedAvar(c.m[best], c.sample_period_s, shape);
+  const double sigma = std::sqrt((c.avar[best] - in.baseline_avar[best]) / s);
+  EffectInstance e{effect, {}};
+  if (effect == Effect::kGaussMarkov) {
+    e.params = {{"sigma_rad_per_s", sigma}, {"correlation_time_s", tc}};
+  } else {
+    e.params = {{"amplitude_rad_per_s", sigma}, {"mean_dwell_s", 2.0 * tc}};
+  }
+  return e;
+}
+
+std::optional<EffectInstance> Harmonic(std::span<const double> y, double tau0, std::string* why) {
+  std::size_t n = 1;
+  while (n * 2 <= std::min<std::size_t>(y.size(), std::size_t{1} << 20)) n *= 2;
+  if (n < 256) {
+    *why = "record too short for a periodogram";
+    return std::nullopt;
+  }
+  sim::FftBuffer buffer(n + 2);
+  double mean = 0.0;
+  for (std::size_t k = 0; k < n; ++k) mean += y[k];
+  mean /= static_cast<double>(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double w = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(n));
+    buffer.data()[k] = (y[k] - mean) * w;
+  }
+  sim::ForwardRealFft(n, buffer.data());
+  std::vector<double> power(n / 2 + 1);
+  for (std::size_t b = 0; b <= n / 2; ++b) power[b] = std::norm(buffer.complex_data()[b]);
+  constexpr std::size_t kHalfWidth = 32;
+  std::size_t best = 0;
+  double best_ratio = 0.0;
+  for (std::size_t b = 4; b + 4 < power.size(); ++b) {
+    std::vector<double> around;
+    for (std::size_t j = b > kHalfWidth ? b - kHalfWidth : 1; j <= std::min(power.size() - 1, b + kHalfWidth); ++j) {
+      if (j + 3 < b || j > b + 3) around.push_back(power[j]);
+    }
+    const double ratio = power[b] / std::max(Median(around), 1e-300);
+    if (ratio > best_ratio) {
+      best_ratio = ratio;
+      best = b;
+    }
+  }
+  // A Hann-windowed periodogram of Gaussian noise exceeds 30 x its local median at one of 2^19
+  // bins with probability ~ 2^19 e^{-30 ln 2} ~ 1e-4 (exponential power, median ln 2).
+  if (best_ratio < 30.0) {
+    *why = "no spectral line stands out of the periodogram";
+    return std::nullopt;
+  }
+  // Sum the line's power over its main lobe (+-2 bins) so off-bin frequencies are not lost.
+  double lobe = 0.0;
+  for (std::size_t b = best - 2; b <= best + 2; ++b) lobe += power[b];
+  // Hann: sum w^2 = 3/8 n; a sinusoid A carries |X|^2 summed over the lobe ~ A^2 n sum(w^2) / 4.
+  const double w2 = 3.0 / 8.0 * static_cast<double>(n);
+  const double amplitude = std::sqrt(4.0 * lobe / (static_cast<double>(n) * w2));
+  return EffectInstance{Effect::kHarmonic,
+                        {{"amplitude_rad_per_s", amplitude},
+                         {"frequency_hz", static_cast<double>(best) / (static_cast<double>(n) * tau0)}}};
+}
+
+// The value grid of a quantized record: the smallest positive gap between distinct values, if
+// (nearly) every value sits on it.
+std::optional<double> ValueGrid(std::span<const double> y, std::string* why) {
+  std::vector<double> v(y.begin(), y.begin() + std::min<std::size_t>(y.size(), 200000));
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  if (v.size() < 3 || v.size() > y.size() / 4) {
+    *why = "the samples do not sit on a value grid";
+    return std::nullopt;
+  }
+  double lsb = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < v.size(); ++i) lsb = std::min(lsb, v[i] - v[i - 1]);
+  std::size_t on_grid = 0;
+  for (double x : v) {
+    const double k = (x - v[0]) / lsb;
+    if (std::abs(k - std::round(k)) < 1e-3) ++on_grid;
+  }
+  if (on_grid < v.size() * 99 / 100) {
+    *why = "the distinct values are not multiples of one step";
+    return std::nullopt;
+  }
+  return lsb;
+}
+
+std::optional<EffectInstance> Drift(std::span<const double> y, double tau0, std::string* why) {
+  constexpr std::size_t kBlocks = 256;
+  if (y.size() < kBlocks * 4) {
+    *why = "record too short";
+    return std::nullopt;
+  }
+  const auto means = BlockMeans(y, kBlocks);
+  const double block_s = static_cast<double>(y.size() / kBlocks) * tau0;
+  const double length_s = block_s * kBlocks;
+  double best_rss = std::numeric_limits<double>::infinity(), best_a = 0.0, best_tw = 0.0;
+  // Least squares of the block means on [1, e^{-t/tw}] for tw on a log grid (T/100 .. T).
+  for (int g = 0; g <= 24; ++g) {
+    const double tw = length_s / 100.0 * std::pow(100.0, g / 24.0);
+    double s11 = 0, s1e = 0, see = 0, s1y = 0, sey = 0;
+    for (std::size_t b = 0; b < kBlocks; ++b) {
+      const double e = std::exp(-(b + 0.5) * block_s / tw);
+      s11 += 1; s1e += e; see += e * e; s1y += means[b]; sey += e * means[b];
+    }
+    const double det = s11 * see - s1e * s1e;
+    if (!(det > 0)) continue;
+    const double c0 = (see * s1y - s1e * sey) / det;
+    const double a = (s11 * sey - s1e * s1y) / det;
+    double rss = 0;
+    for (std::size_t b = 0; b < kBlocks; ++b) {
+      const double r = means[b] - c0 - a * std::exp(-(b + 0.5) * block_s / tw);
+      rss += r * r;
+    }
+    if (rss < best_rss) { best_rss = rss; best_a = a; best_tw = tw; }
+  }
+  if (best_a == 0.0) {
+    *why = "no exponential trend";
+    return std::nullopt;
+  }
+  return EffectInstance{Effect::kExponentialDrift,
+                        {{"amplitude_rad_per_s", best_a}, {"time_constant_s", best_tw}}};
+}
+
+std::optional<EffectInstance> Step(std::span<const double> y, double tau0, std::string* why) {
+  constexpr std::size_t kBlocks = 512;
+  if (y.size() < kBlocks * 2) {
+    *why = "record too short";
+    return std::nullopt;
+  }
+  const auto means = BlockMeans(y, kBlocks);
+  const double block_s = static_cast<double>(y.size() / kBlocks) * tau0;
+  double total = 0.0;
+  for (double m : means) total += m;
+  double left = 0.0, best = 0.0, size = 0.0;
+  std::size_t split = 0;
+  for (std::size_t k = 1; k < kBlocks; ++k) {
+    left += means[k - 1];
+    const double m1 = left / k, m2 = (total - left) / (kBlocks - k);
+    const double stat = std::abs(m2 - m1) * std::sqrt(static_cast<double>(k) * (kBlocks - k) / kBlocks);
+    if (stat > best) { best = stat; size = m2 - m1; split = k; }
+  }
+  if (split == 0) {
+    *why = "no change point";
+    return std::nullopt;
+  }
+  return EffectInstance{Effect::kBiasStep,
+                        {{"size_rad_per_s", size}, {"time_s", static_cast<double>(split) * block_s}}};
+}
+
+std::optional<EffectInstance> Spikes(std::span<const double> y, double tau0, std::string* why) {
+  if (y.size() < 16) {
+    *why = "record too short";
+    return std::nullopt;
+  }
+  // A spike a at k gives d_k = a and d_{k +- 1} = -a/2 in d_k = y_k - (y_{k-1} + y_{k+1}) / 2.
+  std::vector<double> d(y.size() - 2);
+  for (std::size_t k = 1; k + 1 < y.size(); ++k) d[k - 1] = y[k] - 0.5 * (y[k - 1] + y[k + 1]);
+  std::vector<double> a(d.size());
+  for (std::size_t k = 0; k < d.size(); ++k) a[k] = std::abs(d[k]);
+  const double sigma = 1.4826 * Median(a);
+  if (!(sigma > 0.0)) {
+    *why = "no noise to measure spikes against";
+    return std::nullopt;
+  }
+  std::vector<double> sizes;
+  for (std::size_t k = 1; k + 1 < a.size(); ++k) {
+    if (a[k] > 7.0 * sigma && a[k] >= a[k - 1] && a[k] >= a[k + 1]) sizes.push_back(a[k]);
+  }
+  if (sizes.size() < 3) {
+    *why = "fewer than 3 spikes beyond 7 sigma";
+    return std::nullopt;
+  }
+  const double length_s = static_cast<double>(y.size()) * tau0;
+  return EffectInstance{Effect::kOutliers,
+                        {{"rate_hz", static_cast<double>(sizes.size()) / length_s},
+                         {"size_rad_per_s", Median(sizes)}}};
+}
+
+}  // namespace
+
+std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs& in, std::string* why) {
+  const double tau0 = in.curve->sample_period_s;
+  const bool have_data = !in.rate_rad_per_s.empty();
+  switch (effect) {
+    case Effect::kBandwidth: {
+      const auto bw = estimators::EstimateBandwidth(*in.curve);
+      if (!bw.found) {
+        *why = bw.note;
+        return std::nullopt;
+      }
+      return EffectInstance{effect, {{"cutoff_hz", bw.cutoff_first_order_hz}, {"order", 1.0}}};
+    }
+    case Effect::kGaussMarkov:
+    case Effect::kRandomTelegraph:
+      return Bump(effect, in, why);
+    default:
+      break;
+  }
+  if (!have_data) {
+    *why = "needs the record (curve mode)";
+    return std::nullopt;
+  }
+  const auto y = in.rate_rad_per_s;
+  switch (effect) {
+    case Effect::kHarmonic: return Harmonic(y, tau0, why);
+    case Effect::kAngleQuantization: {
+      const auto lsb = ValueGrid(y, why);
+      if (!lsb) return std::nullopt;
+      return EffectInstance{effect, {{"lsb_rad", *lsb * tau0}}};
+    }
+    case Effect::kRateQuantization: {
+      const auto lsb = ValueGrid(y, why);
+      if (!lsb) return std::nullopt;
+      return EffectInstance{effect, {{"lsb_rad_per_s", *lsb}}};
+    }
+    case Effect::kExponentialDrift: return Drift(y, tau0, why);
+    case Effect::kBiasStep: return Step(y, tau0, why);
+    case Effect::kOutliers: return Spikes(y, tau0, why);
+    default: break;
+  }
+  *why = "no estimate";
+  return std::nullopt;
+}
+
+std::optional<EffectInstance> ShiftEffect(const EffectInstance& e, double offset_s) {
+  EffectInstance s = e;
+  if (e.effect == Effect::kExponentialDrift) {
+    s.params["amplitude_rad_per_s"] *= std::exp(-offset_s / e.params.at("time_constant_s"));
+  } else if (e.effect == Effect::kBiasStep) {
+    s.params["time_s"] -= offset_s;
+    if (s.params["time_s"] <= 0.0) return std::nullopt;
+  }
+  return s;
+}
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,497 @@
+#include "experiments/diagnosis/diagnose.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "estimators/avar.h"
+#include "experiments/diagnosis/candidate_estimate.h"
+#include "experiments/diagnosis/envelope.h"
+#include "experiments/diagnosis/record_views.h"
+
+namespace allanlab::experiments {
+namespace {
+
+using estimators::Coefficient;
+
+// The curve a record gives: fewer taus than this cannot carry a baseline and a candidate.
+constexpr std::size_t kMinTaus = 8;
+constexpr std::int64_t kMinSamples = 1024;
+
+sim::SensorModel LinearModel(const estimators::FitSummary& fit, double sample_rate_hz) {
+  sim::SensorModel model;
+  model.name = "fitted";
+  model.sample_rate_hz = sample_rate_hz;
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = fit.at(c);
+    if (e.fitted && e.value_si > 0.0) model.terms.push_back(estimators::TermFor(c, e.value_si));
+  }
+  return model;
+}
+
+bool WithEffects(sim::SensorModel model, const std::vector<EffectInstance>& effects,
+                 sim::SensorModel* out, std::string* why) {
+  for (const EffectInstance& e : effects) {
+    if (!AddEffect(e, &model, why)) return false;
+  }
+  if (!model.IsValid(why)) return false;
+  *out = std::move(model);
+  return true;
+}
+
+// The linear terms refitted with `effects` in the model: the curve is divided by the model's
+// E[linear + effects] / E[linear] (exact for an additive effect at the solution, and the right
+// correction for a band-limit or quantizer, which scale rather than add), three passes.
+bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+                    const estimators::FitSummary& start, const std::vector<EffectInstance>& effects,
+                    estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
+  const double fs = 1.0 / curve.sample_period_s;
+  const sim::RecordShape shape{curve.num_samples, curve.estimator};
+  estimators::FitOptions fo;
+  fo.method = estimators::FitMethod::kGls;
+  fo.terms = options.terms;
+  estimators::FitSummary current = start;
+  for (int pass = 0; pass < 3; ++pass) {
+    const sim::SensorModel linear = LinearModel(current, fs);
+    sim::SensorModel full;
+    if (!WithEffects(linear, effects, &full, why)) return false;
+    const auto e_lin = linear.ExpectedAvar(curve.m, shape);
+    const auto e_full = full.ExpectedAvar(curve.m, shape);
+    estimators::AvarCurve adjusted = curve;
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      const double ratio = e_full[i] > 0.0 && e_lin[i] > 0.0 ? e_lin[i] / e_full[i] : 1.0;
+      adjusted.avar[i] = std::max(curve.avar[i] * ratio, 1e-300);
+    }
+    estimators::FitSummary next;
+    if (!estimators::FitAvarModel(fo, adjusted, &next)) {
+      *why = "refit failed: " + next.message;
+      return false;
+    }
+    current = next;
+  }
+  *fit = current;
+  return WithEffects(LinearModel(current, fs), effects, model, why);
+}
+
+GapMetrics HeldoutMetrics(const sim::SensorModel& model, const estimators::AvarCurve& second) {
+  const OavarTheory t = ExactOavar(model, second.m, second.num_samples);
+  std::vector<double> z;
+  for (std::size_t i = 0; i < second.size(); ++i) z.push_back(ZFromChiSquare(second.avar[i], t.mean[i], t.edf[i]));
+  return Metrics(z);
+}
+
+int ParameterCount(const std::vector<EffectInstance>& effects) {
+  int k = 0;
+  for (const auto& e : effects) k += static_cast<int>(EffectParameterNames(e.effect).size());
+  return k;
+}
+
+bool ClosesGap(const ModelGap& gap, double threshold) { return gap.All().max_abs_z <= threshold; }
+
+// Everything the candidates share.
+struct Context {
+  const DiagnoseOptions* options = nullptr;
+  estimators::AvarCurve curve;
+  std::span<const double> rate;
+  ViewLayout layout;
+  ViewValues observed;
+  bool have_record = false;
+  // Held-out halves.
+  bool have_halves = false;
+  estimators::AvarCurve first, second;
+  std::span<const double> first_rate;
+  estimators::FitSummary first_baseline;
+  double half_length_s = 0.0;
+};
+
+ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
+                std::uint64_t seed, std::string* note) {
+  ModelGap gap;
+  const OavarTheory theory = ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
+  ViewEnvelope envelope;
+  const bool have_envelope = monte_carlo && ctx.have_record && ctx.options->trials >= 3 &&
+                             SimulateEnvelope(model, ctx.layout, ctx.options->trials, seed, &envelope, note);
+  if (ctx.have_record) {
+    gap.views = Residuals(ctx.layout, ctx.observed, theory, have_envelope ? &envelope : nullptr);
+  } else {
+    ViewValues observed(kNumViews);
+    for (double a : ctx.curve.avar) observed[0].push_back(std::log(a));
+    gap.views = Residuals(ctx.layout, observed, theory, nullptr);
+  }
+  return gap;
+}
+
+std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisSummary& s,
+                                            const std::vector<EffectInstance>& effects,
+                                            std::string* why) {
+  CandidateResult c;
+  c.effects = effects;
+  if (!FitWithEffects(*ctx.options, ctx.curve, s.baseline, effects, &c.fit, &c.model, why)) return std::nullopt;
+  c.after = Assess(ctx, c.model, false, 0, why);
+  const int k = ParameterCount(effects);
+  c.score = s.before.View(View::kOavar).chi2 - c.after.View(View::kOavar).chi2 - 2.0 * k;
+  c.heldout_before = s.before.heldout;
+  if (ctx.have_halves) {
+    // Held-out: the effect estimated and the terms refitted on the first half alone, then
+    // the second half scored against that model (time-located effects shifted by T/2).
+    std::vector<EffectInstance> first_effects, shifted;
+    for (const EffectInstance& e : effects) {
+      const sim::SensorModel probe = LinearModel(ctx.first_baseline, 1.0 / ctx.curve.sample_period_s);
+      const auto base = probe.ExpectedAvar(ctx.first.m, {ctx.first.num_samples, ctx.first.estimator});
+      EstimateInputs in{&ctx.first, base, ctx.first_rate};
+      std::string ignored;
+      const auto est = EstimateEffect(e.effect, in, &ignored);
+      first_effects.push_back(est ? *est : e);
+    }
+    estimators::FitSummary first_fit;
+    sim::SensorModel first_model;
+    std::string ignored;
+    if (FitWithEffects(*ctx.options, ctx.first, ctx.first_baseline, first_effects, &first_fit,
+                       &first_model, &ignored)) {
+      for (const EffectInstance& e : first_effects) {
+        if (auto sh = ShiftEffect(e, ctx.half_length_s)) shifted.push_back(*sh);
+      }
+      sim::SensorModel second_model;
+      if (WithEffects(LinearModel(first_fit, 1.0 / ctx.curve.sample_period_s), shifted, &second_model, &ignored)) {
+        c.after.heldout = HeldoutMetrics(second_model, ctx.second);
+        c.after.has_heldout = true;
+      }
+    }
+  }
+  return c;
+}
+
+void Finish(const Context& ctx, DiagnosisSummary* s) {
+  const DiagnoseOptions& o = *ctx.options;
+  s->total_points = s->before.All().points;
+  s->threshold = BonferroniThreshold(o.false_alarm, s->total_points);
+  s->regions = FindGapRegions(s->before.views, s->threshold);
+  s->significant = !s->regions.empty();
+  s->verdict = "none";
+  if (!s->significant) return;
+
+  // Single effects, exact OAVAR view.
+  for (Effect effect : o.effects) {
+    const auto base = s->baseline_model.ExpectedAvar(ctx.curve.m, {ctx.curve.num_samples, ctx.curve.estimator});
+    EstimateInputs in{&ctx.curve, base, ctx.rate};
+    std::string why;
+    const auto est = EstimateEffect(effect, in, &why);
+    if (!est) {
+      s->skipped.push_back({effect, why});
+      continue;
+    }
+    auto c = TryCandidate(ctx, *s, {*est}, &why);
+    if (!c) {
+      s->skipped.push_back({effect, why});
+      continue;
+    }
+    s->candidates.push_back(std::move(*c));
+  }
+  auto by_score = [](const CandidateResult& a, const CandidateResult& b) { return a.score > b.score; };
+  std::stable_sort(s->candidates.begin(), s->candidates.end(), by_score);
+
+  // Monte Carlo views for the best few (by score, positive only).
+  const GapMetrics all_before = s->before.All();
+  auto full_assess = [&](CandidateResult* c, std::uint64_t salt) {
+    std::string note;
+    ModelGap full = Assess(ctx, c->model, true, o.seed + salt, &note);
+    full.heldout = c->after.heldout;
+    full.has_heldout = c->after.has_heldout;
+    c->after = std::move(full);
+    c->full_views = true;
+    c->full_score = all_before.chi2 - c->after.All().chi2 - 2.0 * ParameterCount(c->effects);
+  };
+  // Telegraph and Gauss-Markov share their Allan score; both get the views that separate them.
+  int assessed = 0;
+  for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+    CandidateResult& c = s->candidates[i];
+    if (c.score <= 0.0) break;
+    if (assessed >= o.envelope_candidates) {
+      bool partner = false;
+      for (std::size_t j = 0; j < i; ++j) {
+        for (const auto& eq : AllanEquivalents(c.effects[0].effect)) {
+          partner |= s->candidates[j].full_views && s->candidates[j].effects[0].effect == eq.other;
+        }
+      }
+      if (!partner) continue;
+    }
+    full_assess(&c, 1000 + i);
+    ++assessed;
+  }
+  for (CandidateResult& c : s->candidates) {
+    if (!c.full_views) c.full_score = c.score;
+    c.closes_gap = ClosesGap(c.after, s->threshold);
+  }
+
+  auto acceptable = [&](const CandidateResult& c) {
+    const bool heldout_ok = !c.after.has_heldout || !s->before.has_heldout ||
+                            c.after.heldout.chi2 < s->before.heldout.chi2;
+    return c.score > 0.0 && c.closes_gap && heldout_ok && (c.full_views || !ctx.have_record || o.trials < 3);
+  };
+  auto pick = [&]() {
+    int best = -1;
+    for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+      if (!acceptable(s->candidates[i])) continue;
+      if (best < 0 || s->candidates[i].full_score > s->candidates[best].full_score) best = static_cast<int>(i);
+    }
+    return best;
+  };
+  int best = pick();
+
+  if (best < 0 && o.try_pairs) {
+    std::vector<std::size_t> top;
+    for (std::size_t i = 0; i < s->candidates.size() && top.size() < 3; ++i) {
+      if (s->candidates[i].effects.size() == 1 && s->candidates[i].score > 0.0) top.push_back(i);
+    }
+    std::vector<CandidateResult> pairs;
+    for (std::size_t a = 0; a < top.size(); ++a) {
+      for (std::size_t b = a + 1; b < top.size(); ++b) {
+        const auto& ea = s->candidates[top[a]].effects[0];
+        const auto& eb = s->candidates[top[b]].effects[0];
+        bool equivalent = false;
+        for (const auto& eq : AllanEquivalents(ea.effect)) equivalent |= eq.other == eb.effect;
+        if (equivalent) continue;
+        std::string why;
+        if (auto c = TryCandidate(ctx, *s, {ea, eb}, &why)) pairs.push_back(std::move(*c));
+      }
+    }
+    std::stable_sort(pairs.begin(), pairs.end(), by_score);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (i == 0 && pairs[i].score > 0.0) full_assess(&pairs[i], 2000);
+      if (!pairs[i].full_views) pairs[i].full_score = pairs[i].score;
+      pairs[i].closes_gap = ClosesGap(pairs[i].after, s->threshold);
+      s->candidates.push_back(std::move(pairs[i]));
+    }
+    best = pick();
+  }
+
+  if (best < 0) {
+    s->verdict = "unexplained";
+    for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+      if (s->verdict_candidate < 0 ||
+          s->candidates[i].full_score > s->candidates[s->verdict_candidate].full_score) {
+        s->verdict_candidate = static_cast<int>(i);
+      }
+    }
+    return;
+  }
+  s->verdict_candidate = best;
+  const CandidateResult& chosen = s->candidates[best];
+  s->verdict = chosen.id();
+  // Also consistent: effects with the same Allan signature (unless a view has told them apart)
+  // and any other acceptable candidate whose penalised score is within 2 of the verdict's.
+  if (chosen.effects.size() == 1) {
+    for (const auto& eq : AllanEquivalents(chosen.effects[0].effect)) {
+      bool separated = false;
+      for (const CandidateResult& c : s->candidates) {
+        if (c.effects.size() == 1 && c.effects[0].effect == eq.other && c.full_views && !c.closes_gap) {
+          separated = true;
+        }
+      }
+      if (!separated) s->also_consistent.push_back({std::string(EffectId(eq.other)), eq.separating_view});
+    }
+  }
+  for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+    const CandidateResult& c = s->candidates[i];
+    if (static_cast<int>(i) == best || !acceptable(c)) continue;
+    if (chosen.full_score - c.full_score > 2.0) continue;
+    const std::string id = c.id();
+    const bool listed = std::any_of(s->also_consistent.begin(), s->also_consistent.end(),
+                                    [&](const AlsoConsistent& a) { return a.effect == id; });
+    if (!listed) s->also_consistent.push_back({id, ""});
+  }
+}
+
+bool CommonChecks(const DiagnoseOptions& options, DiagnosisSummary* summary) {
+  std::string why;
+  if (!options.IsValid(&why)) {
+    summary->message = why;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool DiagnoseOptions::IsValid(std::string* why) const {
+  if (terms.empty()) {
+    *why = "no model terms";
+    return false;
+  }
+  if (!(false_alarm > 0.0 && false_alarm < 1.0)) {
+    *why = "false-alarm rate must be in (0, 1)";
+    return false;
+  }
+  if (trials != 0 && (trials < 3 || trials > 100000)) {
+    *why = "trials must be 0 (OAVAR view only) or in [3, 100000]";
+    return false;
+  }
+  if (envelope_candidates < 0) {
+    *why = "envelope_candidates must be >= 0";
+    return false;
+  }
+  return true;
+}
+
+GapMetrics ModelGap::View(experiments::View v) const {
+  for (const ViewResiduals& r : views) {
+    if (r.view == v) return Metrics(r.z);
+  }
+  GapMetrics none;
+  return none;
+}
+
+std::string CandidateResult::id() const {
+  std::string id;
+  for (const EffectInstance& e : effects) {
+    if (!id.empty()) id += "+";
+    id += EffectId(e.effect);
+  }
+  return id;
+}
+
+bool RecordCurve(std::span<const double> rate, double tau0, estimators::AvarCurve* curve,
+                 std::string* why) {
+  estimators::AvarOptions o;
+  o.statistic = estimators::Statistic::kAllanOverlapping;
+  o.sample_period_s = tau0;
+  o.taus.kind = estimators::TauGridKind::kLogDense;
+  o.taus.points_per_decade = 10;
+  estimators::AvarSummary s;
+  if (!estimators::ComputeAvar(o, rate, &s)) {
+    *why = s.message;
+    return false;
+  }
+  estimators::AvarCurve c;
+  c.sample_period_s = tau0;
+  c.num_samples = s.num_samples;
+  c.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const auto& p : s.points) {
+    if (!(p.value > 0.0)) continue;  // a constant stretch: no variance to fit
+    c.m.push_back(p.m);
+    c.tau_s.push_back(p.tau_s);
+    c.avar.push_back(p.value);
+    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
+  if (c.size() < kMinTaus) {
+    *why = "the record gives " + std::to_string(c.size()) + " usable taus (need " +
+           std::to_string(kMinTaus) + "): too short or constant";
+    return false;
+  }
+  *curve = std::move(c);
+  return true;
+}
+
+bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate, double tau0,
+                    DiagnosisSummary* summary) {
+  DiagnosisSummary& s = *summary;
+  s = DiagnosisSummary{};
+  if (!CommonChecks(options, summary)) return false;
+  if (!(tau0 > 0.0) || !std::isfinite(tau0)) {
+    s.message = "sample period must be finite and > 0";
+    return false;
+  }
+  if (static_cast<std::int64_t>(rate.size()) < kMinSamples) {
+    s.message = "the record has " + std::to_string(rate.size()) + " samples; diagnosis needs at least " +
+                std::to_string(kMinSamples);
+    return false;
+  }
+  for (std::size_t k = 0; k < rate.size(); ++k) {
+    if (!std::isfinite(rate[k])) {
+      s.message = "sample " + std::to_string(k) + " is not finite (drop or fill non-finite values first)";
+      return false;
+    }
+  }
+  Context ctx;
+  ctx.options = &options;
+  ctx.rate = rate;
+  ctx.have_record = true;
+  s.num_samples = static_cast<std::int64_t>(rate.size());
+  s.sample_period_s = tau0;
+  std::string why;
+  if (!RecordCurve(rate, tau0, &ctx.curve, &why)) {
+    s.message = why;
+    return false;
+  }
+  estimators::FitOptions fo;
+  fo.method = estimators::FitMethod::kGls;
+  fo.terms = options.terms;
+  if (!estimators::FitAvarModel(fo, ctx.curve, &s.baseline)) {
+    s.message = "baseline fit failed: " + s.baseline.message;
+    return false;
+  }
+  s.baseline_model = LinearModel(s.baseline, 1.0 / tau0);
+  s.curve = ctx.curve;
+  ctx.layout = MakeViewLayout(tau0, s.num_samples, ctx.curve.m);
+  if (!ComputeViews(ctx.layout, rate, &ctx.observed, &why)) {
+    s.message = why;
+    return false;
+  }
+  // Held-out halves: a baseline fitted on the first half, scored on the second.
+  const std::size_t half = rate.size() / 2;
+  ctx.first_rate = rate.first(half);
+  if (RecordCurve(rate.first(half), tau0, &ctx.first, &why) &&
+      RecordCurve(rate.subspan(half, half), tau0, &ctx.second, &why) &&
+      estimators::FitAvarModel(fo, ctx.first, &ctx.first_baseline)) {
+    ctx.have_halves = true;
+    ctx.half_length_s = static_cast<double>(half) * tau0;
+  } else {
+    s.notes.push_back("no held-out score: the halves are too short or their fit failed");
+  }
+  std::string note;
+  s.before = Assess(ctx, s.baseline_model, true, options.seed, &note);
+  if (!note.empty()) s.notes.push_back("envelope: " + note);
+  if (ctx.have_halves) {
+    s.before.heldout = HeldoutMetrics(LinearModel(ctx.first_baseline, 1.0 / tau0), ctx.second);
+    s.before.has_heldout = true;
+  }
+  Finish(ctx, &s);
+  s.ok = true;
+  return true;
+}
+
+bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+                   DiagnosisSummary* summary) {
+  DiagnosisSummary& s = *summary;
+  s = DiagnosisSummary{};
+  if (!CommonChecks(options, summary)) return false;
+  std::string why;
+  if (!curve.IsValid(&why)) {
+    s.message = why;
+    return false;
+  }
+  if (curve.num_samples <= 0 || curve.estimator != sim::AvarEstimatorKind::kOverlapping) {
+    s.message = "curve mode needs an overlapping curve and its record length";
+    return false;
+  }
+  if (curve.size() < kMinTaus) {
+    s.message = "the curve has " + std::to_string(curve.size()) + " taus (need " + std::to_string(kMinTaus) + ")";
+    return false;
+  }
+  Context ctx;
+  ctx.options = &options;
+  ctx.curve = curve;
+  s.curve_mode = true;
+  s.num_samples = curve.num_samples;
+  s.sample_period_s = curve.sample_period_s;
+  estimators::FitOptions fo;
+  fo.method = estimators::FitMethod::kGls;
+  fo.terms = options.terms;
+  if (!estimators::FitAvarModel(fo, curve, &s.baseline)) {
+    s.message = "baseline fit failed: " + s.baseline.message;
+    return false;
+  }
+  s.baseline_model = LinearModel(s.baseline, 1.0 / curve.sample_period_s);
+  s.curve = curve;
+  ctx.layout.sample_period_s = curve.sample_period_s;
+  ctx.layout.num_samples = curve.num_samples;
+  ctx.layout.oavar_m = curve.m;
+  std::string note;
+  s.before = Assess(ctx, s.baseline_model, false, options.seed, &note);
+  s.notes.push_back("curve mode: OAVAR view only (exact distribution), no held-out score");
+  Finish(ctx, &s);
+  s.ok = true;
+  return true;
+}
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,115 @@
+#pragma once
+// Sim-to-real gap diagnosis (issue 6): where a recording departs from its fitted IEEE 952 model,
+// which unmodelled effect (effect.h) explains it, and how far the gap shrinks once it is added.
+//
+// 1. Baseline: GLS fit of the asked terms (estimators/fit/fit_avar_model.h) on the record's
+//    overlapping Allan curve (10 taus per decade).
+// 2. Views and envelopes (record_views.h, envelope.h): OAVAR against its exact distribution,
+//    the other views against `trials` simulated records of the fitted model.
+// 3. Where: standardised residuals and gap regions with Bonferroni control over every point of
+//    every view (gap.h): a record drawn from the model is flagged with probability <= alpha.
+// 4. Which: for each effect with a starting value (candidate_estimate.h), the linear terms are
+//    refitted with the effect in the model (the curve is corrected by the model's ratio
+//    E[linear] / E[linear + effect], three passes) and the gap re-measured. Ranked by the
+//    penalised improvement score = chi2_before - chi2_after - 2 k (k the effect's parameters,
+//    AIC with -2 ln L ~ sum z^2), exact OAVAR view; the best `envelope_candidates` also get the
+//    Monte Carlo views. Held-out: the same refit on the first half, scored on the second half.
+//    Pairs of the best three are tried when no single effect closes the gap.
+// 5. Verdict: "none" (no significant gap), the effect that closes the gap (every view within
+//    the threshold) with a positive score and a held-out improvement, or "unexplained".
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+#include "estimators/fit/fit_avar_model.h"
+#include "experiments/diagnosis/effect.h"
+#include "experiments/diagnosis/gap.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::experiments {
+
+struct DiagnoseOptions {
+  std::vector<estimators::Coefficient> terms = {
+      estimators::Coefficient::kQ, estimators::Coefficient::kN, estimators::Coefficient::kB,
+      estimators::Coefficient::kK, estimators::Coefficient::kR};
+  double false_alarm = 0.05;  // alpha: chance that a record of the model itself is flagged
+  int trials = 30;            // simulated records per Monte Carlo envelope (>= 3; 0: OAVAR only)
+  std::uint64_t seed = 1;     // of the simulated records
+  int envelope_candidates = 3;  // best candidates that also get the Monte Carlo views
+  bool try_pairs = true;
+  std::vector<Effect> effects = {std::begin(kAllEffects), std::end(kAllEffects)};
+  bool IsValid(std::string* why) const;
+};
+
+// One model against the record.
+struct ModelGap {
+  std::vector<ViewResiduals> views;
+  bool has_heldout = false;
+  GapMetrics heldout;  // OAVAR of the second half against the model fitted on the first half
+  GapMetrics View(View v) const;  // zero points when the view is absent
+  GapMetrics All() const { return Metrics(views); }
+};
+
+struct CandidateResult {
+  std::vector<EffectInstance> effects;  // one, or two for a pair
+  estimators::FitSummary fit;           // the linear terms refitted with the effect
+  sim::SensorModel model;
+  ModelGap after;
+  GapMetrics heldout_before;
+  double score = 0.0;            // OAVAR chi2 improvement - 2 k
+  double full_score = 0.0;       // all assessed views: chi2 improvement - 2 k
+  bool full_views = false;       // Monte Carlo views assessed
+  bool closes_gap = false;       // every assessed |z| <= threshold
+  std::string id() const;        // "gauss_markov" or "bias_step+outliers"
+};
+
+struct SkippedEffect {
+  Effect effect;
+  std::string reason;
+};
+
+struct AlsoConsistent {
+  std::string effect;
+  std::string separating_view;  // a view that could tell it from the verdict ("" when none known)
+};
+
+struct DiagnosisSummary {
+  bool ok = false;
+  std::string message;
+  bool curve_mode = false;
+  std::int64_t num_samples = 0;
+  double sample_period_s = 0.0;
+  estimators::AvarCurve curve;
+  estimators::FitSummary baseline;
+  sim::SensorModel baseline_model;
+  ModelGap before;
+  int total_points = 0;
+  double threshold = 0.0;  // |z| level of a gap (Bonferroni over total_points)
+  bool significant = false;
+  std::vector<GapRegion> regions;
+  std::vector<CandidateResult> candidates;  // best first
+  std::vector<SkippedEffect> skipped;
+  std::string verdict;  // "none", an effect id, or "unexplained"
+  int verdict_candidate = -1;  // index into candidates (also for "unexplained": the best tried)
+  std::vector<AlsoConsistent> also_consistent;
+  std::vector<std::string> notes;  // fallbacks taken
+};
+
+// A record of rate samples (rad/s) at period tau0. Returns summary->ok (false: bad options, a
+// record too short for the views, a failed baseline fit, with the reason in message).
+bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate_rad_per_s,
+                    double sample_period_s, DiagnosisSummary* summary);
+
+// A published curve only (no record): the OAVAR view alone, candidates estimable from the curve
+// (bandwidth, gauss_markov, random_telegraph), no held-out score. curve.num_samples must be set.
+bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+                   DiagnosisSummary* summary);
+
+// The record's overlapping Allan curve on 10 taus per decade with Greenhall-Riley EDFs
+// (positive values only), as the baseline fit uses it.
+bool RecordCurve(std::span<const double> rate_rad_per_s, double sample_period_s,
+                 estimators::AvarCurve* curve, std::string* why);
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,43 @@
+#pragma once
+// The distribution of each view's statistics under a sensor model, for records of the real
+// record's length and rate, and the standardised residuals of a record against it (gap.h).
+//   OAVAR: exact. Mean from sim::SensorModel::ExpectedAvar (every term, deterministic ones
+//     included), EDF 2 E^2 / Var with Var of the Gaussian part by Isserlis
+//     (estimators/exact_edf.h): cheap, O(N) per tau.
+//   Other views: Monte Carlo of the model (fixed seed, `trials` records, OpenMP across trials;
+//     deterministic for any thread count: trial t always uses (seed, t) and the moments are summed
+//     in trial order).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "experiments/diagnosis/gap.h"
+#include "experiments/diagnosis/record_views.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::experiments {
+
+struct OavarTheory {
+  std::vector<double> mean;  // E[OAVAR_hat(m)] (rad/s)^2, per layout.oavar_m
+  std::vector<double> edf;
+};
+// Precondition: model.IsValid(), m <= N/2.
+OavarTheory ExactOavar(const sim::SensorModel& model, std::span<const std::int64_t> ms,
+                       std::int64_t num_samples);
+
+struct ViewEnvelope {
+  int trials = 0;      // successful simulated records
+  ViewValues mean, sd;  // per view and point, on the views' (log) scale
+};
+// Returns false with *why when the model is invalid or no simulated record gave values.
+bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, int trials,
+                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why);
+
+// Residuals of `observed` (ComputeViews of the record) against the model: the OAVAR view from
+// `theory`, the others from `envelope` (views absent from the envelope, or with fewer than 3
+// trials, are left out).
+std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues& observed,
+                                     const OavarTheory& theory, const ViewEnvelope* envelope);
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,97 @@
+#include "experiments/diagnosis/gap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
+
+namespace allanlab::experiments {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMaxZ = 37.0;  // Phi^{-1} of the smallest normal double tail
+
+// z from the lower tail p and the upper tail q = 1 - p (each computed directly, so far tails
+// keep their digits).
+double ZFromTails(double p, double q) {
+  const boost::math::normal normal;
+  if (p < q) return p > 0.0 ? std::max(-kMaxZ, boost::math::quantile(normal, p)) : -kMaxZ;
+  return q > 0.0 ? std::min(kMaxZ, -boost::math::quantile(normal, q)) : kMaxZ;
+}
+
+}  // namespace
+
+double ZFromChiSquare(double observed, double expected, double edf) {
+  if (!(observed > 0.0) || !(expected > 0.0) || !(edf > 0.0) || !std::isfinite(observed)) return kNaN;
+  const boost::math::chi_squared chi2(edf);
+  const double x = edf * observed / expected;
+  return ZFromTails(boost::math::cdf(chi2, x), boost::math::cdf(boost::math::complement(chi2, x)));
+}
+
+double ZFromEnvelope(double observed, double mean, double sd, int trials) {
+  if (!std::isfinite(observed) || !std::isfinite(mean) || !(sd > 0.0) || trials < 3) return kNaN;
+  const double t = (observed - mean) / (sd * std::sqrt(1.0 + 1.0 / trials));
+  const boost::math::students_t dist(trials - 1);
+  return ZFromTails(boost::math::cdf(dist, t), boost::math::cdf(boost::math::complement(dist, t)));
+}
+
+double BonferroniThreshold(double alpha, int points) {
+  const boost::math::normal normal;
+  return -boost::math::quantile(normal, alpha / (2.0 * std::max(points, 1)));
+}
+
+GapMetrics Metrics(const std::vector<double>& z) {
+  GapMetrics m;
+  int inside = 0;
+  for (double v : z) {
+    if (!std::isfinite(v)) continue;
+    ++m.points;
+    m.chi2 += v * v;
+    if (std::abs(v) <= 1.959964) ++inside;
+    m.max_abs_z = std::max(m.max_abs_z, std::abs(v));
+  }
+  m.fraction_in_95 = m.points > 0 ? static_cast<double>(inside) / m.points : 1.0;
+  return m;
+}
+
+GapMetrics Metrics(const std::vector<ViewResiduals>& views) {
+  std::vector<double> all;
+  for (const ViewResiduals& v : views) all.insert(all.end(), v.z.begin(), v.z.end());
+  return Metrics(all);
+}
+
+std::vector<GapRegion> FindGapRegions(const std::vector<ViewResiduals>& views, double threshold) {
+  std::vector<GapRegion> regions;
+  for (const ViewResiduals& v : views) {
+    std::size_t i = 0;
+    while (i < v.z.size()) {
+      if (!(std::abs(v.z[i]) > threshold)) {
+        ++i;
+        continue;
+      }
+      GapRegion r;
+      r.view = v.view;
+      r.x_min = v.x[i];
+      double sum = 0.0;
+      int count = 0;
+      // A region runs while |z| stays above threshold (NaN points do not break it).
+      while (i < v.z.size() && (std::abs(v.z[i]) > threshold || !std::isfinite(v.z[i]))) {
+        if (std::isfinite(v.z[i])) {
+          r.x_max = v.x[i];
+          r.max_abs_z = std::max(r.max_abs_z, std::abs(v.z[i]));
+          sum += v.z[i];
+          ++count;
+        }
+        ++i;
+      }
+      r.mean_z = count > 0 ? sum / count : 0.0;
+      regions.push_back(r);
+    }
+  }
+  return regions;
+}
+
+}  // namespace allanlab::experiments

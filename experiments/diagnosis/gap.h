@@ -1,0 +1,55 @@
+#pragma once
+// Standardised residuals of a record against a model, the gap metrics of issue 6 ("How far it
+// shrinks": chi2, fraction inside the 95 % band, largest |z|) and the gap regions.
+//
+// Each residual is turned into an equivalent normal deviate z = Phi^{-1}(P) of its tail
+// probability under the model, so every view speaks the same language:
+//   exact (OAVAR): OAVAR_hat nu / E ~ chi2_nu with nu = 2 E^2 / Var the exact EDF (THEORY.md §2.1),
+//     the log-domain chi-square that stays honest at few terms;
+//   Monte Carlo: (x - mean) / (sd sqrt(1 + 1/n)) ~ Student t_{n-1} for n simulated records (the
+//     prediction interval of one more draw; exact for Gaussian statistics, and logs of
+//     variances are close to Gaussian).
+// Multiplicity: the record is flagged when any |z| over all views exceeds the Bonferroni level
+// Phi^{-1}(1 - alpha / (2 M)), M the number of points in all views, so a record drawn from the
+// model is flagged with probability <= alpha whatever the correlation between taus (the taus of
+// one curve are strongly correlated, so the real rate is below alpha).
+#include <string>
+#include <vector>
+
+#include "experiments/diagnosis/record_views.h"
+
+namespace allanlab::experiments {
+
+double ZFromChiSquare(double observed, double expected, double edf);
+double ZFromEnvelope(double observed, double mean, double sd, int trials);
+// Phi^{-1}(1 - alpha / (2 points)).
+double BonferroniThreshold(double alpha, int points);
+
+// One view of one record against one model.
+struct ViewResiduals {
+  View view = View::kOavar;
+  std::vector<double> x;         // tau [s] or frequency [Hz]
+  std::vector<double> observed;  // the record's statistic (variances in (rad/s)^2, PSD in
+                                 // (rad/s)^2/Hz, log ratios and kurtosis as they are)
+  std::vector<double> expected;  // the model's typical value on the same scale
+  std::vector<double> z;         // NaN where the point has no distribution (skipped)
+};
+
+struct GapMetrics {
+  int points = 0;             // finite z
+  double chi2 = 0.0;          // sum z^2
+  double fraction_in_95 = 1.0;  // |z| <= 1.96
+  double max_abs_z = 0.0;
+};
+GapMetrics Metrics(const std::vector<double>& z);
+GapMetrics Metrics(const std::vector<ViewResiduals>& views);  // pooled
+
+struct GapRegion {
+  View view = View::kOavar;
+  double x_min = 0.0, x_max = 0.0;  // contiguous points with |z| > threshold
+  double max_abs_z = 0.0;
+  double mean_z = 0.0;  // sign: the record above (> 0) or below the model
+};
+std::vector<GapRegion> FindGapRegions(const std::vector<ViewResiduals>& views, double threshold);
+
+}  // namespace allanlab::experiments

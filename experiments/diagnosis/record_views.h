@@ -1,0 +1,62 @@
+#pragma once
+// The views through which `diagnose` compares a record with a model (issue 6, "Where"): each is a
+// vector of statistics of the record, computed identically on the real record and on records
+// simulated from the model, so the simulated ones form its envelope.
+//   oavar:    ln OAVAR(m) on the fit's tau grid (drift-sensitive, the curve people look at)
+//   hadamard: ln OHVAR(m), octave taus up to N/6 (insensitive to a rate ramp)
+//   halves:   ln(OAVAR_first(m) / OAVAR_second(m)), the two halves of the record, octave m up to
+//             N/16: a non-stationarity (step, warm-up drift) makes the halves differ
+//   dynamic:  ln(max/min) over 8 consecutive windows of OAVAR(m), octave m up to N/64: a sliding
+//             (dynamic) Allan variance reduced to its spread
+//   psd:      ln of the Welch PSD (Hann, 50 % overlap, segments of 2^k <= min(N/8, 2^14)
+//             samples) averaged in log-spaced bands of 6 per decade
+//   kurtosis: excess kurtosis of the first differences of non-overlapping block means of m
+//             samples, octave m with >= 256 blocks: ~0 for Gaussian noise of any spectrum,
+//             > 0 for spikes or jumps, < 0 for a two-level (telegraph) signal
+// Logs make the statistics nearly Gaussian across realisations, so one mean and one standard
+// deviation per point describe the envelope.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace allanlab::experiments {
+
+enum class View { kOavar, kHadamard, kHalves, kDynamic, kPsd, kKurtosis };
+inline constexpr View kAllViews[] = {View::kOavar, View::kHadamard, View::kHalves,
+                                     View::kDynamic, View::kPsd,    View::kKurtosis};
+inline constexpr int kNumViews = 6;
+// "oavar", "hadamard", "halves", "dynamic", "psd", "kurtosis" (stable JSON ids).
+std::string_view ViewId(View v);
+// "tau_s" or "frequency_hz".
+std::string_view ViewAxisName(View v);
+
+// Where each view is evaluated for a record of N samples at tau0 (the same for real and
+// simulated records).
+struct ViewLayout {
+  double sample_period_s = 1.0;
+  std::int64_t num_samples = 0;
+  std::vector<std::int64_t> oavar_m;  // the fit's grid
+  std::vector<std::int64_t> hadamard_m, halves_m, dynamic_m, kurtosis_m;
+  std::int64_t psd_segment = 0;                   // 0: no PSD view (record too short)
+  std::vector<std::pair<int, int>> psd_bands;     // [first, last) periodogram bins per band
+  std::vector<double> psd_band_hz;                // geometric centre frequency of each band
+  // x (tau in s, or frequency in Hz) of every point of a view.
+  std::vector<double> Axis(View v) const;
+  std::size_t Size(View v) const { return Axis(v).size(); }
+};
+
+// oavar_m: the fit's averaging factors (ascending, <= N/2).
+ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
+                          std::vector<std::int64_t> oavar_m);
+
+// Statistics of one record per view (indexed by static_cast<int>(View)), sizes as the layout.
+using ViewValues = std::vector<std::vector<double>>;
+
+// Returns false with *why for a record whose length differs from the layout or that has a
+// non-finite sample. Values a record cannot give (a constant stretch: log 0) are NaN.
+bool ComputeViews(const ViewLayout& layout, std::span<const double> rate_rad_per_s,
+                  ViewValues* values, std::string* why);
+
+}  // namespace allanlab::experiments
