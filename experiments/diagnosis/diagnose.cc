@@ -18,6 +18,21 @@ using estimators::Coefficient;
 constexpr std::size_t kMinTaus = 8;
 constexpr std::int64_t kMinSamples = 1024;
 
+// GLS, falling back to WLS when the model covariance of the curve is singular (a curve the
+// GLS iteration drives to a degenerate model): the fallback is named in *note.
+bool FitLinear(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+               estimators::FitSummary* fit, std::string* note) {
+  estimators::FitOptions fo;
+  fo.method = estimators::FitMethod::kGls;
+  fo.terms = options.terms;
+  if (estimators::FitAvarModel(fo, curve, fit)) return true;
+  const std::string gls_message = fit->message;
+  fo.method = estimators::FitMethod::kWls;
+  if (!estimators::FitAvarModel(fo, curve, fit)) return false;
+  if (note != nullptr) *note = "GLS fit failed (" + gls_message + "); WLS used";
+  return true;
+}
+
 sim::SensorModel LinearModel(const estimators::FitSummary& fit, double sample_rate_hz) {
   sim::SensorModel model;
   model.name = "fitted";
@@ -47,9 +62,6 @@ bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve&
                     estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
   const double fs = 1.0 / curve.sample_period_s;
   const sim::RecordShape shape{curve.num_samples, curve.estimator};
-  estimators::FitOptions fo;
-  fo.method = estimators::FitMethod::kGls;
-  fo.terms = options.terms;
   estimators::FitSummary current = start;
   for (int pass = 0; pass < 3; ++pass) {
     const sim::SensorModel linear = LinearModel(current, fs);
@@ -63,7 +75,7 @@ bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve&
       adjusted.avar[i] = std::max(curve.avar[i] * ratio, 1e-300);
     }
     estimators::FitSummary next;
-    if (!estimators::FitAvarModel(fo, adjusted, &next)) {
+    if (!FitLinear(options, adjusted, &next, nullptr)) {
       *why = "refit failed: " + next.message;
       return false;
     }
@@ -413,13 +425,12 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     s.message = why;
     return false;
   }
-  estimators::FitOptions fo;
-  fo.method = estimators::FitMethod::kGls;
-  fo.terms = options.terms;
-  if (!estimators::FitAvarModel(fo, ctx.curve, &s.baseline)) {
+  std::string fallback;
+  if (!FitLinear(options, ctx.curve, &s.baseline, &fallback)) {
     s.message = "baseline fit failed: " + s.baseline.message;
     return false;
   }
+  if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
   s.baseline_model = LinearModel(s.baseline, 1.0 / tau0);
   s.curve = ctx.curve;
   ctx.layout = MakeViewLayout(tau0, s.num_samples, ctx.curve.m);
@@ -432,7 +443,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   ctx.first_rate = rate.first(half);
   if (RecordCurve(rate.first(half), tau0, &ctx.first, &why) &&
       RecordCurve(rate.subspan(half, half), tau0, &ctx.second, &why) &&
-      estimators::FitAvarModel(fo, ctx.first, &ctx.first_baseline)) {
+      FitLinear(options, ctx.first, &ctx.first_baseline, nullptr)) {
     ctx.have_halves = true;
     ctx.half_length_s = static_cast<double>(half) * tau0;
   } else {
@@ -474,13 +485,12 @@ bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& 
   s.curve_mode = true;
   s.num_samples = curve.num_samples;
   s.sample_period_s = curve.sample_period_s;
-  estimators::FitOptions fo;
-  fo.method = estimators::FitMethod::kGls;
-  fo.terms = options.terms;
-  if (!estimators::FitAvarModel(fo, curve, &s.baseline)) {
+  std::string fallback;
+  if (!FitLinear(options, curve, &s.baseline, &fallback)) {
     s.message = "baseline fit failed: " + s.baseline.message;
     return false;
   }
+  if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
   s.baseline_model = LinearModel(s.baseline, 1.0 / curve.sample_period_s);
   s.curve = curve;
   ctx.layout.sample_period_s = curve.sample_period_s;

@@ -1,0 +1,93 @@
+// End-to-end tests of `allanlab diagnose`: the JSON contract of issue 6 (stable keys) on a
+// simulated record, and clear refusals. The built binary runs in a fresh directory per test.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "sim/sensor_model.h"
+#include "tests/support/read_file.h"
+
+namespace allanlab::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DiagnoseCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / "allanlab_diagnose";
+    dir_ += ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  int Run(const std::string& args) {
+    std::ostringstream command;
+    command << ALLANLAB_BINARY << " diagnose " << args << " > '" << (dir_ / "out.txt").string() << "' 2> '"
+            << (dir_ / "err.txt").string() << "'";
+    const int status = std::system(command.str().c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
+  std::string Path(const std::string& name) {
+    std::ostringstream quoted;
+    quoted << '\'' << (dir_ / name).string() << '\'';
+    return quoted.str();
+  }
+  void WriteRecord(const std::string& name, std::int64_t n) {
+    sim::SensorModel model;
+    model.sample_rate_hz = 100.0;
+    sim::WhiteRateNoise white;
+    white.arw_rad_per_sqrt_s = 1e-4;
+    model.terms = {white};
+    std::ofstream out(dir_ / name);
+    out << "rate_rad_per_s\n";
+    for (double v : model.Generate(5, 0, n)) out << v << "\n";
+  }
+  fs::path dir_;
+};
+
+TEST_F(DiagnoseCommandTest, WritesTheJsonContract) {
+  WriteRecord("rec.csv", 4096);
+  std::ostringstream args;
+  args << Path("rec.csv") << " --units rad/s --rate 100 --trials 5 --json " << Path("d.json")
+       << " --report " << Path("d.md");
+  ASSERT_EQ(Run(args.str()), 0)
+      << Read("err.txt");
+  const auto j = nlohmann::json::parse(Read("d.json"));
+  ASSERT_TRUE(j.contains("gap"));
+  EXPECT_TRUE(j["gap"]["significant"].is_boolean());
+  EXPECT_TRUE(j["gap"]["regions"].is_array());
+  EXPECT_TRUE(j["verdict"]["effect"].is_string());
+  EXPECT_TRUE(j["verdict"]["params"].is_object());
+  EXPECT_TRUE(j["verdict"]["also_consistent"].is_array());
+  EXPECT_TRUE(j["candidates"].is_array());
+  EXPECT_TRUE(j["baseline"]["coefficients"].contains("N"));
+  EXPECT_TRUE(j["provenance"].is_object());
+  EXPECT_EQ(j["gap"]["significant"].get<bool>(), j["verdict"]["effect"] != "none");
+  EXPECT_NE(Read("d.md").find("verdict"), std::string::npos);
+}
+
+TEST_F(DiagnoseCommandTest, RefusesTooShortRecordsAndMissingInput) {
+  WriteRecord("short.csv", 100);
+  std::string args = Path("short.csv");
+  args += " --units rad/s --rate 100";
+  EXPECT_EQ(Run(args), 1);
+  const std::string err = Read("err.txt");
+  EXPECT_NE(err.find("allanlab diagnose: error:"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(Run("--trials 5"), 2);
+  std::string curve = "--curve ";
+  curve += Path("short.csv");
+  EXPECT_EQ(Run(curve), 2);  // no --record-length / --rate
+}
+
+}  // namespace
+}  // namespace allanlab::app
