@@ -1,15 +1,43 @@
 #include "experiments/registry.h"
 
+#include <algorithm>
+
+#include "experiments/avar_bias.h"
 #include "experiments/avar_error_bars.h"
 #include "experiments/seed_paper.h"
 
 namespace allanlab::experiments {
+namespace {
 
-std::vector<std::string> ExperimentNames() { return {"avar_error_bars", "seed_paper"}; }
+struct Entry {
+  const char* name;
+  std::unique_ptr<Experiment> (*make)();
+};
+
+template <typename T>
+std::unique_ptr<Experiment> Make() {
+  return std::make_unique<T>();
+}
+
+constexpr Entry kExperiments[] = {
+    {"avar_bias", &Make<AvarBiasExperiment>},
+    {"avar_error_bars", &Make<AvarErrorBarsExperiment>},
+    {"seed_paper", &Make<SeedPaperExperiment>},
+};
+
+}  // namespace
+
+std::vector<std::string> ExperimentNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : kExperiments) names.emplace_back(e.name);
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 std::unique_ptr<Experiment> MakeExperiment(std::string_view name) {
-  if (name == "avar_error_bars") return std::make_unique<AvarErrorBarsExperiment>();
-  if (name == "seed_paper") return std::make_unique<SeedPaperExperiment>();
+  for (const Entry& e : kExperiments) {
+    if (name == e.name) return e.make();
+  }
   return nullptr;
 }
 

@@ -10,16 +10,24 @@
 //     model: {sample_rate: 100 Hz, terms: [{type: arw, N: 0.1 deg/sqrt(h)}]}   # an inline spec
 //   record: {duration: 1 h}           # or {samples: 1000000}; sample_rate from the sensor unless
 //                                     #   record.sample_rate is given
-//   estimators: [overlapping, nonoverlapping, modified, hadamard, total]
-//   taus: octave                      # octave | decade | dense:K | all | [1, 2, 4] (in samples m)
+//   estimators: [overlapping, nonoverlapping, modified, hadamard, total]   # statistic ids
+//   taus: octave                      # octave | decade | dense:K | all | [0.01, 1, 10 s]
+//                                     #   (a list of taus: seconds, or quantities with a unit)
 //   fit: {methods: [slope, wls, log_wls, gls], terms: [Q, N, B, K, R]}   # optional
 //   confidence: [0.683, 0.95]
 //   sweep:                            # any parameter of the sensor or the record; values carry
 //     mode: product                   #   units exactly as the sensor YAML does; product | zip
-//     parameters:
-//       - {path: sensor.terms[1].N, values: [0.01 deg/sqrt(h), 0.1 deg/sqrt(h)]}
+//     parameters:                     #   (quote paths with [ ] inside a flow mapping)
+//       - {path: "sensor.terms[1].N", values: [0.01 deg/sqrt(h), 0.1 deg/sqrt(h)]}
 //       - {path: record.duration, log_range: {from: 10 min, to: 24 h, points: 5}}
 //       - {path: sensor.band_limit.cutoff, range: {from: 50 Hz, to: 200 Hz, step: 50 Hz}}
+//
+// A swept value is written as text into the sensor's YAML (sensor.<key path>, the preset's text
+// when a preset is used) or into the record mapping (record.duration | samples | sample_rate),
+// and every point's model is re-parsed by sim/, so any parameter can be swept and its units are
+// checked there. record.sample_rate replaces the sensor's sample_rate. A range or log_range whose
+// ends carry different units (10 min .. 24 h) is generated in the unit of `from`. Product mode:
+// the first parameter varies slowest. Zip mode: all parameters need the same number of values.
 //
 // Unknown keys and impossible values are rejected before any work, with the key's path in the
 // message (e.g. "sweep.parameters[1].log_range.points: must be >= 2").
@@ -28,6 +36,7 @@
 #include <string_view>
 #include <vector>
 
+#include "estimators/statistic.h"
 #include "sim/avar_theory.h"
 #include "sim/sensor_model.h"
 
@@ -57,8 +66,10 @@ struct SweepSpec {
   std::string driver;
   std::uint64_t seed = 0;
   std::int64_t trials = 0;
-  std::vector<sim::AvarEstimatorKind> estimators;  // defaults to {kOverlapping}
-  std::string taus = "octave";                     // tau-grid spec, as `allanlab avar --taus`
+  // Refined from sim::AvarEstimatorKind (which only knows the two Allan variances) so the
+  // modified, Hadamard and total statistics the comment above lists can be asked for.
+  std::vector<allanlab::estimators::Statistic> estimators;  // default {kAllanOverlapping}
+  std::string taus = "octave";  // tau-grid spec as `allanlab avar --taus` (list: seconds, commas)
   std::vector<std::string> fit_methods;            // "slope", "wls", "log_wls", "gls"
   std::vector<std::string> fit_terms;              // "Q", "N", ...
   std::vector<double> confidence_levels = {0.683, 0.95};

@@ -1,0 +1,207 @@
+#include "experiments/avar_bias.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <unistd.h>
+
+#include "estimators/allan_family.h"
+#include "estimators/tau_grid.h"
+
+namespace allanlab::experiments {
+namespace {
+
+bool HasExactExpectation(estimators::Statistic s) {
+  return s == estimators::Statistic::kAllanOverlapping ||
+         s == estimators::Statistic::kAllanNonOverlapping;
+}
+
+sim::AvarEstimatorKind KindOf(estimators::Statistic s) {
+  return s == estimators::Statistic::kAllanNonOverlapping ? sim::AvarEstimatorKind::kNonOverlapping
+                                                          : sim::AvarEstimatorKind::kOverlapping;
+}
+
+std::vector<estimators::Statistic> Statistics(const SweepSpec& spec) {
+  std::vector<estimators::Statistic> out;
+  for (estimators::Statistic s : spec.estimators) {
+    if (HasExactExpectation(s)) out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<std::int64_t> AveragingFactors(const SweepSpec& spec, const SweepPoint& point) {
+  estimators::TauGridOptions grid;
+  std::string why;
+  if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) throw std::invalid_argument(why);
+  std::vector<std::int64_t> ms;
+  for (std::int64_t m :
+       estimators::CandidateAveragingFactors(grid, 1.0 / point.sample_rate_hz, point.num_samples / 4)) {
+    if (m >= 1) ms.push_back(m);
+  }
+  return ms;
+}
+
+// The injected scale of the test hook: 1 unless ALLANLAB_INJECT_AVAR_SCALE is set.
+double InjectedScale() {
+  static const double scale = [] {
+    const char* text = std::getenv("ALLANLAB_INJECT_AVAR_SCALE");
+    if (text == nullptr || *text == '\0') return 1.0;
+    char* end = nullptr;
+    const double value = std::strtod(text, &end);
+    return (*end == '\0' && value > 0.0) ? value : 1.0;
+  }();
+  return scale;
+}
+
+struct Workspace : TrialWorkspace {
+  int point = -1;
+  std::vector<std::int64_t> ms;
+  std::vector<std::vector<double>> expected;  // per statistic, per m
+  estimators::AllanFamilyWorkspace allan;
+};
+
+std::string Format(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+bool WriteAtomically(const std::string& path, const std::string& content, std::string* why) {
+  const std::string temp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    out << content;
+    out.flush();
+    if (!out) {
+      *why = "cannot write " + temp + ": " + std::strerror(errno);
+      std::remove(temp.c_str());
+      return false;
+    }
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    *why = "cannot rename " + temp + " to " + path + ": " + std::strerror(errno);
+    std::remove(temp.c_str());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::string> AvarBiasDriver::Columns(const SweepSpec& spec, const SweepPoint& point) const {
+  std::vector<std::string> columns;
+  const std::vector<std::int64_t> ms = AveragingFactors(spec, point);
+  for (estimators::Statistic s : Statistics(spec)) {
+    for (std::int64_t m : ms) {
+      std::string name = "avar_ratio/";
+      name += estimators::StatisticId(s);
+      name += "/m=" + std::to_string(m);
+      columns.push_back(std::move(name));
+    }
+  }
+  return columns;
+}
+
+std::unique_ptr<TrialWorkspace> AvarBiasDriver::MakeWorkspace() const {
+  return std::make_unique<Workspace>();
+}
+
+std::vector<double> AvarBiasDriver::Run(const SweepSpec& spec, const SweepPoint& point,
+                                        std::int64_t trial, TrialWorkspace* workspace) const {
+  auto* w = static_cast<Workspace*>(workspace);
+  const std::vector<estimators::Statistic> statistics = Statistics(spec);
+  if (w->point != point.index) {
+    w->ms = AveragingFactors(spec, point);
+    w->expected.clear();
+    for (estimators::Statistic s : statistics) {
+      w->expected.push_back(point.model.ExpectedAvar(w->ms, sim::RecordShape{point.num_samples, KindOf(s)}));
+    }
+    w->point = point.index;
+  }
+  const std::vector<double> rate = point.model.Generate(
+      PointSeed(spec.seed, point.index), static_cast<std::uint64_t>(trial), point.num_samples);
+  std::vector<double> values;
+  values.reserve(statistics.size() * w->ms.size());
+  const double tau0 = 1.0 / point.sample_rate_hz;
+  for (std::size_t si = 0; si < statistics.size(); ++si) {
+    estimators::AvarOptions options;
+    options.statistic = statistics[si];
+    options.sample_period_s = tau0;
+    options.taus.kind = estimators::TauGridKind::kExplicit;
+    for (std::int64_t m : w->ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
+    options.confidence_method = estimators::ConfidenceMethod::kNone;
+    estimators::AvarSummary summary;
+    if (!estimators::ComputeStatisticValues(options, rate, &summary, &w->allan)) {
+      throw std::runtime_error(summary.message);
+    }
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < w->ms.size(); ++k) {
+      while (next < summary.points.size() && summary.points[next].m < w->ms[k]) ++next;
+      const bool found = next < summary.points.size() && summary.points[next].m == w->ms[k];
+      values.push_back(found ? InjectedScale() * summary.points[next].value / w->expected[si][k]
+                             : std::nan(""));
+    }
+  }
+  return values;
+}
+
+std::string AvarBiasExperiment::Question() const {
+  return "How biased are the Allan variance estimators on simulated records? Per point and "
+         "averaging factor m, the mean over trials of AVAR_hat(m) / E[AVAR_hat(m)], the exact "
+         "expectation of the record's estimator (sim::SensorModel::ExpectedAvar, band-limit and "
+         "finite record included). Pass: |mean - 1| within a few Monte Carlo standard errors.";
+}
+
+bool AvarBiasExperiment::WriteReport(const SweepSpec& spec, const RunSummary& run,
+                                     const std::vector<PointStats>& stats,
+                                     const ReportContext& context, std::string* why) const {
+  std::error_code ec;
+  std::filesystem::create_directories(context.output_dir, ec);
+  if (ec) {
+    *why = "cannot create " + context.output_dir + ": " + ec.message();
+    return false;
+  }
+  std::ostringstream header;
+  header << "git_sha: " << context.git_sha << "\nbuild_type: " << context.build_type
+         << "\ndate_utc: " << context.date_utc << "\ncommand: " << context.command_line
+         << "\nthreads: " << context.threads << "\nranks: " << context.ranks << "\nseed: " << spec.seed
+         << "\ntrials: " << spec.trials << "\nfailed_trials: " << run.trials_failed << '\n';
+  std::ostringstream csv, md;
+  {
+    std::istringstream lines(header.str());
+    for (std::string line; std::getline(lines, line);) csv << "# " << line << '\n';
+  }
+  csv << "point,coordinates,column,count,mean,std,standard_error,bias,z\n";
+  md << "# " << spec.name << ": Allan variance bias against the exact expectation\n\n"
+     << Question() << "\n\n```\n" << header.str() << "```\n\n"
+     << "| point | coordinates | column | trials | mean ratio | std | s.e. | bias | z |\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const PointStats& point : stats) {
+    std::string coordinates;
+    for (const SweepCoordinate& c : spec.points[static_cast<std::size_t>(point.point)].coordinates) {
+      coordinates += coordinates.empty() ? "" : "; ";
+      coordinates += c.path + "=" + c.value_text;
+    }
+    for (const ColumnStats& c : point.columns) {
+      const double bias = c.mean - 1.0;
+      const double z = bias / c.standard_error;
+      csv << point.point << ",\"" << coordinates << "\"," << c.column << ',' << c.count << ','
+          << Format(c.mean, 17) << ',' << Format(c.std, 17) << ',' << Format(c.standard_error, 17)
+          << ',' << Format(bias, 17) << ',' << Format(z, 6) << '\n';
+      md << "| " << point.point << " | " << coordinates << " | " << c.column << " | " << c.count
+         << " | " << Format(c.mean, 5) << " | " << Format(c.std, 3) << " | "
+         << Format(c.standard_error, 2) << " | " << Format(bias, 2) << " | " << Format(z, 2) << " |\n";
+    }
+  }
+  const std::string base = context.output_dir + "/" + spec.name;
+  return WriteAtomically(base + ".csv", csv.str(), why) && WriteAtomically(base + ".md", md.str(), why);
+}
+
+}  // namespace allanlab::experiments
