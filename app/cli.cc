@@ -10,6 +10,8 @@
 #include "app/provenance.h"
 #include "app/simulate_command.h"
 #include "app/subcommand.h"
+#include "app/sweep_command.h"
+#include "app/validate_command.h"
 
 namespace allanlab::app {
 namespace {
@@ -21,6 +23,8 @@ constexpr SubcommandFactory kSubcommands[] = {
     AddAvarCommand,
     AddFitCommand,
     AddDiagnoseCommand,
+    AddSweepCommand,
+    AddValidateCommand,
 };
 
 }  // namespace

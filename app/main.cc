@@ -1,4 +1,9 @@
 // The `allanlab` command: one binary, one subcommand per job.
 #include "app/cli.h"
+#include "experiments/mpi_world.h"
 
-int main(int argc, char** argv) { return allanlab::app::RunCli(argc, argv); }
+int main(int argc, char** argv) {
+  // MPI only when started by mpirun (and built with MPI); a no-op otherwise.
+  allanlab::experiments::MpiSession mpi(&argc, &argv);
+  return allanlab::app::RunCli(argc, argv);
+}
