@@ -1,19 +1,15 @@
 #include "experiments/avar_bias.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
-#include <unistd.h>
-
 #include "estimators/allan_family.h"
 #include "estimators/tau_grid.h"
+#include "experiments/report_files.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -71,26 +67,6 @@ std::string Format(double value, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
-}
-
-bool WriteAtomically(const std::string& path, const std::string& content, std::string* why) {
-  const std::string temp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    out << content;
-    out.flush();
-    if (!out) {
-      *why = "cannot write " + temp + ": " + std::strerror(errno);
-      std::remove(temp.c_str());
-      return false;
-    }
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    *why = "cannot rename " + temp + " to " + path + ": " + std::strerror(errno);
-    std::remove(temp.c_str());
-    return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -201,7 +177,7 @@ bool AvarBiasExperiment::WriteReport(const SweepSpec& spec, const RunSummary& ru
     }
   }
   const std::string base = context.output_dir + "/" + spec.name;
-  return WriteAtomically(base + ".csv", csv.str(), why) && WriteAtomically(base + ".md", md.str(), why);
+  return WriteFileAtomically(base + ".csv", csv.str(), why) && WriteFileAtomically(base + ".md", md.str(), why);
 }
 
 }  // namespace allanlab::experiments
