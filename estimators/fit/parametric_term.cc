@@ -109,6 +109,31 @@ class GaussMarkovTerm final : public AmplitudeScaleTerm {
   }
 };
 
+// The telegraph's AVAR is the Gauss-Markov one with sigma = a, Tc = T/2 (sim/random_telegraph.h):
+// same shape, its own parameters, so a fit reports the telegraph's amplitude and dwell directly.
+class RandomTelegraphTerm final : public AmplitudeScaleTerm {
+ public:
+  RandomTelegraphTerm() {
+    specs_ = {RateAmplitude("a"),
+              {"dwell", "s", "s", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
+  }
+  std::string_view id() const override { return sim::RandomTelegraph::kId; }
+  std::string_view short_name() const override { return "RTS"; }
+  void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
+    model->terms.push_back(sim::RandomTelegraph{p[0], p[1]});
+  }
+
+ private:
+  double UnitAsymptote(double dwell, double tau) const override {
+    return sim::RandomTelegraph{1.0, dwell}.AsymptoticAvar(tau);
+  }
+  // As the Gauss-Markov term with Tc = dwell / 2.
+  void ScaleBounds(const AvarCurve& c, double* lo, double* hi) const override {
+    *lo = c.tau_s.front() / 5.0;
+    *hi = c.tau_s.back() * 20.0;
+  }
+};
+
 class HarmonicTerm final : public AmplitudeScaleTerm {
  public:
   HarmonicTerm() {
@@ -212,6 +237,7 @@ void ParametricTerm::Bounds(const AvarCurve&, std::vector<double>* lower, std::v
 }
 
 std::unique_ptr<ParametricTerm> MakeGaussMarkovTerm() { return std::make_unique<GaussMarkovTerm>(); }
+std::unique_ptr<ParametricTerm> MakeRandomTelegraphTerm() { return std::make_unique<RandomTelegraphTerm>(); }
 std::unique_ptr<ParametricTerm> MakeHarmonicTerm() { return std::make_unique<HarmonicTerm>(); }
 std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind) {
   return std::make_unique<BandLimitTerm>(kind);
@@ -219,6 +245,7 @@ std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind) {
 
 std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name) {
   if (name == "GM" || name == "gauss_markov") return MakeGaussMarkovTerm();
+  if (name == "RTS" || name == "random_telegraph") return MakeRandomTelegraphTerm();
   if (name == "H" || name == "harmonic") return MakeHarmonicTerm();
   if (name == "BW" || name == "bandwidth") return MakeBandLimitTerm(sim::LowPassKind::kFirstOrder);
   if (name == "BW2") return MakeBandLimitTerm(sim::LowPassKind::kButterworth2);

@@ -69,6 +69,9 @@ class ParametricTerm {
 // First-order Gauss-Markov rate noise, sim::GaussMarkov: parameters sigma (rad/s; datasheet
 // deg/h) and Tc (s). Its AVAR peaks at tau ~ 1.89 Tc at 0.381 sigma^2.
 std::unique_ptr<ParametricTerm> MakeGaussMarkovTerm();
+// Random telegraph signal, sim::RandomTelegraph: parameters a (rad/s; deg/h) and dwell (mean
+// dwell, s). Same AVAR as a Gauss-Markov process with sigma = a, Tc = dwell/2.
+std::unique_ptr<ParametricTerm> MakeRandomTelegraphTerm();
 // Random-phase sinusoid, sim::Harmonic: parameters Omega0 (peak, rad/s; deg/h) and f0 (Hz).
 // AVAR = Omega0^2 (sin^2(x)/x)^2, x = pi f0 tau (exact point-sampled form in sim/).
 std::unique_ptr<ParametricTerm> MakeHarmonicTerm();
@@ -76,8 +79,8 @@ std::unique_ptr<ParametricTerm> MakeHarmonicTerm();
 // parameter fc (Hz).
 std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind);
 
-// By CLI name ("GM", "H", "BW", "BW2") or id ("gauss_markov", "harmonic", "bandwidth" = first
-// order); nullptr if unknown.
+// By CLI name ("GM", "RTS", "H", "BW", "BW2") or id ("gauss_markov", "random_telegraph",
+// "harmonic", "bandwidth" = first order); nullptr if unknown.
 std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name);
 
 }  // namespace allanlab::estimators
