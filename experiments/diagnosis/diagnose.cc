@@ -5,6 +5,8 @@
 #include <optional>
 
 #include "estimators/avar.h"
+#include "estimators/fit/parametric_fit.h"
+#include "estimators/fit/parametric_term.h"
 #include "experiments/diagnosis/candidate_estimate.h"
 #include "experiments/diagnosis/envelope.h"
 #include "experiments/diagnosis/record_views.h"
@@ -85,6 +87,124 @@ bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve&
   return WithEffects(LinearModel(current, fs), effects, model, why);
 }
 
+// A library term whose fit starts at given values (the candidate's estimate from the record)
+// rather than at the term's own guess from the curve.
+class SeededTerm final : public estimators::ParametricTerm {
+ public:
+  SeededTerm(std::shared_ptr<const estimators::ParametricTerm> inner, std::vector<double> start)
+      : inner_(std::move(inner)), start_(std::move(start)) {}
+  std::string_view id() const override { return inner_->id(); }
+  std::string_view short_name() const override { return inner_->short_name(); }
+  const std::vector<estimators::ParameterSpec>& parameters() const override { return inner_->parameters(); }
+  void Bounds(const estimators::AvarCurve& curve, std::vector<double>* lo, std::vector<double>* hi) const override {
+    inner_->Bounds(curve, lo, hi);
+  }
+  bool InitialGuess(const estimators::AvarCurve& curve, std::span<const double>, const sim::SensorModel&,
+                    std::vector<double>* params, std::string*) const override {
+    std::vector<double> lo, hi;
+    Bounds(curve, &lo, &hi);
+    *params = start_;
+    for (std::size_t q = 0; q < params->size(); ++q) {
+      // Strictly inside the bounds: Ceres needs a feasible interior start.
+      (*params)[q] = std::clamp((*params)[q], lo[q] * 1.001, hi[q] * 0.999);
+    }
+    return true;
+  }
+  void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override { inner_->ApplyTo(p, model); }
+  bool modifies_other_terms() const override { return inner_->modifies_other_terms(); }
+
+ private:
+  std::shared_ptr<const estimators::ParametricTerm> inner_;
+  std::vector<double> start_;
+};
+
+// The effect's parameters as the fit library's term sees them (names in effect.h order vs the
+// term's parameters() order); nullptr for effects that are not parametric terms there.
+std::shared_ptr<const estimators::ParametricTerm> TermOf(const EffectInstance& e, std::vector<const char*>* keys) {
+  switch (e.effect) {
+    case Effect::kGaussMarkov:
+      *keys = {"sigma_rad_per_s", "correlation_time_s"};
+      return estimators::MakeGaussMarkovTerm();
+    case Effect::kRandomTelegraph:
+      *keys = {"amplitude_rad_per_s", "mean_dwell_s"};
+      return estimators::MakeRandomTelegraphTerm();
+    case Effect::kHarmonic:
+      *keys = {"amplitude_rad_per_s", "frequency_hz"};
+      return estimators::MakeHarmonicTerm();
+    case Effect::kBandwidth:
+      *keys = {"cutoff_hz"};
+      return estimators::MakeBandLimitTerm(e.params.at("order") == 2.0 ? sim::LowPassKind::kButterworth2
+                                                                        : sim::LowPassKind::kFirstOrder);
+    default:
+      return nullptr;
+  }
+}
+
+// The linear terms and the effects' parameters fitted together (estimators/fit/parametric_fit.h,
+// GLS) from the estimates in `effects`; for a correlation time (Gauss-Markov, telegraph) the fit
+// is also started a factor 3 either side and the lowest chi2 kept, as the Allan bump of a
+// dominant process is flat enough near its peak to hold a local minimum. Returns false when an
+// effect is not a library term (the caller then uses the ratio refit).
+bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+                   std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
+                   sim::SensorModel* model, std::string* why) {
+  std::vector<std::vector<const char*>> keys(effects->size());
+  std::vector<std::shared_ptr<const estimators::ParametricTerm>> terms;
+  for (std::size_t i = 0; i < effects->size(); ++i) {
+    auto t = TermOf((*effects)[i], &keys[i]);
+    if (!t) return false;
+    terms.push_back(std::move(t));
+  }
+  // Starts: the estimate, then the scale parameter of each Gauss-Markov-like effect x 1/3 and 3.
+  std::vector<std::vector<double>> base_start(effects->size());
+  for (std::size_t i = 0; i < effects->size(); ++i) {
+    for (const char* k : keys[i]) base_start[i].push_back((*effects)[i].params.at(k));
+  }
+  std::vector<std::vector<std::vector<double>>> starts = {base_start};
+  for (std::size_t i = 0; i < effects->size(); ++i) {
+    const Effect e = (*effects)[i].effect;
+    if (e != Effect::kGaussMarkov && e != Effect::kRandomTelegraph) continue;
+    for (double f : {1.0 / 3.0, 3.0}) {
+      auto s = base_start;
+      s[i][1] *= f;
+      starts.push_back(s);
+    }
+  }
+  bool any = false;
+  estimators::ParametricFitSummary best;
+  estimators::ParametricFitOptions best_options;
+  for (const auto& start : starts) {
+    estimators::ParametricFitOptions po;
+    po.method = estimators::FitMethod::kGls;
+    po.terms = options.terms;
+    for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
+    estimators::ParametricFitSummary ps;
+    if (!estimators::FitAvarModelWithTerms(po, curve, &ps)) {
+      *why = ps.base.message;
+      continue;
+    }
+    if (!any || ps.base.chi2 < best.base.chi2) {
+      best = std::move(ps);
+      best_options = std::move(po);
+      any = true;
+    }
+  }
+  if (!any) return false;
+  std::vector<EffectInstance> fitted = *effects;
+  for (std::size_t i = 0; i < fitted.size(); ++i) {
+    const auto& pe = best.extra[i];
+    if (!pe.fitted) {
+      *why = "the fit left " + pe.id + " out: " + pe.note;
+      return false;
+    }
+    for (std::size_t q = 0; q < keys[i].size(); ++q) fitted[i].params[keys[i][q]] = pe.value_si[q];
+  }
+  *effects = std::move(fitted);
+  *fit = best.base;
+  *model = estimators::FittedModel(best_options, curve, best);
+  return true;
+}
+
 GapMetrics HeldoutMetrics(const sim::SensorModel& model, const estimators::AvarCurve& second) {
   const OavarTheory t = ExactOavar(model, second.m, second.num_samples);
   std::vector<double> z;
@@ -138,7 +258,11 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
                                             std::string* why) {
   CandidateResult c;
   c.effects = effects;
-  if (!FitWithEffects(*ctx.options, ctx.curve, s.baseline, effects, &c.fit, &c.model, why)) return std::nullopt;
+  std::string parametric_why;
+  if (!FitParametric(*ctx.options, ctx.curve, &c.effects, &c.fit, &c.model, &parametric_why) &&
+      !FitWithEffects(*ctx.options, ctx.curve, s.baseline, effects, &c.fit, &c.model, why)) {
+    return std::nullopt;
+  }
   c.after = Assess(ctx, c.model, false, 0, why);
   const int k = ParameterCount(effects);
   c.score = s.before.View(View::kOavar).chi2 - c.after.View(View::kOavar).chi2 - 2.0 * k;
@@ -158,7 +282,9 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
     estimators::FitSummary first_fit;
     sim::SensorModel first_model;
     std::string ignored;
-    if (FitWithEffects(*ctx.options, ctx.first, ctx.first_baseline, first_effects, &first_fit,
+    const bool pf = FitParametric(*ctx.options, ctx.first, &first_effects, &first_fit, &first_model, &ignored);
+    if (pf ||
+        FitWithEffects(*ctx.options, ctx.first, ctx.first_baseline, first_effects, &first_fit,
                        &first_model, &ignored)) {
       for (const EffectInstance& e : first_effects) {
         if (auto sh = ShiftEffect(e, ctx.half_length_s)) shifted.push_back(*sh);
@@ -286,6 +412,24 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
       }
     }
     return;
+  }
+  // Allan-equivalent effects (telegraph vs Gauss-Markov) have the same number of parameters and
+  // the same Allan score: the view that separates them decides (lower chi2 there).
+  if (s->candidates[best].effects.size() == 1) {
+    const Effect e = s->candidates[best].effects[0].effect;
+    for (const auto& eq : AllanEquivalents(e)) {
+      const View* view_it = std::find_if(std::begin(kAllViews), std::end(kAllViews),
+                                         [&](View v) { return ViewId(v) == eq.separating_view; });
+      if (view_it == std::end(kAllViews)) continue;
+      const View view = *view_it;
+      for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+        const CandidateResult& c = s->candidates[i];
+        if (c.effects.size() != 1 || c.effects[0].effect != eq.other || !acceptable(c)) continue;
+        const GapMetrics mine = s->candidates[best].after.View(view), theirs = c.after.View(view);
+        if (theirs.points > 0 && mine.points > 0 && theirs.chi2 < mine.chi2) best = static_cast<int>(i);
+        break;
+      }
+    }
   }
   s->verdict_candidate = best;
   const CandidateResult& chosen = s->candidates[best];

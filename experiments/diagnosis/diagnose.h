@@ -8,13 +8,18 @@
 //    the other views against `trials` simulated records of the fitted model.
 // 3. Where: standardised residuals and gap regions with Bonferroni control over every point of
 //    every view (gap.h): a record drawn from the model is flagged with probability <= alpha.
-// 4. Which: for each effect with a starting value (candidate_estimate.h), the linear terms are
-//    refitted with the effect in the model (the curve is corrected by the model's ratio
-//    E[linear] / E[linear + effect], three passes) and the gap re-measured. Ranked by the
+// 4. Which: for each effect with a starting value (candidate_estimate.h), the model is refitted
+//    with the effect and the gap re-measured. Effects that are fit-library terms (gauss_markov,
+//    random_telegraph, harmonic, bandwidth: estimators/fit/parametric_term.h) are fitted jointly
+//    with the linear terms by GLS (parametric_fit.h), started at the estimate (correlation times
+//    also at 1/3 and 3 x, lowest chi2 kept); the others keep their estimate and the linear terms
+//    are refitted on the curve corrected by E[linear] / E[linear + effect] (three passes). Ranked by the
 //    penalised improvement score = chi2_before - chi2_after - 2 k (k the effect's parameters,
 //    AIC with -2 ln L ~ sum z^2), exact OAVAR view; the best `envelope_candidates` also get the
 //    Monte Carlo views. Held-out: the same refit on the first half, scored on the second half.
 //    Pairs of the best three are tried when no single effect closes the gap.
+//    Allan-equivalent effects (telegraph / Gauss-Markov) that both pass are decided by the view
+//    that separates them (kurtosis: lower chi2 wins); the other is listed as also consistent.
 // 5. Verdict: "none" (no significant gap), the effect that closes the gap (every view within
 //    the threshold) with a positive score and a held-out improvement, or "unexplained".
 #include <cstdint>
