@@ -5,6 +5,8 @@
 #include <numbers>
 #include <vector>
 
+#include "estimators/difference_kernel.h"  // CompensatedSum
+
 namespace allanlab::estimators {
 namespace {
 
@@ -22,6 +24,14 @@ constexpr double kDeltaLimit = 0.25;
 // R(n) separates white phase, flicker phase and white FM only from m = 4 on (0.25, 0.39, 0.5;
 // at m = 2 they are 0.50, 0.52, 0.5).
 constexpr std::int64_t kMinRnFactor = 4;
+
+// body(lo, hi) over [0, count) in blocks of 4096: each block's lane sums go into compensated
+// totals, so a 1e8-term sum keeps its digits.
+template <typename Body>
+void ForBlocks(std::size_t count, Body&& body) {
+  constexpr std::size_t kBlock = 4096;
+  for (std::size_t lo = 0; lo < count; lo += kBlock) body(lo, std::min(count, lo + kBlock));
+}
 
 // Non-overlapping m-averages of the mean-removed record: the mean goes first so that a large
 // bias costs no digits in the differences below.
@@ -133,19 +143,88 @@ double ModifiedToAllanRatio(std::span<const double> rate, std::int64_t m) {
 // for flicker phase (with the usual f_h = 1/(2 tau0)) and 1/2 for white FM; boundaries are
 // geometric means. White FM is among the candidates because B1 from a handful of averages
 // often falls below its mu = -1 band while R(n), from the whole record, is far more precise.
-int PhaseNoiseOrWhiteFm(std::span<const double> rate, std::int64_t m) {
+// The same ratio from the integrated record (phase.size() = N + 1, any reference level): the
+// Allan differences are second differences of the phase and the window of the last m of them is
+// carried along, so no ring is kept and everything is double. Four windows advance per step
+// from one carried sum (w_{t+j} = w_t + partial sums of the changes), which keeps the
+// loop-carried chain at one addition per four terms; its rounding drifts like a random walk,
+// ~sqrt(N) ulp, far below the resolution the boundaries below need.
+double ModifiedToAllanRatioFromPhase(std::span<const double> phase, std::int64_t m) {
+  const auto n = static_cast<std::int64_t>(phase.size()) - 1;
+  if (3 * m > n) return 0.0;
+  const double* x = phase.data();
+  auto a = [x, m](std::int64_t t) { return (x[t + 2 * m] - x[t + m]) - (x[t + m] - x[t]); };
+  const std::int64_t count = n - 2 * m + 1;  // Allan differences (times m)
+  CompensatedSum avar_total, mvar_total;
+  // The first window, a_0..a_{m-1}, and their squares.
+  double window = 0.0;
+  {
+    double squares = 0.0;
+    for (std::int64_t j = 0; j < m; ++j) {
+      const double v = a(j);
+      window += v;
+      squares += v * v;
+    }
+    avar_total.Add(squares);
+  }
+  // w_t = sum_{j=t-m+1}^{t} a_j for t = m - 1 .. count - 1; w_{t+1} = w_t + a_{t+1} - a_{t+1-m},
+  // and the incoming a_{t+1} are the remaining Allan terms.
+  constexpr std::int64_t kFlush = 4096;
+  const std::int64_t last = count - 1;
+  std::int64_t t = m - 1;
+  while (t <= last) {
+    const std::int64_t end = std::min(last + 1, t + kFlush);
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    double q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
+    for (; t + 4 <= end && t + 4 <= last; t += 4) {
+      const double in0 = a(t + 1), in1 = a(t + 2), in2 = a(t + 3), in3 = a(t + 4);
+      const double d0 = in0 - a(t + 1 - m), d1 = in1 - a(t + 2 - m);
+      const double d2 = in2 - a(t + 3 - m), d3 = in3 - a(t + 4 - m);
+      const double w1 = window + d0, w2 = window + (d0 + d1), w3 = window + ((d0 + d1) + d2);
+      s0 += window * window;
+      s1 += w1 * w1;
+      s2 += w2 * w2;
+      s3 += w3 * w3;
+      q0 += in0 * in0;
+      q1 += in1 * in1;
+      q2 += in2 * in2;
+      q3 += in3 * in3;
+      window += ((d0 + d1) + (d2 + d3));
+    }
+    for (; t < end; ++t) {
+      s0 += window * window;
+      if (t < last) {
+        const double in = a(t + 1);
+        q0 += in * in;
+        window += in - a(t + 1 - m);
+      }
+    }
+    mvar_total.Add((s0 + s1) + (s2 + s3));
+    avar_total.Add((q0 + q1) + (q2 + q3));
+  }
+  const double avar = avar_total.Value() / static_cast<double>(count);
+  const double md = static_cast<double>(m);
+  const double mvar = mvar_total.Value() / (md * md) / static_cast<double>(count - m + 1);
+  return avar > 0.0 ? mvar / avar : 0.0;
+}
+
+// phase empty: R(n) from the rate samples.
+int PhaseNoiseOrWhiteFm(std::span<const double> rate, std::span<const double> phase,
+                        std::int64_t m) {
   if (m < kMinRnFactor) return 2;
   const double md = static_cast<double>(m);
   const double white_phase = 1.0 / md;
   const double flicker_phase =
       3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
   const double white_fm = 0.5;
-  const double rn = ModifiedToAllanRatio(rate, m);
+  const double rn =
+      phase.empty() ? ModifiedToAllanRatio(rate, m) : ModifiedToAllanRatioFromPhase(phase, m);
   if (rn < std::sqrt(white_phase * flicker_phase)) return 2;
   return rn < std::sqrt(flicker_phase * white_fm) ? 1 : 0;
 }
 
-NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
+NoiseId B1Identification(std::span<const double> rate, std::span<const double> phase,
+                         std::int64_t m,
                          const std::vector<double>& means) {
   const double n = static_cast<double>(means.size());
   long double mean = 0.0L;
@@ -170,27 +249,143 @@ NoiseId B1Identification(std::span<const double> rate, std::int64_t m,
       return id;
     }
   }
-  id.alpha = PhaseNoiseOrWhiteFm(rate, m);
+  id.alpha = PhaseNoiseOrWhiteFm(rate, phase, m);
   return id;
 }
 
 
 // Identification from the m-averages (any constant offset: the trend removal, the ACF and the
 // B1 ratio do not see it).
-NoiseId IdentifyFromMeans(std::span<const double> rate, std::int64_t m, std::vector<double> means) {
+NoiseId IdentifyFromMeans(std::span<const double> rate, std::span<const double> phase,
+                          std::int64_t m, std::vector<double> means) {
   if (means.size() >= kMinAcfPoints) {
     RemoveLinearTrend(means);
     return {AcfAlpha(std::move(means)), true, false};
   }
-  if (means.size() >= kMinB1Points) return B1Identification(rate, m, means);
+  if (means.size() >= kMinB1Points) return B1Identification(rate, phase, m, means);
   return {};
+}
+
+// Sums of c_k, c_k^2 and c_k c_{k+1} over k < len of a series given by c(k), and its lag-1
+// autocorrelation (Riley & Greenhall eq. 2) about the series' own mean.
+struct Moments {
+  double sum = 0.0, squares = 0.0, products = 0.0, first = 0.0, last = 0.0;
+  // The mean e is removed exactly from the moments: sum (c - e)^2 and sum (c_i - e)(c_{i+1} - e).
+  double Lag1(std::size_t len) const {
+    const double l = static_cast<double>(len);
+    const double e = sum / l;
+    const double den = squares - l * e * e;
+    const double num = products - e * (2.0 * sum - first - last) + (l - 1.0) * e * e;
+    return den > 0.0 ? num / den : 0.0;
+  }
+};
+
+template <typename Series>
+Moments LagMoments(std::size_t len, Series&& c) {
+  CompensatedSum sum, squares, products;
+  ForBlocks(len, [&](std::size_t lo, std::size_t hi) {
+    double s[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0}, p[4] = {0, 0, 0, 0};
+    double prev = c(lo);
+    std::size_t i = lo;
+    // Products c_i c_{i+1} for i + 1 < len.
+    for (; i + 4 <= hi && i + 4 < len; i += 4) {
+      const double c1 = c(i + 1), c2 = c(i + 2), c3 = c(i + 3), c4 = c(i + 4);
+      s[0] += prev;
+      s[1] += c1;
+      s[2] += c2;
+      s[3] += c3;
+      q[0] += prev * prev;
+      q[1] += c1 * c1;
+      q[2] += c2 * c2;
+      q[3] += c3 * c3;
+      p[0] += prev * c1;
+      p[1] += c1 * c2;
+      p[2] += c2 * c3;
+      p[3] += c3 * c4;
+      prev = c4;
+    }
+    for (; i < hi; ++i) {
+      s[0] += prev;
+      q[0] += prev * prev;
+      if (i + 1 < len) {
+        const double next = c(i + 1);
+        p[0] += prev * next;
+        prev = next;
+      }
+    }
+    sum.Add((s[0] + s[1]) + (s[2] + s[3]));
+    squares.Add((q[0] + q[1]) + (q[2] + q[3]));
+    products.Add((p[0] + p[1]) + (p[2] + p[3]));
+  });
+  return {sum.Value(), squares.Value(), products.Value(), c(0), c(len - 1)};
+}
+
+// The lag-1 ACF identification from m-averages given by mean_at(k), k < count, without storing
+// them (at m = 1 they would be a second copy of the record).
+template <typename MeanAt>
+NoiseId StreamedAcfIdentification(std::size_t count, MeanAt&& mean_at) {
+  // One pass for the trend, then one pass per differencing order, each series
+  // evaluated on the fly: the detrended averages at d = 0; their differences at d >= 1, where the
+  // trend's slope is a constant the ACF's own mean removal takes away. Sums in double lanes
+  // flushed into compensated totals (the x87 long double of the stored version cannot be
+  // vectorised and cost seconds on 1e8 samples); each series is centred on a level known before
+  // its pass (0 for the residuals, the telescoped mean of the differences), and the small
+  // remaining mean is removed exactly from the moments.
+  const double n = static_cast<double>(count);
+  const double t_mean = 0.5 * (n - 1.0);
+  CompensatedSum x_sum, xt_sum;
+  ForBlocks(count, [&](std::size_t lo, std::size_t hi) {
+    double s[4] = {0, 0, 0, 0}, st[4] = {0, 0, 0, 0};
+    std::size_t i = lo;
+    for (; i + 4 <= hi; i += 4) {
+      for (std::size_t l = 0; l < 4; ++l) {
+        const double v = mean_at(i + l);
+        s[l] += v;
+        st[l] += (static_cast<double>(i + l) - t_mean) * v;
+      }
+    }
+    for (; i < hi; ++i) {
+      s[0] += mean_at(i);
+      st[0] += (static_cast<double>(i) - t_mean) * mean_at(i);
+    }
+    x_sum.Add((s[0] + s[1]) + (s[2] + s[3]));
+    xt_sum.Add((st[0] + st[1]) + (st[2] + st[3]));
+  });
+  const double x_mean = x_sum.Value() / n;
+  // sum (t - t_mean)^2 over t = 0..count-1 = count (count^2 - 1) / 12.
+  const double stt = n * (n * n - 1.0) / 12.0;
+  const double slope = stt > 0.0 ? xt_sum.Value() / stt : 0.0;
+  for (int d = 0;; ++d) {
+    const std::size_t len = count - static_cast<std::size_t>(d);
+    double level = 0.0;
+    if (d == 1) level = (mean_at(count - 1) - mean_at(0)) / static_cast<double>(len);
+    if (d == 2) {
+      level = ((mean_at(count - 1) - mean_at(count - 2)) - (mean_at(1) - mean_at(0))) /
+              static_cast<double>(len);
+    }
+    Moments moments;
+    if (d == 0) {
+      moments = LagMoments(len, [&](std::size_t k) {
+        return mean_at(k) - (x_mean + slope * (static_cast<double>(k) - t_mean));
+      });
+    } else if (d == 1) {
+      moments = LagMoments(len, [&](std::size_t k) { return (mean_at(k + 1) - mean_at(k)) - level; });
+    } else {
+      moments = LagMoments(len, [&](std::size_t k) {
+        return (mean_at(k + 2) - 2.0 * mean_at(k + 1) + mean_at(k)) - level;
+      });
+    }
+    const double r1 = moments.Lag1(len);
+    const double delta = r1 > -1.0 + 1e-12 ? r1 / (1.0 + r1) : -1e9;
+    if (delta < kDeltaLimit || d >= kMaxDifferences) return {ClampAlpha(-2.0 * (delta + d)), true, false};
+  }
 }
 
 }  // namespace
 
 NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
   if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};
-  return IdentifyFromMeans(rate, m, ClusterMeans(rate, m));
+  return IdentifyFromMeans(rate, {}, m, ClusterMeans(rate, m));
 }
 
 NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phase, std::int64_t m) {
@@ -203,48 +398,17 @@ NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phas
   if (count < kMinAcfPoints) {
     std::vector<double> means(count);
     for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
-    return IdentifyFromMeans(rate, m, std::move(means));
+    return IdentifyFromMeans(rate, phase, m, std::move(means));
   }
-  // The lag-1 ACF method without storing the m-averages (at m = 1 they would be a second copy of
-  // the record): each differencing order is evaluated on the fly, in two passes (mean, then
-  // products), from the same arithmetic as the stored version: the detrended averages at d = 0;
-  // their differences at d >= 1, where the trend's slope is a constant the ACF's own mean
-  // removal takes away.
-  const double n = static_cast<double>(count);
-  const double t_mean = 0.5 * (n - 1.0);
-  long double x_mean = 0.0L, stt = 0.0L, sxt = 0.0L;
-  for (std::size_t i = 0; i < count; ++i) x_mean += mean_at(i);
-  x_mean /= n;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double t = i - t_mean;
-    stt += t * t;
-    sxt += t * (mean_at(i) - x_mean);
+  if (m == 1) {
+    const double* x = phase.data();
+    return StreamedAcfIdentification(count, [x](std::size_t k) { return x[k + 1] - x[k]; });
   }
-  const double slope = stt > 0.0L ? static_cast<double>(sxt / stt) : 0.0;
-  auto series = [&](int d, std::size_t k) -> double {
-    if (d == 0) return mean_at(k) - (static_cast<double>(x_mean) + slope * (k - t_mean));
-    if (d == 1) return mean_at(k + 1) - mean_at(k);
-    return mean_at(k + 2) - 2.0 * mean_at(k + 1) + mean_at(k);
-  };
-  for (int d = 0;; ++d) {
-    const std::size_t len = count - static_cast<std::size_t>(d);
-    long double mean = 0.0L;
-    for (std::size_t i = 0; i < len; ++i) mean += series(d, i);
-    mean /= static_cast<long double>(len);
-    long double num = 0.0L, den = 0.0L;
-    long double c = series(d, 0) - mean;
-    for (std::size_t i = 0; i < len; ++i) {
-      den += c * c;
-      if (i + 1 < len) {
-        const long double next = series(d, i + 1) - mean;
-        num += c * next;
-        c = next;
-      }
-    }
-    const double r1 = den > 0.0L ? static_cast<double>(num / den) : 0.0;
-    const double delta = r1 > -1.0 + 1e-12 ? r1 / (1.0 + r1) : -1e9;
-    if (delta < kDeltaLimit || d >= kMaxDifferences) return {ClampAlpha(-2.0 * (delta + d)), true, false};
-  }
+  // 1/m is exact for the octave grid's powers of two; elsewhere it is one rounding.
+  const double inverse = 1.0 / static_cast<double>(m);
+  const double* x = phase.data();
+  return StreamedAcfIdentification(
+      count, [x, mu, inverse](std::size_t k) { return (x[(k + 1) * mu] - x[k * mu]) * inverse; });
 }
 
 }  // namespace allanlab::estimators

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "estimators/noise_identification.h"
+#include "estimators/phase_integral.h"
 #include "tests/support/monte_carlo.h"
 
 namespace allanlab::estimators {
@@ -125,6 +126,35 @@ TEST(NoiseIdentification, RampIsRemovedAndTooFewPointsAreReported) {
   EXPECT_EQ(IdentifyNoise(record, 16).alpha, 0);
   EXPECT_FALSE(IdentifyNoise(std::span<const double>(record).first(20), 8).identified);
   EXPECT_FALSE(IdentifyNoise(record, 0).identified);
+}
+
+// The integrated-record path (one pass per differencing order in double lanes; R(n) from phase
+// differences) agrees with the stored-average path on every class, for the ACF (m = 1, 4: many
+// points, with m = 1 also a ramp and a bias of 1e4 x the noise) and the B1 + R(n) fallback.
+TEST(NoiseIdentification, FromThePhaseAgreesWithFromTheRate) {
+  const sim::NoiseTerm terms[] = {sim::WhiteRateNoise{1e-3}, sim::FlickerNoise{1e-4},
+                                  sim::RandomWalkRate{1e-5}, sim::QuantizationNoise{1e-5}};
+  int compared = 0;
+  for (const sim::NoiseTerm& term : terms) {
+    const sim::SensorModel model = testing_support::SingleTermModel(term, 100.0);
+    for (int trial = 0; trial < 6; ++trial) {
+      std::vector<double> record = model.Generate(kSeed, 100 + trial, 1 << 14);
+      if (trial == 5) {
+        for (std::size_t k = 0; k < record.size(); ++k) record[k] += 10.0 + 1e-9 * k;
+      }
+      std::vector<double> phase(record.size() + 1);
+      IntegrateAbout(record, ReferenceLevel(record), phase);
+      for (std::int64_t m : {1, 4, 64, 1024}) {
+        const NoiseId a = IdentifyNoise(record, m);
+        const NoiseId b = IdentifyNoise(record, phase, m);
+        EXPECT_EQ(a.identified, b.identified) << sim::TermId(term) << " m " << m;
+        EXPECT_EQ(a.alpha, b.alpha) << sim::TermId(term) << " trial " << trial << " m " << m;
+        EXPECT_EQ(a.used_b1, b.used_b1) << sim::TermId(term) << " m " << m;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 96);
 }
 
 }  // namespace
