@@ -45,14 +45,39 @@ std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t 
 // The variances from the sums of squared phase differences (x in rate x tau0 units, so tau0
 // cancels): NIST SP 1065 eqs. for AVAR/OAVAR (sum / 2 m^2 T), HVAR/OHVAR (sum / 6 m^2 T), MVAR
 // (sum / 2 m^4 T, the inner sum of m second differences), TOTVAR (sum / 2 m^2 (n - 1)).
+std::vector<double> Scaled(Statistic s, std::int64_t n, std::span<const std::int64_t> ms,
+                           std::span<const double> sums) {
+  std::vector<double> values(ms.size());
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const auto m = static_cast<double>(ms[k]);
+    const auto terms = static_cast<double>(TermCount(s, ms[k], n));
+    const double scale = DifferenceOrder(s) == 3 ? 6.0 : 2.0;
+    const double m_power = IsModified(s) ? m * m * m * m : m * m;
+    values[k] = sums[k] / (scale * m_power * terms);
+  }
+  return values;
+}
+
 // Empty when the record is not finite (a NaN or infinity anywhere reaches the end of the phase).
+// workspace null: the caller does not need the phase afterwards, so the overlapping statistics
+// may rebuild it in cache instead of storing it (difference_sums.h).
 std::vector<double> Variances(Statistic s, std::span<const double> rate,
                               std::span<const std::int64_t> ms, AllanFamilyWorkspace* workspace) {
   const auto n = static_cast<std::int64_t>(rate.size());
-  const std::span<double> phase = workspace->Phase(rate.size() + 1);
   const double reference = ReferenceLevel(rate);
   std::vector<double> sums(ms.size());
-  if (s == Statistic::kAllanOverlapping || s == Statistic::kHadamardOverlapping) {
+  const bool overlapping = s == Statistic::kAllanOverlapping || s == Statistic::kHadamardOverlapping;
+  double last_phase = 0.0;
+  AllanFamilyWorkspace local;
+  if (overlapping && workspace == nullptr &&
+      SumOverlappingDifferencesFromRate(rate, reference, DifferenceOrder(s), ms, sums,
+                                        &last_phase)) {
+    if (!std::isfinite(last_phase)) return {};
+    return Scaled(s, n, ms, sums);
+  }
+  if (workspace == nullptr) workspace = &local;
+  const std::span<double> phase = workspace->Phase(rate.size() + 1);
+  if (overlapping) {
     IntegrateAndSumOverlappingDifferences(rate, reference, DifferenceOrder(s), ms, phase, sums);
     if (!std::isfinite(phase.back())) return {};
   } else {
@@ -77,15 +102,7 @@ std::vector<double> Variances(Statistic s, std::span<const double> rate,
         break;  // above
     }
   }
-  std::vector<double> values(ms.size());
-  for (std::size_t k = 0; k < ms.size(); ++k) {
-    const auto m = static_cast<double>(ms[k]);
-    const auto terms = static_cast<double>(TermCount(s, ms[k], n));
-    const double scale = DifferenceOrder(s) == 3 ? 6.0 : 2.0;
-    const double m_power = IsModified(s) ? m * m * m * m : m * m;
-    values[k] = sums[k] / (scale * m_power * terms);
-  }
-  return values;
+  return Scaled(s, n, ms, sums);
 }
 
 }  // namespace
@@ -101,8 +118,7 @@ std::span<double> AllanFamilyWorkspace::Buffer::Get(std::size_t size) {
 
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
                             AvarSummary* summary) {
-  AllanFamilyWorkspace workspace;
-  return ComputeStatisticValues(options, rate, summary, &workspace);
+  return ComputeStatisticValues(options, rate, summary, nullptr);
 }
 
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,

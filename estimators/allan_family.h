@@ -19,7 +19,10 @@ namespace allanlab::estimators {
 // Largest m per statistic and the term counts: statistic.h (MaxAveragingFactor, TermCount).
 // Cost: O(N) per tau; the overlapping Allan and Hadamard statistics share cache-blocked passes
 // (an octave OAVAR curve of 1e8 samples takes a few ns per sample). Extra memory: N + 1 doubles
-// for the phase, plus up to N doubles of work space for MVAR and TVAR.
+// for the phase, plus up to N doubles of work space for MVAR and TVAR; except for OAVAR and OHVAR
+// on grids whose long lags sit on the cache tiers (octave; difference_sums.h), which this
+// overload computes from ~N/256 bytes of checkpoints and ~3 MB of windows, the same bits, since
+// it keeps no phase for the caller.
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
                             AvarSummary* summary);
 
@@ -47,7 +50,7 @@ class AllanFamilyWorkspace {
   Buffer phase_, scratch_;
 };
 
-// As above, with the work space supplied by the caller.
+// As above, with the work space supplied by the caller (null: as above, no phase kept).
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
                             AvarSummary* summary, AllanFamilyWorkspace* workspace);
 

@@ -20,6 +20,15 @@ void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double 
                                            int order, std::span<const std::int64_t> lags,
                                            std::span<double> phase, std::span<double> sums);
 
+// The same sums without an N-sized phase: the phase is rebuilt from the rate in cache-sized
+// pieces (O(N / 2048) doubles of checkpoints and ~2 MB of windows), which spares the first
+// touch of N + 1 fresh doubles. Same bits as above; *last_phase = x_N (not finite when the record
+// is not). Returns false, with nothing computed, when a lag of 32768 or more is not a multiple of
+// its tier's row (dense or explicit grids; the octave grid always qualifies).
+bool SumOverlappingDifferencesFromRate(std::span<const double> rate, double reference, int order,
+                                       std::span<const std::int64_t> lags, std::span<double> sums,
+                                       double* last_phase);
+
 // Starts t = 0, m, 2m, ... with t + order*m <= n (AVAR, HVAR): floor(n/m) - order + 1 terms.
 void StridedDifferenceSums(std::span<const double> phase, int order,
                            std::span<const std::int64_t> lags, std::span<double> sums);

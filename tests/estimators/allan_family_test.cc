@@ -131,6 +131,33 @@ TEST(AllanFamily, ValueDoesNotDependOnTheRestOfTheGrid) {
   }
 }
 
+// Without a workspace the overlapping statistics rebuild the phase in cache-sized pieces
+// instead of storing it (difference_sums.h): the same bits as with one, on lengths around the
+// block, checkpoint and tier boundaries, the octave grid (every lag rebuilt) and a decade grid
+// (long lags off the tiers: the stored phase again).
+TEST(AllanFamily, WithoutAWorkspaceTheSameBits) {
+  for (std::int64_t n : {std::int64_t{3}, std::int64_t{101}, std::int64_t{4097},
+                         std::int64_t{65543}, std::int64_t{1} << 20, std::int64_t{2200007}}) {
+    const std::vector<double> y = TestRecord(n, 11);
+    for (Statistic s : {Statistic::kAllanOverlapping, Statistic::kHadamardOverlapping}) {
+      for (TauGridKind kind : {TauGridKind::kOctave, TauGridKind::kDecade125}) {
+        AvarOptions options;
+        options.statistic = s;
+        options.taus.kind = kind;
+        AvarSummary cold, warm;
+        AllanFamilyWorkspace workspace;
+        ASSERT_TRUE(ComputeStatisticValues(options, y, &cold)) << cold.message;
+        ASSERT_TRUE(ComputeStatisticValues(options, y, &warm, &workspace)) << warm.message;
+        ASSERT_EQ(cold.points.size(), warm.points.size());
+        for (std::size_t k = 0; k < cold.points.size(); ++k) {
+          EXPECT_EQ(cold.points[k].value, warm.points[k].value)
+              << StatisticId(s) << " n=" << n << " m=" << cold.points[k].m;
+        }
+      }
+    }
+  }
+}
+
 TEST(AllanFamily, TimeVarianceIsTauSquaredModifiedOverThree) {
   const std::vector<double> y = TestRecord(500, 1);
   AvarSummary mvar, tvar;
