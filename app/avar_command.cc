@@ -152,8 +152,10 @@ std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   if (!ReadRecordValues(plan.read, &values, &report->record, &error)) {
     return Failure{error.exit_code, error.message};
   }
-  for (double& v : values) {
-    v = plan.input == InputKind::kAngle ? v * plan.to_si : ToRadPerSecond(plan.rate_unit, v);
+  if (plan.input == InputKind::kAngle) {
+    for (double& v : values) v *= plan.to_si;
+  } else {
+    ToRadPerSecond(plan.rate_unit, values);
   }
   estimators::AvarOptions options = plan.avar;
   options.sample_period_s = 1.0 / report->record.sample_rate_hz;

@@ -64,4 +64,17 @@ double ToRadPerSecond(RateUnit unit, double value) {
   return value;
 }
 
+void ToRadPerSecond(RateUnit unit, std::span<double> values) {
+  switch (unit) {
+    case RateUnit::kDegPerSecond:
+      for (double& v : values) v = units::DegPerSecond(v);
+      return;
+    case RateUnit::kDegPerHour:
+      for (double& v : values) v = units::DegPerHour(v);
+      return;
+    case RateUnit::kRadPerSecond:
+      return;
+  }
+}
+
 }  // namespace allanlab::app

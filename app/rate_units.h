@@ -1,5 +1,6 @@
 #pragma once
 // The rate units a user may ask for at the file edge (inside allanlab everything is rad/s).
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -22,5 +23,7 @@ double FromRadPerSecond(RateUnit unit, double rad_per_s);
 
 // A rate given in `unit`, in rad/s (the inverse of FromRadPerSecond, same sim/units.h factors).
 double ToRadPerSecond(RateUnit unit, double value);
+// The same for every value in place (the unit chosen once: a vectorised loop).
+void ToRadPerSecond(RateUnit unit, std::span<double> values);
 
 }  // namespace allanlab::app

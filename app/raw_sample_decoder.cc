@@ -8,7 +8,12 @@ namespace allanlab::app {
 RawSampleDecoder::RawSampleDecoder(RawSampleType type, ValueSink sink)
     : type_(type), size_(type == RawSampleType::kFloat32 ? 4 : 8), sink_(std::move(sink)) {}
 
-bool RawSampleDecoder::Emit(const unsigned char* p) {
+RawSampleDecoder::RawSampleDecoder(RawSampleType type, BlockSink sink, std::size_t block_values)
+    : type_(type), size_(type == RawSampleType::kFloat32 ? 4 : 8), block_sink_(std::move(sink)) {
+  block_.reserve(block_values < 1 ? 1 : block_values);
+}
+
+double RawSampleDecoder::Decode(const unsigned char* p) const {
   double value;
   // Assembled byte by byte from little-endian, so the result does not depend on the host.
   if (type_ == RawSampleType::kFloat32) {
@@ -20,7 +25,22 @@ bool RawSampleDecoder::Emit(const unsigned char* p) {
     for (int i = 7; i >= 0; --i) bits = (bits << 8) | p[i];
     value = std::bit_cast<double>(bits);
   }
-  return sink_(value, index_++);
+  return value;
+}
+
+bool RawSampleDecoder::FlushBlock() {
+  if (block_.empty()) return true;
+  const auto first = index_ - static_cast<std::int64_t>(block_.size());
+  const bool go_on = block_sink_(block_, first);
+  block_.clear();
+  return go_on;
+}
+
+bool RawSampleDecoder::Emit(const unsigned char* p) {
+  if (!block_sink_) return sink_(Decode(p), index_++);
+  block_.push_back(Decode(p));
+  ++index_;
+  return block_.size() < block_.capacity() || FlushBlock();
 }
 
 bool RawSampleDecoder::Feed(std::span<const char> bytes) {
@@ -43,7 +63,7 @@ bool RawSampleDecoder::Feed(std::span<const char> bytes) {
   }
   std::memcpy(carry_, p, n);
   carried_ = static_cast<int>(n);
-  return true;
+  return FlushBlock();
 }
 
 bool RawSampleDecoder::Finish(std::string* why) const {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,7 @@ namespace allanlab::app {
 namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 18;
+constexpr std::size_t kBlockValues = 4096;  // raw values decoded per block
 
 // The mean of a million printed steps carries its rounding in the last digits (100 Hz from
 // t = 0.00, 0.01, ... comes out as 99.99999999999993 Hz); ten digits are more than a time column
@@ -55,9 +57,10 @@ class NonFiniteLog {
 
 class Reader {
  public:
+  // block_sink (may be null): takes runs of finite raw values at once, instead of sink.
   Reader(const RecordReaderOptions& options, const std::function<void(double)>& sink,
-         RecordInfo* info)
-      : o_(options), sink_(sink), info_(info) {}
+         RecordInfo* info, const std::function<void(std::span<const double>)>* block_sink = nullptr)
+      : o_(options), sink_(sink), block_sink_(block_sink), info_(info) {}
 
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
@@ -168,10 +171,22 @@ class Reader {
   bool ReadRaw(ByteSource* source, RecordError* error) {
     const RawSampleType type =
         o_.format == RecordFormat::kFloat32 ? RawSampleType::kFloat32 : RawSampleType::kFloat64;
-    RawSampleDecoder decoder(type, [&](double value, std::int64_t index) {
-      Accept(value, index);
-      return true;
-    });
+    RawSampleDecoder decoder(
+        type,
+        [&](std::span<const double> values, std::int64_t first) {
+          bool finite = true;
+          for (double v : values) finite &= std::isfinite(v);
+          if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
+            info_->samples += static_cast<std::int64_t>(values.size());
+            (*block_sink_)(values);
+            return true;
+          }
+          for (std::size_t k = 0; k < values.size(); ++k) {
+            Accept(values[k], first + static_cast<std::int64_t>(k));
+          }
+          return true;
+        },
+        kBlockValues);
     info_->column = type == RawSampleType::kFloat32 ? "float32 samples" : "float64 samples";
     std::vector<char> chunk(kChunkBytes);
     std::string why;
@@ -262,6 +277,7 @@ class Reader {
 
   const RecordReaderOptions& o_;
   const std::function<void(double)>& sink_;
+  const std::function<void(std::span<const double>)>* block_sink_;
   double time_unit_s_ = 0.0;  // set at the first row with a time
   bool unit_is_guess_ = false;
   RecordInfo* info_;
@@ -311,8 +327,12 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(options.path, ec);
   if (width > 0 && !ec) values->reserve(static_cast<std::size_t>(bytes) / width);
-  return ReadRecord(
-      options, [values](double v) { values->push_back(v); }, info, error);
+  const std::function<void(double)> sink = [values](double v) { values->push_back(v); };
+  const std::function<void(std::span<const double>)> block_sink =
+      [values](std::span<const double> block) {
+        values->insert(values->end(), block.begin(), block.end());
+      };
+  return Reader(options, sink, info, &block_sink).Run(error);
 }
 
 }  // namespace allanlab::app
