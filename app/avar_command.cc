@@ -159,7 +159,8 @@ std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   }
   estimators::AvarOptions options = plan.avar;
   options.sample_period_s = 1.0 / report->record.sample_rate_hz;
-  if (!estimators::ComputeAvar(options, values, &report->summary)) {
+  // The record is not needed afterwards: its storage becomes the integrated record.
+  if (!estimators::ComputeAvarInPlace(options, &values, &report->summary)) {
     return Runtime(plan.read.path + ": " + report->summary.message);
   }
   return std::nullopt;

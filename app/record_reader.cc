@@ -326,7 +326,8 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
                                                                       : 0;
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(options.path, ec);
-  if (width > 0 && !ec) values->reserve(static_cast<std::size_t>(bytes) / width);
+  // One spare slot: ComputeAvarInPlace integrates N samples into N + 1 values.
+  if (width > 0 && !ec) values->reserve(static_cast<std::size_t>(bytes) / width + 1);
   const std::function<void(double)> sink = [values](double v) { values->push_back(v); };
   const std::function<void(std::span<const double>)> block_sink =
       [values](std::span<const double> block) {

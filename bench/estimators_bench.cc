@@ -3,8 +3,8 @@
 // Run: build/bench/estimators_bench --benchmark_counters_tabular=true (scripts/bench-estimators).
 // Issue targets: octave OAVAR <= 8 ns/sample at N = 1e7 and 1e8; OAVAR with 10 taus per decade
 // <= 25 ns/sample at N = 1e7. "warm" reuses one AllanFamilyWorkspace (a Monte Carlo loop);
-// "cold" allocates the phase buffer every call (a one-off `allanlab avar`), which adds the cost
-// of fresh pages.
+// "cold" passes none (a one-off call): OAVAR then keeps no phase and rebuilds it in cache, so it
+// touches no record-sized fresh memory.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>

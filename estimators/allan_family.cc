@@ -162,6 +162,15 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
   if (values.empty()) {
     // Only now is the record searched: finite data pay for no separate pass.
     summary->dropped.clear();
+    if (workspace != nullptr && workspace->Phase(rate.size() + 1).data() + 1 == rate.data()) {
+      // Integrated in place: the samples are gone, the phase tells where it stopped being finite.
+      const std::span<const double> phase = workspace->Phase(rate.size() + 1);
+      std::int64_t k = 1;
+      while (k < n && std::isfinite(phase[k])) ++k;
+      summary->message = "rate sample " + std::to_string(k - 1) +
+                         " is not finite, or the running sum overflows there";
+      return false;
+    }
     for (std::int64_t k = 0; k < n; ++k) {
       if (!std::isfinite(rate[k])) {
         summary->message =

@@ -35,7 +35,13 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
 class AllanFamilyWorkspace {
  public:
   // `size` doubles, not initialised; the storage grows and is never shrunk.
-  std::span<double> Phase(std::size_t size) { return phase_.Get(size); }
+  std::span<double> Phase(std::size_t size) {
+    return adopted_.size() == size ? adopted_ : phase_.Get(size);
+  }
+  // Phase(storage.size()) is `storage` from now on. When the rate given to ComputeStatisticValues
+  // is storage.subspan(1), the record is integrated in place (x_{k+1} replaces rate_k, each read
+  // before it is written) and the rate is consumed.
+  void AdoptPhase(std::span<double> storage) { adopted_ = storage; }
   std::span<double> Scratch(std::size_t size) { return scratch_.Get(size); }
 
  private:
@@ -48,6 +54,7 @@ class AllanFamilyWorkspace {
     std::size_t capacity_ = 0;
   };
   Buffer phase_, scratch_;
+  std::span<double> adopted_;
 };
 
 // As above, with the work space supplied by the caller (null: as above, no phase kept).

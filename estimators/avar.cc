@@ -51,19 +51,12 @@ double PointEdf(const AvarOptions& options, const AvarPoint& point, std::int64_t
   return 0.0;
 }
 
-}  // namespace
-
-bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary) {
-  std::vector<double> differenced;
-  std::span<const double> rate = data;
-  if (options.input == InputKind::kAngle) {
-    differenced = AngleToRate(data, options.sample_period_s);
-    rate = differenced;
-  }
-  // The workspace keeps the integrated record, from which identification takes its averages.
-  AllanFamilyWorkspace workspace;
-  if (!ComputeStatisticValues(options, rate, summary, &workspace)) return false;
-  const std::span<const double> phase = workspace.Phase(rate.size() + 1);
+// Values, then exponents, EDF and intervals. `workspace` keeps the integrated record, from which
+// identification takes its averages.
+bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSummary* summary,
+             AllanFamilyWorkspace* workspace) {
+  if (!ComputeStatisticValues(options, rate, summary, workspace)) return false;
+  const std::span<const double> phase = workspace->Phase(rate.size() + 1);
 
   const int unidentified = AssignNoiseExponents(options, rate, phase, &summary->points);
   if (unidentified > 0) {
@@ -85,6 +78,37 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
                &summary->message);
   }
   return true;
+}
+
+}  // namespace
+
+bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary) {
+  std::vector<double> differenced;
+  std::span<const double> rate = data;
+  if (options.input == InputKind::kAngle) {
+    differenced = AngleToRate(data, options.sample_period_s);
+    rate = differenced;
+  }
+  AllanFamilyWorkspace workspace;
+  return Compute(options, rate, summary, &workspace);
+}
+
+bool ComputeAvarInPlace(const AvarOptions& options, std::vector<double>* record,
+                        AvarSummary* summary) {
+  std::vector<double>& r = *record;
+  if (options.input == InputKind::kAngle) {
+    // rate_k = (angle_{k+1} - angle_k) / tau0 into slot k + 1, from the top down, so that each
+    // angle is read before its slot is written; slot 0 becomes the spare.
+    const double tau0 = options.sample_period_s;
+    for (std::size_t k = r.size(); k-- > 1;) r[k] = (r[k] - r[k - 1]) / tau0;
+    if (r.empty()) r.push_back(0.0);
+  } else {
+    r.insert(r.begin(), 0.0);
+  }
+  const std::span<double> storage(r);
+  AllanFamilyWorkspace workspace;
+  workspace.AdoptPhase(storage);
+  return Compute(options, storage.subspan(1), summary, &workspace);
 }
 
 }  // namespace allanlab::estimators

@@ -2,6 +2,7 @@
 // One entry point for an Allan-family curve with confidence intervals:
 //   statistic values (allan_family.h) -> noise identification per tau -> EDF -> chi-square CI.
 #include <span>
+#include <vector>
 
 #include "estimators/avar_summary.h"
 
@@ -10,5 +11,13 @@ namespace allanlab::estimators {
 // Returns summary->ok. Bad options, too few samples or non-finite data give ok = false and a
 // message; taus without enough terms are listed in summary->dropped with the reason.
 bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary);
+
+// The same for a record the caller gives up: the integrated record is built in its storage
+// instead of a second record-sized buffer (on 1e8 samples: 800 MB less and ~0.5 s of page
+// faults spared). Rate input needs one spare slot of capacity (else the vector grows once);
+// angle input is differenced in place. *record is unspecified afterwards. Same results as
+// ComputeAvar, except that a non-finite running sum is reported by position only.
+bool ComputeAvarInPlace(const AvarOptions& options, std::vector<double>* record,
+                        AvarSummary* summary);
 
 }  // namespace allanlab::estimators

@@ -26,6 +26,45 @@ AvarOptions Options(ConfidenceMethod method) {
   return options;
 }
 
+// In place: the same summary as from a copy, for rate (with and without the spare slot of
+// capacity) and angle input, the overlapping statistics (integrated in place) and MVAR (in place
+// too, with its own work space); a record that overflows fails with the position.
+TEST(ComputeAvar, InPlaceGivesTheSameSummary) {
+  const std::vector<double> rate = WhiteRecord(70001);
+  std::vector<double> angle(rate.size() + 1, 0.0);
+  for (std::size_t k = 0; k < rate.size(); ++k) angle[k + 1] = angle[k] + rate[k] * 0.01;
+  for (Statistic st : {Statistic::kAllanOverlapping, Statistic::kHadamardOverlapping,
+                       Statistic::kModifiedAllan}) {
+    for (InputKind input : {InputKind::kRate, InputKind::kAngle}) {
+      AvarOptions options = Options(ConfidenceMethod::kGreenhallRiley);
+      options.statistic = st;
+      options.input = input;
+      const std::vector<double>& data = input == InputKind::kRate ? rate : angle;
+      AvarSummary copy, in_place;
+      ASSERT_TRUE(ComputeAvar(options, data, &copy)) << copy.message;
+      std::vector<double> consumed;
+      consumed.reserve(data.size() + 1);
+      consumed.assign(data.begin(), data.end());
+      ASSERT_TRUE(ComputeAvarInPlace(options, &consumed, &in_place)) << in_place.message;
+      ASSERT_EQ(copy.points.size(), in_place.points.size());
+      for (std::size_t k = 0; k < copy.points.size(); ++k) {
+        SCOPED_TRACE("m=" + std::to_string(copy.points[k].m));
+        EXPECT_EQ(copy.points[k].value, in_place.points[k].value);
+        EXPECT_EQ(copy.points[k].alpha, in_place.points[k].alpha);
+        EXPECT_EQ(copy.points[k].edf, in_place.points[k].edf);
+      }
+      EXPECT_EQ(copy.message, in_place.message);
+    }
+  }
+  std::vector<double> tight = rate;  // no spare capacity: grows once
+  AvarSummary s;
+  EXPECT_TRUE(ComputeAvarInPlace(Options(ConfidenceMethod::kSimple), &tight, &s)) << s.message;
+  std::vector<double> huge(100, 1.5e308);  // mean ~0, so the running sum about it overflows
+  for (std::size_t k = 50; k < huge.size(); ++k) huge[k] = -1.5e308;
+  EXPECT_FALSE(ComputeAvarInPlace(Options(ConfidenceMethod::kSimple), &huge, &s));
+  EXPECT_NE(s.message.find("overflows"), std::string::npos) << s.message;
+}
+
 TEST(ComputeAvar, GreenhallRileyIntervalPerPoint) {
   const std::vector<double> rate = WhiteRecord(4096);
   AvarSummary s;
