@@ -87,7 +87,10 @@ TEST(AvarStreamMemoryTest, PeakMemoryDoesNotGrowWithTheRecord) {
             << " KiB, in memory 1e7 " << memory_large << " KiB\n";
   // 3 more octaves of at most (2 * 16384 + 1) 16-byte entries: 1.5 MiB; allow 4 MiB.
   EXPECT_LT(stream_large - stream_small, 4096) << "streaming memory grew with the record";
-  EXPECT_GT(memory_large, stream_large + 78125) << "the in-memory run should hold 8e7 bytes more";
+  // In memory: one double per sample (8e7 bytes = 78125 KiB; the phase is built in the record's
+  // own storage), less the streaming state it does not need.
+  EXPECT_GT(memory_large, stream_large + 78125 * 4 / 5)
+      << "the in-memory run should hold about 8e7 bytes more";
 }
 
 }  // namespace
