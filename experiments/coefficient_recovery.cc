@@ -1,0 +1,138 @@
+#include "experiments/coefficient_recovery.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "experiments/coefficient_table.h"
+#include "experiments/report_files.h"
+
+namespace allanlab::experiments {
+namespace {
+
+std::string PlusMinus(double value, double se, int digits = 3) {
+  if (std::isnan(value)) return "";
+  if (std::isnan(se)) return Cell(value, digits);
+  return Cell(value, digits) + " +- " + Cell(se, 2);
+}
+
+std::string Percent(double level) { return Cell(level * 100.0, 4) + " %"; }
+
+}  // namespace
+
+std::string CoefficientRecoveryExperiment::Question() const {
+  return "How well do the slope method, WLS, log-WLS and GLS recover the IEEE 952 coefficients "
+         "(Q, N, B, K, R present in the model) of a simulated sensor, and does their error shrink "
+         "with the record length? Method: per trial, simulate the record, take its overlapping "
+         "Allan curve (octave taus), fit it with each method (terms of the truth, no term "
+         "selection) and compare with the true coefficients; per point: relative bias and RMSE "
+         "with Monte Carlo standard errors, reported vs empirical sigma, coverage of the reported "
+         "68.3 % and 95 % intervals (binomial errors), failure rate. Reference: the simulated "
+         "truth (B: the Kasdin flicker coefficient; for the slope method's B also what the curve "
+         "minimum estimates, sqrt(B^2 + 2.617 N K), THEORY.md §4.2). Read: a consistent method's "
+         "RMSE falls with T and its coverage is nominal within ~2 binomial errors; where terms "
+         "overlap the slope method has an error floor that a longer record does not lower "
+         "(THEORY.md §4.5).";
+}
+
+bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const RunSummary& run,
+                                                const std::vector<PointStats>& stats,
+                                                const ReportContext& context,
+                                                std::string* why) const {
+  const std::vector<CoefficientRow> rows = CoefficientRows(spec, stats);
+  const ProvenanceFields provenance =
+      MakeProvenanceFields(spec, run, context, CoefficientTrialChoices(spec));
+
+  std::vector<std::string> header = {"sensor", "T", "T_s", "sample_rate_hz", "samples", "method",
+                                     "coefficient", "truth", "unit", "n", "failure_rate",
+                                     "bias", "bias_se", "rmse", "rmse_se", "empirical_sd",
+                                     "mean_reported_sigma", "sigma_ratio"};
+  for (double level : spec.confidence_levels) {
+    header.push_back("coverage" + Cell(level * 100, 4));
+    header.push_back("coverage" + Cell(level * 100, 4) + "_se");
+  }
+  header.push_back("bias_vs_minimum_reading");
+  header.push_back("bias_vs_minimum_reading_se");
+
+  std::ostringstream csv;
+  csv << ProvenanceCsvComments(provenance);
+  for (std::size_t i = 0; i < header.size(); ++i) csv << (i ? "," : "") << header[i];
+  csv << "\n";
+  for (const CoefficientRow& r : rows) {
+    const auto c = r.coefficient;
+    csv << CsvField(r.sensor) << "," << DurationText(r.duration_s) << "," << Cell(r.duration_s) << ","
+        << Cell(r.sample_rate_hz) << "," << r.samples << "," << r.method << ","
+        << estimators::CoefficientId(c) << "," << Cell(estimators::ToDatasheetUnit(c, r.truth_si)) << ","
+        << CsvField(std::string(estimators::DatasheetUnit(c))) << "," << r.n << ","
+        << Cell(r.failure_rate) << "," << Cell(r.bias) << "," << Cell(r.bias_se) << ","
+        << Cell(r.rmse) << "," << Cell(r.rmse_se) << "," << Cell(r.empirical_sd) << ","
+        << Cell(r.mean_sigma) << "," << Cell(r.mean_sigma / r.empirical_sd);
+    for (std::size_t k = 0; k < r.coverage.size(); ++k) {
+      csv << "," << Cell(r.coverage[k]) << "," << Cell(r.coverage_se[k]);
+    }
+    csv << "," << Cell(r.read_bias) << "," << Cell(r.read_bias_se) << "\n";
+  }
+
+  std::ostringstream md;
+  md << "# " << spec.name << "\n\n" << Question() << "\n\n## Provenance\n\n"
+     << ProvenanceMarkdown(provenance)
+     << "\nErrors are relative (estimate / truth - 1); +- is one Monte Carlo standard error. "
+        "sigma ratio = mean reported sigma / empirical sd (1 = honest error bars). A coefficient "
+        "a fit leaves at zero counts as -1 (-100 %).\n";
+  std::set<std::string> seen;
+  for (const CoefficientRow& first : rows) {
+    if (!seen.insert(first.sensor).second) continue;
+    md << "\n## " << first.sensor << "\n\n| T | method | coef | truth | n | fail | bias | RMSE | "
+          "emp. sd | mean sigma | sigma ratio |";
+    for (double level : spec.confidence_levels) md << " cover " << Percent(level) << " |";
+    md << " B bias vs sqrt(B^2+2.617NK) |\n|";
+    for (std::size_t i = 0; i < 12 + spec.confidence_levels.size(); ++i) md << "---|";
+    md << "\n";
+    for (const CoefficientRow& r : rows) {
+      if (r.sensor != first.sensor) continue;
+      const auto c = r.coefficient;
+      md << "| " << DurationText(r.duration_s) << " | " << r.method << " | "
+         << estimators::CoefficientId(c) << " | " << Cell(estimators::ToDatasheetUnit(c, r.truth_si), 4)
+         << " " << estimators::DatasheetUnit(c) << " | " << r.n << " | " << Cell(r.failure_rate, 3)
+         << " | " << PlusMinus(r.bias, r.bias_se) << " | " << PlusMinus(r.rmse, r.rmse_se) << " | "
+         << Cell(r.empirical_sd, 3) << " | " << Cell(r.mean_sigma, 3) << " | "
+         << Cell(r.mean_sigma / r.empirical_sd, 3) << " |";
+      for (std::size_t k = 0; k < r.coverage.size(); ++k) {
+        md << " " << PlusMinus(r.coverage[k], r.coverage_se[k]) << " |";
+      }
+      md << " " << PlusMinus(r.read_bias, r.read_bias_se) << " |\n";
+    }
+    md << "\n![" << first.sensor << "](" << spec.name << "_" << first.sensor << ".png)\n";
+  }
+
+  const std::string base = context.output_dir + "/" + spec.name;
+  if (!WriteFileAtomically(base + ".csv", csv.str(), why)) return false;
+  if (!WriteFileAtomically(base + ".md", md.str(), why)) return false;
+  seen.clear();
+  for (const CoefficientRow& first : rows) {
+    if (!seen.insert(first.sensor).second) continue;
+    // The consistent-estimator slope T^-1/2 through GLS's (else the last method's) first RMSE.
+    std::vector<GuideLine> guides;
+    for (const CoefficientRow& r : rows) {
+      if (r.sensor != first.sensor || !(r.rmse > 0)) continue;
+      bool have = false;
+      for (GuideLine& g : guides) {
+        if (g.coefficient != r.coefficient) continue;
+        have = true;
+        if (r.method == "gls" && r.duration_s <= g.anchor_x) {
+          g.anchor_x = r.duration_s;
+          g.anchor_y = r.rmse;
+        }
+      }
+      if (!have) guides.push_back({r.coefficient, -0.5, r.duration_s, r.rmse, "T^-1/2"});
+    }
+    const std::string title = spec.name + ": " + first.sensor + " (relative RMSE and |bias| vs T)";
+    if (!RenderGnuplotFigure(CoefficientPlotBody(rows, first.sensor, title, guides),
+                             base + "_" + first.sensor, 1100, 800, why)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace allanlab::experiments

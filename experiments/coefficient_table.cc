@@ -1,0 +1,216 @@
+#include "experiments/coefficient_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "estimators/tau_grid.h"
+#include "experiments/coefficient_trial.h"
+#include "experiments/report_files.h"
+
+namespace allanlab::experiments {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string LevelName(double level) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "in_ci%g", level * 100.0);
+  return buffer;
+}
+
+}  // namespace
+
+std::string DurationText(double seconds) {
+  char buffer[32];
+  if (seconds < 3600.0) std::snprintf(buffer, sizeof buffer, "%.3g min", seconds / 60.0);
+  else std::snprintf(buffer, sizeof buffer, "%.3g h", seconds / 3600.0);
+  return buffer;
+}
+
+std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
+                                            const std::vector<PointStats>& stats) {
+  std::vector<CoefficientRow> rows;
+  for (const PointStats& ps : stats) {
+    if (ps.point < 0 || ps.point >= static_cast<int>(spec.points.size())) continue;
+    const SweepPoint& point = spec.points[ps.point];
+    const TrueCoefficients truth = TrueCoefficientsOf(point.model);
+    for (const std::string& method : MethodsOf(spec)) {
+      for (estimators::Coefficient c : ComparedCoefficients(spec, point)) {
+        const std::string suffix = "/" + method + "/" + std::string(estimators::CoefficientId(c));
+        CoefficientRow r;
+        r.point = ps.point;
+        r.sensor = point.model.name;
+        r.sample_rate_hz = point.sample_rate_hz;
+        r.samples = point.num_samples;
+        r.duration_s = static_cast<double>(point.num_samples) / point.sample_rate_hz;
+        r.method = method;
+        r.coefficient = c;
+        r.truth_si = truth.at(c);
+        auto mean = [&](const std::string& column, double* se) {
+          const ColumnStats* s = ps.Find(column + suffix);
+          if (!s || s->count == 0) {
+            if (se) *se = kNaN;
+            return kNaN;
+          }
+          if (se) *se = s->standard_error;
+          return s->mean;
+        };
+        const ColumnStats* err = ps.Find("rel_err" + suffix);
+        r.n = err ? err->count : 0;
+        r.empirical_sd = err && err->count > 1 ? err->std : kNaN;
+        r.bias = mean("rel_err", &r.bias_se);
+        double mse_se = 0.0;
+        const double mse = mean("sq_rel_err", &mse_se);
+        r.rmse = std::sqrt(mse);
+        r.rmse_se = mse > 0.0 ? mse_se / (2.0 * r.rmse) : kNaN;
+        // Trials the runner recorded as failed have no row values at all: count them missing.
+        const double missing = mean("missing", nullptr);
+        const double trials = static_cast<double>(ps.trials);
+        r.failure_rate = trials > 0 ? 1.0 - (std::isnan(missing) ? 0.0 : (1.0 - missing)) *
+                                                (trials - static_cast<double>(ps.failed)) / trials
+                                    : kNaN;
+        r.mean_sigma = mean("rel_sigma", nullptr);
+        for (double level : spec.confidence_levels) {
+          const ColumnStats* s = ps.Find(LevelName(level) + suffix);
+          r.coverage.push_back(s && s->count > 0 ? s->mean : kNaN);
+          r.coverage_se.push_back(s && s->count > 0 ? CoverageStandardError(level, s->count) : kNaN);
+        }
+        r.read_bias = mean("rel_err_read", &r.read_bias_se);
+        rows.push_back(std::move(r));
+      }
+    }
+  }
+  return rows;
+}
+
+namespace {
+
+const char* MethodColor(const std::string& method) {
+  if (method == "slope") return "#d62728";
+  if (method == "wls") return "#1f77b4";
+  if (method == "log_wls") return "#2ca02c";
+  return "#111111";  // gls
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const SweepSpec& spec) {
+  std::vector<std::pair<std::string, std::string>> f;
+  std::set<std::string> sensors;
+  for (const SweepPoint& p : spec.points) {
+    if (!sensors.insert(p.model.name).second) continue;
+    f.emplace_back("sensor " + p.model.name, p.model.description);
+  }
+  std::ostringstream taus;
+  for (const SweepPoint& p : spec.points) {
+    estimators::TauGridOptions grid;
+    std::string why;
+    if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) continue;
+    const double tau0 = 1.0 / p.sample_rate_hz;
+    const std::int64_t m = SmallestFitAveragingFactor(
+        p.model, p.sample_rate_hz, p.num_samples,
+        estimators::CandidateAveragingFactors(grid, tau0, p.num_samples / 2));
+    taus << (taus.tellp() > 0 ? "; " : "") << p.model.name << " " << DurationText(p.num_samples * tau0)
+         << " at " << Cell(p.sample_rate_hz) << " Hz: tau >= " << Cell(m * tau0, 3) << " s";
+  }
+  std::ostringstream rule;
+  rule << "fits use taus whose white-noise AVAR deficit from the band-limit is <= "
+       << Cell(kMaxBandLimitDeficit * 100) << " % (" << taus.str() << ")";
+  f.emplace_back("fit taus", rule.str());
+  f.emplace_back("slope method curve", "the same taus up to m = N/" +
+                                           std::to_string(kSlopeMethodMaxFraction) +
+                                           " (the plotted diagram)");
+  f.emplace_back("term selection", "off: the truth's terms are fitted (spec fit.terms when given)");
+  f.emplace_back("errors", "relative to the true coefficient; +- is one Monte Carlo standard error");
+  return f;
+}
+
+std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const std::string& sensor,
+                                const std::string& title, const std::vector<GuideLine>& guides) {
+  std::vector<estimators::Coefficient> coefficients;
+  std::vector<std::string> methods;
+  for (const CoefficientRow& r : rows) {
+    if (r.sensor != sensor) continue;
+    if (std::find(coefficients.begin(), coefficients.end(), r.coefficient) == coefficients.end()) {
+      coefficients.push_back(r.coefficient);
+    }
+    if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
+  }
+  std::sort(coefficients.begin(), coefficients.end());
+  std::ostringstream os;
+  const int panels = static_cast<int>(coefficients.size());
+  const int cols = panels <= 2 ? panels : 2;
+  const int lines = (panels + cols - 1) / std::max(cols, 1);
+  os << "set multiplot layout " << std::max(lines, 1) << "," << std::max(cols, 1) << " title "
+     << GnuplotQuoted(title) << "\n"
+     << "set logscale xy\nset format x '%g'\nset format y '%g'\n"
+     << "set xlabel 'record length T [h]'\nset ylabel 'relative error'\n"
+     << "set grid xtics ytics lc rgb '#e8e8e8'\nset key bottom left font ',8'\n";
+  int block = 0;
+  for (estimators::Coefficient c : coefficients) {
+    os << "set title " << GnuplotQuoted(std::string(estimators::CoefficientId(c))) << "\n";
+    std::vector<std::string> clauses;
+    double x_lo = 1e300, x_hi = 0;
+    for (const std::string& method : methods) {
+      std::ostringstream rmse, bias;
+      for (const CoefficientRow& r : rows) {
+        if (r.sensor != sensor || r.method != method || r.coefficient != c) continue;
+        const double x = r.duration_s / 3600.0;
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x);
+        if (r.rmse > 0 && std::isfinite(r.rmse)) {
+          const double se = std::isfinite(r.rmse_se) ? r.rmse_se : 0.0;
+          rmse << Cell(x, 8) << " " << Cell(r.rmse, 8) << " " << Cell(std::max(r.rmse - se, r.rmse * 1e-3), 8)
+               << " " << Cell(r.rmse + se, 8) << "\n";
+        }
+        if (std::abs(r.bias) > 0 && std::isfinite(r.bias)) {
+          bias << Cell(x, 8) << " " << Cell(std::abs(r.bias), 8) << "\n";
+        }
+      }
+      const std::string color = MethodColor(method);
+      if (rmse.tellp() > 0) {
+        os << "$r" << block << " << EOD\n" << rmse.str() << "EOD\n";
+        std::ostringstream clause;
+        clause << "$r" << block << " using 1:2:3:4 with yerrorlines pt 7 ps 0.8 lw 2 lc rgb '"
+               << color << "' title " << GnuplotQuoted(method + " RMSE");
+        clauses.push_back(clause.str());
+      }
+      if (bias.tellp() > 0) {
+        os << "$b" << block << " << EOD\n" << bias.str() << "EOD\n";
+        std::ostringstream clause;
+        clause << "$b" << block << " using 1:2 with linespoints pt 6 ps 0.6 dt 2 lc rgb '" << color
+               << "' title " << GnuplotQuoted(method + " |bias|");
+        clauses.push_back(clause.str());
+      }
+      ++block;
+    }
+    int g = 0;
+    for (const GuideLine& line : guides) {
+      if (line.coefficient != c || !(line.anchor_y > 0)) continue;
+      std::ostringstream fn;
+      fn << "t" << block << "_" << g++;
+      const std::string name = fn.str();
+      os << name << "(x) = " << Cell(line.anchor_y, 10) << " * (x / " << Cell(line.anchor_x / 3600.0, 10)
+         << ")**(" << Cell(line.slope) << ")\n";
+      std::ostringstream clause;
+      clause << name << "(x) with lines lw 1 dt 3 lc rgb '#808080' title " << GnuplotQuoted(line.title);
+      clauses.push_back(clause.str());
+    }
+    if (x_hi > 0) os << "set xrange [" << Cell(x_lo / 1.5) << ":" << Cell(x_hi * 1.5) << "]\n";
+    if (clauses.empty()) {
+      os << "set label 1 'no data' at graph 0.5,0.5 center\nplot NaN notitle\nunset label 1\n";
+      continue;
+    }
+    os << "plot ";
+    for (std::size_t i = 0; i < clauses.size(); ++i) os << (i ? ", \\\n     " : "") << clauses[i];
+    os << "\n";
+  }
+  os << "unset multiplot\n";
+  return os.str();
+}
+
+}  // namespace allanlab::experiments

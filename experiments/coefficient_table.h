@@ -1,0 +1,66 @@
+#pragma once
+// The per-(point, method, coefficient) summary both coefficient tables print, computed from the
+// aggregated columns of CoefficientTrialDriver (coefficient_trial.h). All errors are relative to
+// the true coefficient; each number carries its Monte Carlo standard error.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "estimators/fit/noise_coefficient.h"
+#include "experiments/aggregate.h"
+#include "experiments/sweep_spec.h"
+
+namespace allanlab::experiments {
+
+struct CoefficientRow {
+  int point = 0;
+  std::string sensor;        // model name
+  double duration_s = 0.0;   // record length T
+  double sample_rate_hz = 0.0;
+  std::int64_t samples = 0;
+  std::string method;        // slope, wls, log_wls, gls
+  estimators::Coefficient coefficient = estimators::Coefficient::kN;
+  double truth_si = 0.0;
+  std::int64_t n = 0;               // trials with an estimate
+  double failure_rate = 0.0;        // trials without one
+  double bias = 0.0, bias_se = 0.0;  // mean(estimate / truth - 1)
+  double rmse = 0.0, rmse_se = 0.0;  // sqrt(mean((estimate / truth - 1)^2))
+  double empirical_sd = 0.0;         // std of estimate / truth
+  double mean_sigma = 0.0;           // mean reported sigma / truth (NaN for slope)
+  std::vector<double> coverage;      // per confidence level (NaN for slope)
+  std::vector<double> coverage_se;   // binomial, at the nominal level
+  // Slope method's B against sqrt(B^2 + 2.617 N K) (NaN otherwise).
+  double read_bias = 0.0, read_bias_se = 0.0;
+};
+
+std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
+                                            const std::vector<PointStats>& stats);
+
+// "10 min", "2 h", "24 h".
+std::string DurationText(double seconds);
+
+}  // namespace allanlab::experiments
+
+namespace allanlab::experiments {
+
+// The fixed choices of CoefficientTrialDriver and the sensors and records of the spec, as
+// provenance fields (fit taus per point, slope curve, term selection, truth).
+std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const SweepSpec& spec);
+
+// A straight line on a log-log panel: y = anchor_y (x / anchor_x)^slope.
+struct GuideLine {
+  estimators::Coefficient coefficient = estimators::Coefficient::kN;
+  double slope = -0.5;
+  double anchor_x = 1.0;
+  double anchor_y = 1.0;
+  std::string title;
+};
+
+// gnuplot body (for RenderGnuplotFigure): one log-log panel per coefficient of `sensor`, relative
+// RMSE (points with MC error bars, solid) and |bias| (dashed) of every method vs T in hours, plus
+// the guide lines.
+std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const std::string& sensor,
+                                const std::string& title, const std::vector<GuideLine>& guides);
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,305 @@
+#include "experiments/coefficient_trial.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <type_traits>
+#include <variant>
+
+#include <boost/math/special_functions/erf.hpp>
+
+#include "estimators/avar.h"
+#include "estimators/fit/fit_avar_model.h"
+#include "estimators/fit/slope_method.h"
+
+namespace allanlab::experiments {
+namespace {
+
+using estimators::Coefficient;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+int Index(Coefficient c) { return static_cast<int>(c); }
+
+std::string LevelName(double level) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "in_ci%g", level * 100.0);
+  return buffer;
+}
+
+bool ParseMethod(const std::string& name, estimators::FitMethod* method) {
+  if (name == "wls") *method = estimators::FitMethod::kWls;
+  else if (name == "log_wls") *method = estimators::FitMethod::kLogWls;
+  else if (name == "gls") *method = estimators::FitMethod::kGls;
+  else if (name == "slope") *method = estimators::FitMethod::kSlope;
+  else return false;
+  return true;
+}
+
+// Everything about a point that does not change from trial to trial.
+struct PointPlan {
+  estimators::TauGridOptions grid;
+  std::int64_t min_m = 1;
+  TrueCoefficients truth;
+  std::vector<Coefficient> fit_terms;  // what the fits are asked for
+  std::vector<Coefficient> compared;   // fit_terms present in the truth
+  std::vector<std::string> methods;
+  std::vector<double> z;               // normal quantile of each confidence level
+  bool slope_read_target = false;      // rel_err_read/slope/B columns
+  std::vector<std::string> columns;
+};
+
+PointPlan MakePlan(const SweepSpec& spec, const SweepPoint& point) {
+  PointPlan plan;
+  std::string why;
+  if (!estimators::TauGridOptions::Parse(spec.taus, &plan.grid, &why)) {
+    throw std::invalid_argument("taus: " + why);
+  }
+  plan.truth = TrueCoefficientsOf(point.model);
+  if (spec.fit_terms.empty()) {
+    for (Coefficient c : estimators::kAllCoefficients) {
+      if (plan.truth.has(c)) plan.fit_terms.push_back(c);
+    }
+  } else {
+    for (const std::string& id : spec.fit_terms) {
+      Coefficient c;
+      if (!estimators::ParseCoefficient(id, &c)) throw std::invalid_argument("fit term " + id);
+      plan.fit_terms.push_back(c);
+    }
+  }
+  for (Coefficient c : plan.fit_terms) {
+    if (plan.truth.has(c)) plan.compared.push_back(c);
+  }
+  plan.methods = MethodsOf(spec);
+  for (double level : spec.confidence_levels) {
+    plan.z.push_back(std::sqrt(2.0) * boost::math::erf_inv(level));
+  }
+  const std::vector<std::int64_t> candidates =
+      estimators::CandidateAveragingFactors(plan.grid, 1.0 / point.sample_rate_hz, point.num_samples / 2);
+  plan.min_m = SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, candidates);
+  plan.slope_read_target = plan.truth.has(Coefficient::kN) && plan.truth.has(Coefficient::kB) &&
+                           plan.truth.has(Coefficient::kK);
+
+  for (const std::string& method : plan.methods) {
+    const bool fit = method != "slope";
+    if (fit) {
+      plan.columns.push_back("failed/" + method);
+      plan.columns.push_back("converged/" + method);
+    }
+    for (Coefficient c : plan.compared) {
+      const std::string suffix = "/" + method + "/" + std::string(estimators::CoefficientId(c));
+      plan.columns.push_back("rel_err" + suffix);
+      plan.columns.push_back("sq_rel_err" + suffix);
+      plan.columns.push_back("missing" + suffix);
+      if (fit) {
+        plan.columns.push_back("rel_sigma" + suffix);
+        for (double level : spec.confidence_levels) plan.columns.push_back(LevelName(level) + suffix);
+      }
+      if (!fit && c == Coefficient::kB && plan.slope_read_target) {
+        plan.columns.push_back("rel_err_read" + suffix);
+        plan.columns.push_back("sq_rel_err_read" + suffix);
+      }
+    }
+  }
+  return plan;
+}
+
+class Workspace : public TrialWorkspace {
+ public:
+  const PointPlan& PlanFor(const SweepSpec& spec, const SweepPoint& point) {
+    if (spec_ != &spec) {
+      plans_.clear();
+      spec_ = &spec;
+    }
+    auto it = plans_.find(point.index);
+    if (it == plans_.end()) it = plans_.emplace(point.index, MakePlan(spec, point)).first;
+    return it->second;
+  }
+
+ private:
+  const SweepSpec* spec_ = nullptr;
+  std::map<int, PointPlan> plans_;
+};
+
+// Appends the columns of one coefficient for an estimate (value, sigma; has_sigma false for the
+// slope method), in MakePlan's order.
+void AppendCoefficient(const PointPlan& plan, Coefficient c, bool found, double value,
+                       bool has_sigma, double sigma, std::vector<double>* row) {
+  const double truth = plan.truth.at(c);
+  const double rel = found ? value / truth - 1.0 : kNaN;
+  row->push_back(rel);
+  row->push_back(rel * rel);
+  row->push_back(found ? 0.0 : 1.0);
+  if (has_sigma) {
+    row->push_back(found ? sigma / truth : kNaN);
+    for (double z : plan.z) {
+      row->push_back(found ? (std::abs(value - truth) <= z * sigma ? 1.0 : 0.0) : kNaN);
+    }
+  }
+}
+
+// The curve a slope-method user reads: the plotted one, m <= N/8 (as `allanlab simulate --plot`
+// draws it). With the estimates out to N/2 (EDF ~ 1) the "minimum" is nearly always the last,
+// lowest-EDF point, and B comes out 80 % low on a 24 h mg25_mems record.
+estimators::AvarCurve SlopeMethodCurve(const estimators::AvarCurve& curve) {
+  estimators::AvarCurve c = curve;
+  c.m.clear();
+  c.tau_s.clear();
+  c.avar.clear();
+  c.edf.clear();
+  for (std::size_t k = 0; k < curve.size(); ++k) {
+    if (curve.m[k] > curve.num_samples / kSlopeMethodMaxFraction) continue;
+    c.m.push_back(curve.m[k]);
+    c.tau_s.push_back(curve.tau_s[k]);
+    c.avar.push_back(curve.avar[k]);
+    c.edf.push_back(curve.edf[k]);
+  }
+  return c;
+}
+
+}  // namespace
+
+TrueCoefficients TrueCoefficientsOf(const sim::SensorModel& model) {
+  TrueCoefficients t;
+  std::array<double, 5> squares = {};
+  for (const sim::NoiseTerm& term : model.terms) {
+    std::visit(
+        [&](const auto& x) {
+          using T = std::remove_cvref_t<decltype(x)>;
+          auto add = [&](Coefficient c, double v) {
+            squares[Index(c)] += v * v;
+            t.present[Index(c)] = true;
+          };
+          if constexpr (std::is_same_v<T, sim::QuantizationNoise>) add(Coefficient::kQ, x.q_rad);
+          else if constexpr (std::is_same_v<T, sim::WhiteRateNoise>) add(Coefficient::kN, x.arw_rad_per_sqrt_s);
+          else if constexpr (std::is_same_v<T, sim::FlickerNoise>) add(Coefficient::kB, x.bias_instability_rad_per_s);
+          else if constexpr (std::is_same_v<T, sim::RandomWalkRate>) add(Coefficient::kK, x.rrw_rad_per_s_per_sqrt_s);
+          else if constexpr (std::is_same_v<T, sim::RateRamp>) add(Coefficient::kR, x.ramp_rad_per_s2);
+          else t.unmapped.emplace_back(T::kId);
+        },
+        term);
+  }
+  for (int i = 0; i < 5; ++i) {
+    t.value_si[i] = std::sqrt(squares[i]);
+    if (t.value_si[i] == 0.0) t.present[i] = false;
+  }
+  return t;
+}
+
+double SlopeMethodBTarget(const TrueCoefficients& truth) {
+  const double b = truth.at(Coefficient::kB);
+  // 2.617 = (2 / sqrt 3) / (2 ln2 / pi), THEORY.md §4.2.
+  const double k = (2.0 / std::sqrt(3.0)) / (2.0 * std::log(2.0) / M_PI);
+  return std::sqrt(b * b + k * truth.at(Coefficient::kN) * truth.at(Coefficient::kK));
+}
+
+std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sample_rate_hz,
+                                        std::int64_t num_samples,
+                                        const std::vector<std::int64_t>& candidates) {
+  if (!model.band_limit.enabled() || candidates.empty()) return 1;
+  sim::SensorModel white;
+  white.sample_rate_hz = sample_rate_hz;
+  white.band_limit = model.band_limit;
+  sim::WhiteRateNoise unit;
+  unit.arw_rad_per_sqrt_s = 1.0;
+  white.terms.push_back(unit);
+  const sim::RecordShape shape{num_samples, sim::AvarEstimatorKind::kOverlapping};
+  const double tau0 = 1.0 / sample_rate_hz;
+  for (std::int64_t m : candidates) {
+    if (m < 1) continue;
+    const double deficit = 1.0 - white.ExpectedAvar(m, shape) / unit.ExpectedAvar(m, tau0, shape);
+    if (std::abs(deficit) <= kMaxBandLimitDeficit) return m;
+  }
+  return candidates.back() + 1;  // no tau qualifies: the fits see an empty curve and fail
+}
+
+std::vector<std::string> MethodsOf(const SweepSpec& spec) {
+  if (!spec.fit_methods.empty()) return spec.fit_methods;
+  return {std::begin(kFitMethodNames), std::end(kFitMethodNames)};
+}
+
+std::vector<Coefficient> ComparedCoefficients(const SweepSpec& spec, const SweepPoint& point) {
+  return MakePlan(spec, point).compared;
+}
+
+std::vector<std::string> CoefficientTrialDriver::Columns(const SweepSpec& spec,
+                                                         const SweepPoint& point) const {
+  return MakePlan(spec, point).columns;
+}
+
+std::unique_ptr<TrialWorkspace> CoefficientTrialDriver::MakeWorkspace() const {
+  return std::make_unique<Workspace>();
+}
+
+std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const SweepPoint& point,
+                                                std::int64_t trial,
+                                                TrialWorkspace* workspace) const {
+  const PointPlan& plan = static_cast<Workspace*>(workspace)->PlanFor(spec, point);
+  const std::vector<double> record = point.model.Generate(PointSeed(spec.seed, point.index),
+                                                          static_cast<std::uint64_t>(trial),
+                                                          point.num_samples);
+  estimators::AvarOptions options;
+  options.statistic = estimators::Statistic::kAllanOverlapping;
+  options.taus = plan.grid;
+  options.sample_period_s = 1.0 / point.sample_rate_hz;
+  estimators::AvarSummary avar;
+  if (!estimators::ComputeAvar(options, record, &avar)) {
+    throw std::runtime_error("avar: " + avar.message);
+  }
+  estimators::AvarCurve curve;
+  curve.sample_period_s = options.sample_period_s;
+  curve.num_samples = avar.num_samples;
+  curve.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const auto& p : avar.points) {
+    if (p.m < plan.min_m || !(p.value > 0.0)) continue;
+    curve.m.push_back(p.m);
+    curve.tau_s.push_back(p.tau_s);
+    curve.avar.push_back(p.value);
+    curve.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
+
+  std::vector<double> row;
+  row.reserve(plan.columns.size());
+  for (const std::string& name : plan.methods) {
+    estimators::FitMethod method;
+    if (!ParseMethod(name, &method)) throw std::invalid_argument("unknown fit method " + name);
+    if (method == estimators::FitMethod::kSlope) {
+      const estimators::AvarCurve plotted = SlopeMethodCurve(curve);
+      std::string why;
+      const bool usable = plotted.size() >= 2 && plotted.IsValid(&why);
+      estimators::SlopeMethodResult slope;
+      if (usable) slope = estimators::ReadSlopes(plotted);
+      for (Coefficient c : plan.compared) {
+        const auto& r = slope.at(c);
+        const bool found = usable && r.found;
+        AppendCoefficient(plan, c, found, r.value_si, false, 0.0, &row);
+        if (c == Coefficient::kB && plan.slope_read_target) {
+          const double rel = found ? r.value_si / SlopeMethodBTarget(plan.truth) - 1.0 : kNaN;
+          row.push_back(rel);
+          row.push_back(rel * rel);
+        }
+      }
+      continue;
+    }
+    estimators::FitOptions fit;
+    fit.method = method;
+    fit.terms = plan.fit_terms;
+    fit.select_terms = false;
+    estimators::FitSummary summary;
+    const bool ok = curve.size() >= 2 && estimators::FitAvarModel(fit, curve, &summary);
+    row.push_back(ok ? 0.0 : 1.0);
+    row.push_back(ok && summary.converged ? 1.0 : 0.0);
+    for (Coefficient c : plan.compared) {
+      const auto& e = summary.at(c);
+      const double value = e.fitted ? e.value_si : 0.0;
+      const double sigma = e.fitted ? e.sigma_si : 0.0;
+      AppendCoefficient(plan, c, ok, value, true, sigma, &row);
+    }
+  }
+  if (row.size() != plan.columns.size()) throw std::logic_error("coefficient trial: row size");
+  return row;
+}
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,81 @@
+#pragma once
+// One coefficient-recovery trial, shared by the `coefficient_recovery` and `record_length`
+// validation tables (issue 5): simulate the point's record, take its overlapping Allan curve on
+// the spec's tau grid, fit it with every method of the spec (slope, wls, log_wls, gls) and compare
+// each coefficient present in the truth with its true value.
+//
+// Choices fixed here (each report states them):
+//  * Fit taus: only taus where the point's band-limit lowers the white-noise AVAR by at most
+//    kMaxBandLimitDeficit (exact discrete theory of the model's filter, THEORY.md §1g). No fit
+//    term knows the band-limit, so shorter taus bias N low at every record length (GLS on all
+//    octave taus of mg25_mems at 100 Hz: N 5 % low). Every method gets the same curve.
+//  * The slope method reads the same curve cut at m <= N / kSlopeMethodMaxFraction, the
+//    plotted diagram a practitioner reads (the fits weigh the last, EDF ~ 1, taus themselves).
+//  * Terms fitted: spec.fit_terms, or the truth's terms when it is empty; no term selection
+//    (the question is how well a method recovers a known model, not which model it picks).
+//  * A coefficient a fit leaves at zero is the estimate 0 with sigma 0 (relative error -1, not
+//    covered); a failed fit, or a slope region the slope method does not find, is "missing".
+//
+// Columns, per method M (spec.fit_methods, in order) and coefficient C (fitted and in the truth):
+//   rel_err/M/C         estimate / truth - 1                      mean: relative bias
+//   sq_rel_err/M/C      (estimate / truth - 1)^2                  mean: relative MSE (RMSE^2)
+//   missing/M/C         1 when there is no estimate               mean: failure rate
+//   rel_sigma/M/C       reported sigma / truth (fits only)        mean vs std of rel_err
+//   in_ci<L>/M/C        |estimate - truth| <= z_L sigma (fits)    mean: coverage of level L
+// where L is each spec confidence level in percent ("in_ci68.3", "in_ci95") and z_L the normal
+// quantile. For the slope method's B, when N and K are in the truth, also rel_err_read/slope/B
+// and sq_rel_err_read/slope/B against what the curve minimum estimates, sqrt(B^2 + 2.617 N K)
+// (THEORY.md §4.2). Per fit method also failed/M (the fit returned !ok) and converged/M.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "estimators/fit/noise_coefficient.h"
+#include "experiments/trial_driver.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::experiments {
+
+// Largest white-noise AVAR deficit of the band-limit a fitted tau may have.
+inline constexpr double kMaxBandLimitDeficit = 0.005;
+// The slope method's curve ends at m = N / kSlopeMethodMaxFraction.
+inline constexpr std::int64_t kSlopeMethodMaxFraction = 8;
+
+// The IEEE 952 coefficients of a model, in SI, from its quantization, white rate, Kasdin
+// flicker, random-walk and ramp terms (several terms of one kind add in quadrature). Other
+// terms (Gauss-Markov, harmonics, ...) have no coefficient and are listed in `unmapped`.
+struct TrueCoefficients {
+  std::array<double, 5> value_si = {};
+  std::array<bool, 5> present = {};
+  std::vector<std::string> unmapped;
+  double at(estimators::Coefficient c) const { return value_si[static_cast<int>(c)]; }
+  bool has(estimators::Coefficient c) const { return present[static_cast<int>(c)]; }
+};
+TrueCoefficients TrueCoefficientsOf(const sim::SensorModel& model);
+
+// What B from the curve minimum estimates with N, B, K present: sqrt(B^2 + 2.617 N K) (SI).
+double SlopeMethodBTarget(const TrueCoefficients& truth);
+
+// Smallest averaging factor whose white-noise AVAR deficit under the model's band-limit is at
+// most kMaxBandLimitDeficit among `candidates` (ascending); 1 without a band-limit.
+std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sample_rate_hz,
+                                        std::int64_t num_samples,
+                                        const std::vector<std::int64_t>& candidates);
+
+// The method names the spec may list, in table order.
+inline constexpr const char* kFitMethodNames[] = {"slope", "wls", "log_wls", "gls"};
+// Methods of a spec (all four when it lists none) and the coefficients compared at a point.
+std::vector<std::string> MethodsOf(const SweepSpec& spec);
+std::vector<estimators::Coefficient> ComparedCoefficients(const SweepSpec& spec,
+                                                          const SweepPoint& point);
+
+class CoefficientTrialDriver : public TrialDriver {
+ public:
+  std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
+  std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
+  std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
+                          TrialWorkspace* workspace) const override;
+};
+
+}  // namespace allanlab::experiments
