@@ -16,23 +16,15 @@
 #include "experiments/aggregate.h"
 #include "experiments/coefficient_trial.h"
 #include "sim/sensor_spec.h"
+#include "tests/support/experiment_runs.h"
 #include "tests/support/monte_carlo.h"
 
 namespace allanlab::experiments {
 namespace {
 
 using estimators::Coefficient;
-
-SweepPoint PresetPoint(const std::string& preset, double rate_hz, double duration_s, int index) {
-  SweepPoint p;
-  std::string why;
-  EXPECT_TRUE(sim::LoadPreset(preset, &p.model, &why)) << why;
-  p.index = index;
-  p.model.sample_rate_hz = rate_hz;
-  p.sample_rate_hz = rate_hz;
-  p.num_samples = static_cast<std::int64_t>(std::llround(rate_hz * duration_s));
-  return p;
-}
+using testing_support::PresetPoint;
+using testing_support::RunSweepInline;
 
 SweepSpec SmallSpec() {
   SweepSpec spec;
@@ -42,25 +34,6 @@ SweepSpec SmallSpec() {
   spec.trials = 40;
   spec.points.push_back(PresetPoint("tg100", 50.0, 1200.0, 0));
   return spec;
-}
-
-// Runs every trial of every point through the driver, in order (what the runner does).
-RunSummary RunAll(const SweepSpec& spec, const TrialDriver& driver) {
-  RunSummary run;
-  auto workspace = driver.MakeWorkspace();
-  for (const SweepPoint& point : spec.points) {
-    run.columns.push_back(driver.Columns(spec, point));
-    for (std::int64_t t = 0; t < spec.trials; ++t) {
-      TrialRow row;
-      row.point = point.index;
-      row.trial = t;
-      row.values = driver.Run(spec, point, t, workspace.get());
-      EXPECT_EQ(row.values.size(), run.columns.back().size());
-      run.rows.push_back(row);
-    }
-  }
-  run.ok = true;
-  return run;
 }
 
 TEST(CoefficientTrial, TruthOfThePresets) {
@@ -95,7 +68,7 @@ TEST(CoefficientTrial, FitTausStartWhereTheBandLimitDeficitIsSmall) {
 TEST(CoefficientTrial, GlsAndWlsRecoverTg100WithinTheirEdfError) {
   const SweepSpec spec = SmallSpec();
   CoefficientRecoveryExperiment experiment;
-  const RunSummary run = RunAll(spec, experiment.Driver());
+  const RunSummary run = RunSweepInline(spec, experiment.Driver());
   const std::vector<PointStats> stats = Aggregate(run);
   ASSERT_EQ(stats.size(), 1u);
   const PointStats& s = stats[0];
@@ -165,7 +138,7 @@ TEST(CoefficientTrial, SlopeMethodReadsWhiteNoiseAlone) {
   p.num_samples = 20000;
   spec.points.push_back(p);
   CoefficientTrialDriver driver;
-  const std::vector<PointStats> stats = Aggregate(RunAll(spec, driver));
+  const std::vector<PointStats> stats = Aggregate(RunSweepInline(spec, driver));
   const ColumnStats* slope = stats[0].Find("rel_err/slope/N");
   const ColumnStats* gls = stats[0].Find("rel_err/gls/N");
   ASSERT_NE(slope, nullptr);
@@ -182,7 +155,7 @@ TEST(CoefficientRecovery, ReportWritesCsvMarkdownAndPlotsWithProvenance) {
   SweepSpec spec = SmallSpec();
   spec.trials = 4;
   CoefficientRecoveryExperiment experiment;
-  const RunSummary run = RunAll(spec, experiment.Driver());
+  const RunSummary run = RunSweepInline(spec, experiment.Driver());
   const std::vector<PointStats> stats = Aggregate(run);
   ReportContext context;
   context.output_dir = (std::filesystem::temp_directory_path() / "allanlab_coefficient_recovery_test").string();
