@@ -40,8 +40,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
                                                 const ReportContext& context,
                                                 std::string* why) const {
   const std::vector<CoefficientRow> rows = CoefficientRows(spec, stats);
-  const ProvenanceFields provenance =
-      MakeProvenanceFields(spec, run, context, CoefficientTrialChoices(spec));
+  const auto choices = CoefficientTrialChoices(spec, run);
 
   std::vector<std::string> header = {"sensor", "T", "T_s", "sample_rate_hz", "samples", "method",
                                      "coefficient", "truth", "unit", "n", "failure_rate",
@@ -55,7 +54,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
   header.push_back("bias_vs_minimum_reading_se");
 
   std::ostringstream csv;
-  csv << ProvenanceCsvComments(provenance);
+  csv << ProvenanceBlock(spec, context, choices, "# ");
   for (std::size_t i = 0; i < header.size(); ++i) csv << (i ? "," : "") << header[i];
   csv << "\n";
   for (const CoefficientRow& r : rows) {
@@ -75,7 +74,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
 
   std::ostringstream md;
   md << "# " << spec.name << "\n\n" << Question() << "\n\n## Provenance\n\n"
-     << ProvenanceMarkdown(provenance)
+     << ProvenanceBlock(spec, context, choices, "    ")
      << "\nErrors are relative (estimate / truth - 1); +- is one Monte Carlo standard error. "
         "sigma ratio = mean reported sigma / empirical sd (1 = honest error bars). A coefficient "
         "a fit leaves at zero counts as -1 (-100 %).\n";
@@ -102,36 +101,25 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
       }
       md << " " << PlusMinus(r.read_bias, r.read_bias_se) << " |\n";
     }
-    md << "\n![" << first.sensor << "](" << spec.name << "_" << first.sensor << ".png)\n";
   }
 
+  // The consistent-estimator slope T^-1/2 through GLS's RMSE at the shortest T.
+  std::vector<GuideLine> guides;
+  for (const CoefficientRow& r : rows) {
+    if (r.method != "gls" || !(r.rmse > 0)) continue;
+    bool have = false;
+    for (const GuideLine& g : guides) have = have || (g.sensor == r.sensor && g.coefficient == r.coefficient);
+    if (!have) guides.push_back({r.sensor, r.coefficient, -0.5, r.duration_s, r.rmse, "T^-1/2"});
+  }
   const std::string base = context.output_dir + "/" + spec.name;
+  std::string images;
+  if (!RenderCoefficientPlots(rows, base, spec.name + " (relative RMSE and |bias| vs T)", guides,
+                              &images, why)) {
+    return false;
+  }
+  md << "\n## Figures\n\n" << images;
   if (!WriteFileAtomically(base + ".csv", csv.str(), why)) return false;
   if (!WriteFileAtomically(base + ".md", md.str(), why)) return false;
-  seen.clear();
-  for (const CoefficientRow& first : rows) {
-    if (!seen.insert(first.sensor).second) continue;
-    // The consistent-estimator slope T^-1/2 through GLS's (else the last method's) first RMSE.
-    std::vector<GuideLine> guides;
-    for (const CoefficientRow& r : rows) {
-      if (r.sensor != first.sensor || !(r.rmse > 0)) continue;
-      bool have = false;
-      for (GuideLine& g : guides) {
-        if (g.coefficient != r.coefficient) continue;
-        have = true;
-        if (r.method == "gls" && r.duration_s <= g.anchor_x) {
-          g.anchor_x = r.duration_s;
-          g.anchor_y = r.rmse;
-        }
-      }
-      if (!have) guides.push_back({r.coefficient, -0.5, r.duration_s, r.rmse, "T^-1/2"});
-    }
-    const std::string title = spec.name + ": " + first.sensor + " (relative RMSE and |bias| vs T)";
-    if (!RenderGnuplotFigure(CoefficientPlotBody(rows, first.sensor, title, guides),
-                             base + "_" + first.sensor, 1100, 800, why)) {
-      return false;
-    }
-  }
   return true;
 }
 

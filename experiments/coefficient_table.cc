@@ -14,6 +14,7 @@
 namespace allanlab::experiments {
 namespace {
 
+using estimators::Coefficient;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string LevelName(double level) {
@@ -23,6 +24,22 @@ std::string LevelName(double level) {
 }
 
 }  // namespace
+
+std::string Cell(double value, int digits) {
+  if (std::isnan(value)) return "";
+  return FormatNumber(value, digits);
+}
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += "\"";
+  return out;
+}
 
 std::string DurationText(double seconds) {
   char buffer[32];
@@ -89,6 +106,17 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
 
 namespace {
 
+// gnuplot single-quoted literal ('' for a quote).
+std::string Quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') out += '\'';
+    out += c;
+  }
+  out += "'";
+  return out;
+}
+
 const char* MethodColor(const std::string& method) {
   if (method == "slope") return "#d62728";
   if (method == "wls") return "#1f77b4";
@@ -98,7 +126,8 @@ const char* MethodColor(const std::string& method) {
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const SweepSpec& spec) {
+std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const SweepSpec& spec,
+                                                                         const RunSummary& run) {
   std::vector<std::pair<std::string, std::string>> f;
   std::set<std::string> sensors;
   for (const SweepPoint& p : spec.points) {
@@ -126,91 +155,100 @@ std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const S
                                            " (the plotted diagram)");
   f.emplace_back("term selection", "off: the truth's terms are fitted (spec fit.terms when given)");
   f.emplace_back("errors", "relative to the true coefficient; +- is one Monte Carlo standard error");
+  double trial_seconds = 0.0;
+  for (const TrialRow& row : run.rows) trial_seconds += row.runtime_s;
+  f.emplace_back("cost", Cell(run.wall_time_s, 4) + " s wall, " + Cell(trial_seconds, 4) +
+                             " s in trials, " + std::to_string(run.rows.size()) + " trials, " +
+                             std::to_string(run.trials_failed) + " failed");
   return f;
 }
 
 std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const std::string& sensor,
-                                const std::string& title, const std::vector<GuideLine>& guides) {
-  std::vector<estimators::Coefficient> coefficients;
+                                Coefficient c, const std::string& title,
+                                const std::vector<GuideLine>& guides) {
   std::vector<std::string> methods;
   for (const CoefficientRow& r : rows) {
-    if (r.sensor != sensor) continue;
-    if (std::find(coefficients.begin(), coefficients.end(), r.coefficient) == coefficients.end()) {
-      coefficients.push_back(r.coefficient);
-    }
+    if (r.sensor != sensor || r.coefficient != c) continue;
     if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
   }
-  std::sort(coefficients.begin(), coefficients.end());
   std::ostringstream os;
-  const int panels = static_cast<int>(coefficients.size());
-  const int cols = panels <= 2 ? panels : 2;
-  const int lines = (panels + cols - 1) / std::max(cols, 1);
-  os << "set multiplot layout " << std::max(lines, 1) << "," << std::max(cols, 1) << " title "
-     << GnuplotQuoted(title) << "\n"
+  os << "set title " << Quoted(title) << " noenhanced\n"
      << "set logscale xy\nset format x '%g'\nset format y '%g'\n"
-     << "set xlabel 'record length T [h]'\nset ylabel 'relative error'\n"
-     << "set grid xtics ytics lc rgb '#e8e8e8'\nset key bottom left font ',8'\n";
+     << "set xlabel 'record length T [h]'\nset ylabel 'relative error of "
+     << estimators::CoefficientId(c) << "'\n"
+     << "set grid xtics ytics lc rgb '#e8e8e8'\nset key outside right top noenhanced font ',9'\n";
+  std::vector<std::string> clauses;
+  double x_lo = 1e300, x_hi = 0;
   int block = 0;
-  for (estimators::Coefficient c : coefficients) {
-    os << "set title " << GnuplotQuoted(std::string(estimators::CoefficientId(c))) << "\n";
-    std::vector<std::string> clauses;
-    double x_lo = 1e300, x_hi = 0;
-    for (const std::string& method : methods) {
-      std::ostringstream rmse, bias;
-      for (const CoefficientRow& r : rows) {
-        if (r.sensor != sensor || r.method != method || r.coefficient != c) continue;
-        const double x = r.duration_s / 3600.0;
-        x_lo = std::min(x_lo, x);
-        x_hi = std::max(x_hi, x);
-        if (r.rmse > 0 && std::isfinite(r.rmse)) {
-          const double se = std::isfinite(r.rmse_se) ? r.rmse_se : 0.0;
-          rmse << Cell(x, 8) << " " << Cell(r.rmse, 8) << " " << Cell(std::max(r.rmse - se, r.rmse * 1e-3), 8)
-               << " " << Cell(r.rmse + se, 8) << "\n";
-        }
-        if (std::abs(r.bias) > 0 && std::isfinite(r.bias)) {
-          bias << Cell(x, 8) << " " << Cell(std::abs(r.bias), 8) << "\n";
-        }
+  for (const std::string& method : methods) {
+    std::ostringstream rmse, bias;
+    for (const CoefficientRow& r : rows) {
+      if (r.sensor != sensor || r.method != method || r.coefficient != c) continue;
+      const double x = r.duration_s / 3600.0;
+      x_lo = std::min(x_lo, x);
+      x_hi = std::max(x_hi, x);
+      if (r.rmse > 0 && std::isfinite(r.rmse)) {
+        const double se = std::isfinite(r.rmse_se) ? r.rmse_se : 0.0;
+        rmse << Cell(x, 8) << " " << Cell(r.rmse, 8) << " " << Cell(std::max(r.rmse - se, r.rmse * 1e-3), 8)
+             << " " << Cell(r.rmse + se, 8) << "\n";
       }
-      const std::string color = MethodColor(method);
-      if (rmse.tellp() > 0) {
-        os << "$r" << block << " << EOD\n" << rmse.str() << "EOD\n";
-        std::ostringstream clause;
-        clause << "$r" << block << " using 1:2:3:4 with yerrorlines pt 7 ps 0.8 lw 2 lc rgb '"
-               << color << "' title " << GnuplotQuoted(method + " RMSE");
-        clauses.push_back(clause.str());
+      if (std::abs(r.bias) > 0 && std::isfinite(r.bias)) {
+        bias << Cell(x, 8) << " " << Cell(std::abs(r.bias), 8) << "\n";
       }
-      if (bias.tellp() > 0) {
-        os << "$b" << block << " << EOD\n" << bias.str() << "EOD\n";
-        std::ostringstream clause;
-        clause << "$b" << block << " using 1:2 with linespoints pt 6 ps 0.6 dt 2 lc rgb '" << color
-               << "' title " << GnuplotQuoted(method + " |bias|");
-        clauses.push_back(clause.str());
-      }
-      ++block;
     }
-    int g = 0;
-    for (const GuideLine& line : guides) {
-      if (line.coefficient != c || !(line.anchor_y > 0)) continue;
-      std::ostringstream fn;
-      fn << "t" << block << "_" << g++;
-      const std::string name = fn.str();
-      os << name << "(x) = " << Cell(line.anchor_y, 10) << " * (x / " << Cell(line.anchor_x / 3600.0, 10)
-         << ")**(" << Cell(line.slope) << ")\n";
+    const std::string color = MethodColor(method);
+    if (rmse.tellp() > 0) {
+      os << "$r" << block << " << EOD\n" << rmse.str() << "EOD\n";
       std::ostringstream clause;
-      clause << name << "(x) with lines lw 1 dt 3 lc rgb '#808080' title " << GnuplotQuoted(line.title);
+      clause << "$r" << block << " using 1:2:3:4 with yerrorlines pt 7 ps 0.8 lw 2 lc rgb '"
+             << color << "' title " << Quoted(method + " RMSE");
       clauses.push_back(clause.str());
     }
-    if (x_hi > 0) os << "set xrange [" << Cell(x_lo / 1.5) << ":" << Cell(x_hi * 1.5) << "]\n";
-    if (clauses.empty()) {
-      os << "set label 1 'no data' at graph 0.5,0.5 center\nplot NaN notitle\nunset label 1\n";
-      continue;
+    if (bias.tellp() > 0) {
+      os << "$b" << block << " << EOD\n" << bias.str() << "EOD\n";
+      std::ostringstream clause;
+      clause << "$b" << block << " using 1:2 with linespoints pt 6 ps 0.6 dt 2 lc rgb '" << color
+             << "' title " << Quoted(method + " |bias|");
+      clauses.push_back(clause.str());
     }
-    os << "plot ";
-    for (std::size_t i = 0; i < clauses.size(); ++i) os << (i ? ", \\\n     " : "") << clauses[i];
-    os << "\n";
+    ++block;
   }
-  os << "unset multiplot\n";
+  int g = 0;
+  for (const GuideLine& line : guides) {
+    if (line.sensor != sensor || line.coefficient != c || !(line.anchor_y > 0)) continue;
+    std::ostringstream fn;
+    fn << "g" << g++;
+    os << fn.str() << "(x) = " << Cell(line.anchor_y, 10) << " * (x / " << Cell(line.anchor_x / 3600.0, 10)
+       << ")**(" << Cell(line.slope) << ")\n";
+    std::ostringstream clause;
+    clause << fn.str() << "(x) with lines lw 1 dt 3 lc rgb '#606060' title " << Quoted(line.title);
+    clauses.push_back(clause.str());
+  }
+  if (x_hi > 0) os << "set xrange [" << Cell(x_lo / 1.5) << ":" << Cell(x_hi * 1.5) << "]\n";
+  if (clauses.empty()) return os.str() + "plot NaN title 'no data'\n";
+  os << "plot ";
+  for (std::size_t i = 0; i < clauses.size(); ++i) os << (i ? ", \\\n     " : "") << clauses[i];
+  os << "\n";
   return os.str();
+}
+
+bool RenderCoefficientPlots(const std::vector<CoefficientRow>& rows, const std::string& base,
+                            const std::string& title_prefix, const std::vector<GuideLine>& guides,
+                            std::string* markdown_images, std::string* why) {
+  std::set<std::string> done;
+  for (const CoefficientRow& r : rows) {
+    const std::string id(estimators::CoefficientId(r.coefficient));
+    if (!done.insert(r.sensor + "_" + id).second) continue;
+    const std::string path = base + "_" + r.sensor + "_" + id;
+    const std::string title = title_prefix + ": " + r.sensor + ", " + id;
+    if (!RenderGnuplotFigure(CoefficientPlotBody(rows, r.sensor, r.coefficient, title, guides), path,
+                             900, 560, why)) {
+      return false;
+    }
+    const std::string file = path.substr(path.find_last_of('/') + 1);
+    *markdown_images += "![" + r.sensor + " " + id + "](" + file + ".png)\n";
+  }
+  return true;
 }
 
 }  // namespace allanlab::experiments

@@ -9,6 +9,7 @@
 
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/aggregate.h"
+#include "experiments/runner.h"
 #include "experiments/sweep_spec.h"
 
 namespace allanlab::experiments {
@@ -39,17 +40,23 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
 
 // "10 min", "2 h", "24 h".
 std::string DurationText(double seconds);
+// A table cell: "%.*g" with `digits` significant digits, "" for NaN (not available).
+std::string Cell(double value, int digits = 6);
+// A CSV field, quoted when it holds a comma, quote or newline.
+std::string CsvField(const std::string& text);
 
 }  // namespace allanlab::experiments
 
 namespace allanlab::experiments {
 
-// The fixed choices of CoefficientTrialDriver and the sensors and records of the spec, as
-// provenance fields (fit taus per point, slope curve, term selection, truth).
-std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const SweepSpec& spec);
+// The fixed choices of CoefficientTrialDriver, the sensors of the spec and the run's cost, as
+// the `extra` provenance fields (fit taus per point, slope curve, term selection, wall time).
+std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const SweepSpec& spec,
+                                                                         const RunSummary& run);
 
-// A straight line on a log-log panel: y = anchor_y (x / anchor_x)^slope.
+// A straight line on a log-log panel: y = anchor_y (x / anchor_x)^slope (x = T in s).
 struct GuideLine {
+  std::string sensor;
   estimators::Coefficient coefficient = estimators::Coefficient::kN;
   double slope = -0.5;
   double anchor_x = 1.0;
@@ -57,10 +64,16 @@ struct GuideLine {
   std::string title;
 };
 
-// gnuplot body (for RenderGnuplotFigure): one log-log panel per coefficient of `sensor`, relative
-// RMSE (points with MC error bars, solid) and |bias| (dashed) of every method vs T in hours, plus
-// the guide lines.
+// gnuplot body (for RenderGnuplotFigure): a log-log plot of coefficient c of `sensor`, relative
+// RMSE (points with Monte Carlo error bars, solid) and |bias| (dashed) of every method vs T in
+// hours, plus the guide lines of c.
 std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const std::string& sensor,
-                                const std::string& title, const std::vector<GuideLine>& guides);
+                                estimators::Coefficient c, const std::string& title,
+                                const std::vector<GuideLine>& guides);
+// "<base>_<sensor>_<coefficient>" for each (sensor, coefficient) of the rows, rendered with
+// CoefficientPlotBody; *files gets the Markdown image lines.
+bool RenderCoefficientPlots(const std::vector<CoefficientRow>& rows, const std::string& base,
+                            const std::string& title_prefix, const std::vector<GuideLine>& guides,
+                            std::string* markdown_images, std::string* why);
 
 }  // namespace allanlab::experiments

@@ -122,8 +122,7 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
                                          const std::vector<PointStats>& stats,
                                          const ReportContext& context, std::string* why) const {
   const std::vector<CoefficientRow> rows = CoefficientRows(spec, stats);
-  const ProvenanceFields provenance =
-      MakeProvenanceFields(spec, run, context, CoefficientTrialChoices(spec));
+  const auto choices = CoefficientTrialChoices(spec, run);
 
   struct Line {
     std::string sensor, method;
@@ -168,7 +167,7 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
   }
 
   std::ostringstream csv;
-  csv << ProvenanceCsvComments(provenance)
+  csv << ProvenanceBlock(spec, context, choices, "# ")
       << "sensor,method,coefficient,T_min_s,T_max_s,points,slope,slope_se,chi2,dof,"
          "theory_slope_at_T_min,theory_slope_at_T_max,rmse_at_T_min,rmse_at_T_max\n";
   for (const Line& l : lines) {
@@ -182,7 +181,7 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
 
   std::ostringstream md;
   md << "# " << spec.name << "\n\n" << Question() << "\n\n## Provenance\n\n"
-     << ProvenanceMarkdown(provenance)
+     << ProvenanceBlock(spec, context, choices, "    ")
      << "\nRMSE is relative (of estimate / truth - 1). slope = d ln RMSE / d ln T +- its standard "
         "error; theory at the shortest and the longest T (they differ where a term's region "
         "enters the record).\n";
@@ -201,31 +200,28 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
          << (l.ok && l.fit.dof > 0 ? Cell(l.fit.chi2, 3) + " / " + std::to_string(l.fit.dof) : "")
          << " | " << Slope(l.theory_lo) << " | " << Slope(l.theory_hi) << " |\n";
     }
-    md << "\n![" << first.sensor << "](" << spec.name << "_" << first.sensor << ".png)\n";
   }
 
-  const std::string base = context.output_dir + "/" + spec.name;
-  if (!WriteFileAtomically(base + ".csv", csv.str(), why)) return false;
-  if (!WriteFileAtomically(base + ".md", md.str(), why)) return false;
-  for (const std::string& sensor : sensors) {
-    // Theory slopes through GLS's RMSE at the shortest and the longest T.
-    std::vector<GuideLine> guides;
-    for (const Line& l : lines) {
-      if (l.sensor != sensor || l.method != "gls") continue;
-      std::ostringstream lo, hi;
-      lo << "theory T^" << Cell(l.theory_lo, 3);
-      guides.push_back({l.coefficient, l.theory_lo, l.t_lo, l.rmse_lo, lo.str()});
-      if (l.theory_hi != l.theory_lo) {
-        hi << "theory T^" << Cell(l.theory_hi, 3);
-        guides.push_back({l.coefficient, l.theory_hi, l.t_hi, l.rmse_hi, hi.str()});
-      }
-    }
-    const std::string title = spec.name + ": " + sensor + " (relative RMSE and |bias| vs T, theory slopes through GLS)";
-    if (!RenderGnuplotFigure(CoefficientPlotBody(rows, sensor, title, guides), base + "_" + sensor,
-                             1100, 800, why)) {
-      return false;
+  // Theory slopes through GLS's RMSE at the shortest and the longest T.
+  std::vector<GuideLine> guides;
+  for (const Line& l : lines) {
+    if (l.method != "gls") continue;
+    guides.push_back({l.sensor, l.coefficient, l.theory_lo, l.t_lo, l.rmse_lo,
+                      "theory T^" + Cell(l.theory_lo, 3)});
+    if (l.theory_hi != l.theory_lo) {
+      guides.push_back({l.sensor, l.coefficient, l.theory_hi, l.t_hi, l.rmse_hi,
+                        "theory T^" + Cell(l.theory_hi, 3)});
     }
   }
+  const std::string base = context.output_dir + "/" + spec.name;
+  std::string images;
+  if (!RenderCoefficientPlots(rows, base, spec.name + " (theory slopes through GLS)", guides,
+                              &images, why)) {
+    return false;
+  }
+  md << "\n## Figures\n\n" << images;
+  if (!WriteFileAtomically(base + ".csv", csv.str(), why)) return false;
+  if (!WriteFileAtomically(base + ".md", md.str(), why)) return false;
   return true;
 }
 

@@ -178,7 +178,7 @@ TEST(CoefficientRecovery, ReportWritesCsvMarkdownAndPlotsWithProvenance) {
     }
   }
   for (const char* ext : {".png", ".svg"}) {
-    EXPECT_GT(std::filesystem::file_size(context.output_dir + "/" + spec.name + "_tg100" + ext), 0u);
+    EXPECT_GT(std::filesystem::file_size(context.output_dir + "/" + spec.name + "_tg100_N" + ext), 0u);
   }
   for (const auto& entry : std::filesystem::directory_iterator(context.output_dir)) {
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();

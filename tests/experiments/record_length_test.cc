@@ -118,7 +118,7 @@ TEST(RecordLength, ReportWritesCsvMarkdownAndPlotsWithProvenance) {
     }
   }
   for (const char* ext : {".png", ".svg"}) {
-    EXPECT_GT(std::filesystem::file_size(context.output_dir + "/" + spec.name + "_tg100" + ext), 0u);
+    EXPECT_GT(std::filesystem::file_size(context.output_dir + "/" + spec.name + "_tg100_N" + ext), 0u);
   }
   std::filesystem::remove_all(context.output_dir);
 }
