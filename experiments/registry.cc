@@ -4,6 +4,8 @@
 
 #include "experiments/avar_bias.h"
 #include "experiments/avar_error_bars.h"
+#include "experiments/coefficient_recovery.h"
+#include "experiments/record_length.h"
 #include "experiments/seed_paper.h"
 
 namespace allanlab::experiments {
@@ -22,6 +24,8 @@ std::unique_ptr<Experiment> Make() {
 constexpr Entry kExperiments[] = {
     {"avar_bias", &Make<AvarBiasExperiment>},
     {"avar_error_bars", &Make<AvarErrorBarsExperiment>},
+    {"coefficient_recovery", &Make<CoefficientRecoveryExperiment>},
+    {"record_length", &Make<RecordLengthExperiment>},
     {"seed_paper", &Make<SeedPaperExperiment>},
 };
 
