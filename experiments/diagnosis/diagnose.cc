@@ -118,6 +118,34 @@ class SeededTerm final : public estimators::ParametricTerm {
   std::vector<double> start_;
 };
 
+// An additive effect held at its estimate (outliers, bias_step, exponential_drift): a term with no
+// free parameters, so the linear terms are fitted to the curve minus its exact AVAR instead of
+// absorbing it (spikes' white variance belongs to the spikes, not to N).
+class FixedEffectTerm final : public estimators::ParametricTerm {
+ public:
+  explicit FixedEffectTerm(EffectInstance e) : effect_(std::move(e)) {}
+  std::string_view id() const override { return EffectId(effect_.effect); }
+  std::string_view short_name() const override { return EffectId(effect_.effect); }
+  const std::vector<estimators::ParameterSpec>& parameters() const override { return none_; }
+  bool InitialGuess(const estimators::AvarCurve&, std::span<const double>, const sim::SensorModel&,
+                    std::vector<double>* params, std::string*) const override {
+    params->clear();
+    return true;
+  }
+  void ApplyTo(std::span<const double>, sim::SensorModel* model) const override {
+    std::string ignored;
+    AddEffect(effect_, model, &ignored);
+  }
+
+ private:
+  EffectInstance effect_;
+  std::vector<estimators::ParameterSpec> none_;
+};
+
+bool IsFixedAdditive(Effect e) {
+  return e == Effect::kOutliers || e == Effect::kBiasStep || e == Effect::kExponentialDrift;
+}
+
 // The effect's parameters as the fit library's term sees them (names in effect.h order vs the
 // term's parameters() order); nullptr for effects that are not parametric terms there.
 std::shared_ptr<const estimators::ParametricTerm> TermOf(const EffectInstance& e, std::vector<const char*>* keys) {
@@ -146,12 +174,13 @@ std::shared_ptr<const estimators::ParametricTerm> TermOf(const EffectInstance& e
 // dominant process is flat enough near its peak to hold a local minimum. Returns false when an
 // effect is not a library term (the caller then uses the ratio refit).
 bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
-                   std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
-                   sim::SensorModel* model, std::string* why) {
+                   const estimators::FitSummary& baseline, std::vector<EffectInstance>* effects,
+                   estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
   std::vector<std::vector<const char*>> keys(effects->size());
   std::vector<std::shared_ptr<const estimators::ParametricTerm>> terms;
   for (std::size_t i = 0; i < effects->size(); ++i) {
     auto t = TermOf((*effects)[i], &keys[i]);
+    if (!t && IsFixedAdditive((*effects)[i].effect)) t = std::make_shared<FixedEffectTerm>((*effects)[i]);
     if (!t) return false;
     terms.push_back(std::move(t));
   }
@@ -173,17 +202,38 @@ bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& 
   bool any = false;
   estimators::ParametricFitSummary best;
   estimators::ParametricFitOptions best_options;
+  // Linear term sets: every asked term, and those the baseline's selection kept (parametric_fit
+  // does not select; a term the data do not support extrapolates badly onto the held-out half,
+  // while a bump the baseline soaked into other terms may need a dropped one back). AIC decides.
+  std::vector<std::vector<Coefficient>> term_sets = {options.terms};
+  std::vector<Coefficient> kept;
+  for (Coefficient c : options.terms) {
+    if (baseline.at(c).fitted) kept.push_back(c);
+  }
+  // With no free effect parameter (spikes, step, drift held at their estimates) the effect only
+  // takes variance from the terms, so the baseline's selection stands.
+  const bool free_parameters = std::any_of(terms.begin(), terms.end(), [](const auto& t) { return !t->parameters().empty(); });
+  if (!kept.empty() && !free_parameters) term_sets = {kept};
+  if (!kept.empty() && free_parameters && kept.size() != options.terms.size()) term_sets.push_back(kept);
+  double best_aic = 0.0;
+  for (const auto& term_set : term_sets)
   for (const auto& start : starts) {
     estimators::ParametricFitOptions po;
     po.method = estimators::FitMethod::kGls;
-    po.terms = options.terms;
+    po.terms = term_set;
     for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
     estimators::ParametricFitSummary ps;
     if (!estimators::FitAvarModelWithTerms(po, curve, &ps)) {
-      *why = ps.base.message;
-      continue;
+      // As the baseline: WLS when the GLS covariance is singular.
+      po.method = estimators::FitMethod::kWls;
+      if (!estimators::FitAvarModelWithTerms(po, curve, &ps)) {
+        *why = ps.base.message;
+        continue;
+      }
     }
-    if (!any || ps.base.chi2 < best.base.chi2) {
+    const double aic = ps.base.chi2 + 2.0 * static_cast<double>(ps.base.taus_used - ps.base.dof);
+    if (!any || aic < best_aic) {
+      best_aic = aic;
       best = std::move(ps);
       best_options = std::move(po);
       any = true;
@@ -259,7 +309,7 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
   CandidateResult c;
   c.effects = effects;
   std::string parametric_why;
-  if (!FitParametric(*ctx.options, ctx.curve, &c.effects, &c.fit, &c.model, &parametric_why) &&
+  if (!FitParametric(*ctx.options, ctx.curve, s.baseline, &c.effects, &c.fit, &c.model, &parametric_why) &&
       !FitWithEffects(*ctx.options, ctx.curve, s.baseline, effects, &c.fit, &c.model, why)) {
     return std::nullopt;
   }
@@ -282,7 +332,7 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
     estimators::FitSummary first_fit;
     sim::SensorModel first_model;
     std::string ignored;
-    const bool pf = FitParametric(*ctx.options, ctx.first, &first_effects, &first_fit, &first_model, &ignored);
+    const bool pf = FitParametric(*ctx.options, ctx.first, ctx.first_baseline, &first_effects, &first_fit, &first_model, &ignored);
     if (pf ||
         FitWithEffects(*ctx.options, ctx.first, ctx.first_baseline, first_effects, &first_fit,
                        &first_model, &ignored)) {
@@ -343,8 +393,11 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
   int assessed = 0;
   for (std::size_t i = 0; i < s->candidates.size(); ++i) {
     CandidateResult& c = s->candidates[i];
-    if (c.score <= 0.0) break;
-    if (assessed >= o.envelope_candidates) {
+    // Effects whose gap is outside the Allan view (spikes: kurtosis) cannot improve it; they are
+    // assessed too when they leave it no worse than their penalty (+2 for noise).
+    const int k = ParameterCount(c.effects);
+    if (c.score <= 0.0 && (c.score < -2.0 * k - 2.0 || assessed >= o.envelope_candidates + 2)) continue;
+    if (assessed >= o.envelope_candidates && c.score > 0.0) {
       bool partner = false;
       for (std::size_t j = 0; j < i; ++j) {
         for (const auto& eq : AllanEquivalents(c.effects[0].effect)) {
@@ -362,9 +415,10 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
   }
 
   auto acceptable = [&](const CandidateResult& c) {
+    // Held-out: no worse than the AIC penalty (an effect outside the Allan view cannot improve it).
     const bool heldout_ok = !c.after.has_heldout || !s->before.has_heldout ||
-                            c.after.heldout.chi2 < s->before.heldout.chi2;
-    return c.score > 0.0 && c.closes_gap && heldout_ok && (c.full_views || !ctx.have_record || o.trials < 3);
+                            c.after.heldout.chi2 < s->before.heldout.chi2 + 2.0 * ParameterCount(c.effects);
+    return (c.full_views ? c.full_score : c.score) > 0.0 && c.closes_gap && heldout_ok && (c.full_views || !ctx.have_record || o.trials < 3);
   };
   auto pick = [&]() {
     int best = -1;

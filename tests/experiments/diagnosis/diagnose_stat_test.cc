@@ -44,7 +44,7 @@ TEST(DiagnoseStatTest, ControlsAreCleanAtTheStatedRate) {
   EXPECT_LE(flagged, 4) << flagged << " of 20 controls flagged at alpha = 0.05";
 }
 
-TEST(DiagnoseStatTest, SpikesShowInTheKurtosisView) {
+TEST(DiagnoseStatTest, SpikesShowInTheKurtosisViewAndAreNamed) {
   sim::SensorModel model = Control();
   sim::Outliers spikes;
   spikes.rate_hz = 0.5;
@@ -60,6 +60,14 @@ TEST(DiagnoseStatTest, SpikesShowInTheKurtosisView) {
   bool kurtosis_region = false;
   for (const GapRegion& r : s.regions) kurtosis_region |= r.view == View::kKurtosis;
   EXPECT_TRUE(kurtosis_region);
+  // The spikes' variance goes to the effect (N is refitted without it), so the Allan views stay
+  // as well described as by the baseline and the kurtosis gap closes.
+  EXPECT_EQ(s.verdict, "outliers");
+  if (s.verdict == "outliers") {
+    const auto& p = s.candidates[s.verdict_candidate].effects[0].params;
+    EXPECT_NEAR(p.at("size_rad_per_s"), 0.02, 0.002);
+    EXPECT_NEAR(p.at("rate_hz"), 0.5, 0.2);  // 100 spikes expected: Poisson sd 0.05 Hz
+  }
 }
 
 // White + flicker + random walk at 20 Hz (30 min in 36000 samples keeps the tests to seconds):
