@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -199,7 +200,12 @@ Parameter ReadParameter(const YAML::Node& node, const std::string& path) {
       const std::string text = Scalar(node["values"][i], Index(vpath, i));
       NumberWithUnit value;
       if (!SplitNumber(text, &value)) {
-        Fail(Index(vpath, i), "expected a number (with its unit), got \"" + text + "\"");
+        // A word (band_limit.type: none, first_order) is a valid sensor value; sim/ checks it
+        // when the point's model is parsed. The record's values are numbers.
+        if (parameter.path.rfind("sensor.", 0) != 0) {
+          Fail(Index(vpath, i), "expected a number (with its unit), got \"" + text + "\"");
+        }
+        value.number = std::numeric_limits<double>::quiet_NaN();
       }
       parameter.values.push_back({parameter.path, text, value.number});
     }

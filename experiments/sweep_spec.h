@@ -47,7 +47,8 @@ namespace allanlab::experiments {
 struct SweepCoordinate {
   std::string path;        // e.g. "sensor.terms[1].N"
   std::string value_text;  // e.g. "0.1 deg/sqrt(h)"
-  double value = 0.0;      // the number in value_text's unit (for plots)
+  double value = 0.0;      // the number in value_text's unit (for plots); NaN for a word
+                           // (sensor values such as band_limit.type: first_order)
 };
 
 // One point of the sweep, fully resolved: the sensor model and record the trials simulate.

@@ -16,6 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+#ifdef ALLANLAB_MPIEXEC
 std::string TableBody(const std::string& csv) {
   std::istringstream in(csv);
   std::string body;
@@ -34,6 +35,7 @@ int Shell(const std::string& command, const fs::path& dir) {
   const int status = std::system(full.str().c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+#endif
 
 TEST(SweepMpi, TwoRanksGiveTheTableOfOneProcess) {
 #ifndef ALLANLAB_MPIEXEC
