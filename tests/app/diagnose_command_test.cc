@@ -12,6 +12,7 @@
 #include <string>
 
 #include "sim/sensor_model.h"
+#include "tests/support/command_test.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {
@@ -19,28 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class DiagnoseCommandTest : public ::testing::Test {
+class DiagnoseCommandTest : public testing_support::CommandTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / "allanlab_diagnose";
-    dir_ += ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  int Run(const std::string& args) {
-    std::ostringstream command;
-    command << ALLANLAB_BINARY << " diagnose " << args << " > '" << (dir_ / "out.txt").string() << "' 2> '"
-            << (dir_ / "err.txt").string() << "'";
-    const int status = std::system(command.str().c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
-  std::string Path(const std::string& name) {
-    std::ostringstream quoted;
-    quoted << '\'' << (dir_ / name).string() << '\'';
-    return quoted.str();
-  }
+  DiagnoseCommandTest() : CommandTest("allanlab_diagnose", "diagnose") {}
   void WriteRecord(const std::string& name, std::int64_t n) {
     sim::SensorModel model;
     model.sample_rate_hz = 100.0;
@@ -51,7 +33,6 @@ class DiagnoseCommandTest : public ::testing::Test {
     out << "rate_rad_per_s\n";
     for (double v : model.Generate(5, 0, n)) out << v << "\n";
   }
-  fs::path dir_;
 };
 
 TEST_F(DiagnoseCommandTest, WritesTheJsonContract) {
@@ -59,8 +40,7 @@ TEST_F(DiagnoseCommandTest, WritesTheJsonContract) {
   std::ostringstream args;
   args << Path("rec.csv") << " --units rad/s --rate 100 --trials 5 --json " << Path("d.json")
        << " --report " << Path("d.md");
-  ASSERT_EQ(Run(args.str()), 0)
-      << Read("err.txt");
+  ASSERT_EQ(Run(args.str()), 0) << Read("err.txt");
   const auto j = nlohmann::json::parse(Read("d.json"));
   ASSERT_TRUE(j.contains("gap"));
   EXPECT_TRUE(j["gap"]["significant"].is_boolean());

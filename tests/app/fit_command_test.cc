@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/command_test.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {
@@ -19,33 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class FitCommandTest : public ::testing::Test {
+class FitCommandTest : public testing_support::CommandTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / "allanlab_fit";
-    dir_ += ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  int Run(const std::string& args) {
-    // A stream, not a '+' chain: GCC 12 warns falsely (-Wrestrict) on long string '+' chains.
-    std::ostringstream command;
-    command << ALLANLAB_BINARY << ' ' << args << " > '" << (dir_ / "out.txt").string() << "' 2> '"
-            << (dir_ / "err.txt").string() << "'";
-    const int status = std::system(command.str().c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
-  std::string Path(const std::string& name) {
-    std::string quoted = "'";
-    quoted += (dir_ / name).string();
-    quoted += '\'';
-    return quoted;
-  }
-
-  fs::path dir_;
+  FitCommandTest() : CommandTest("allanlab_fit") {}
 };
 
 // A 2-hour N + B record (white and flicker only; Q, K, R absent) at 100 Hz as f64.
@@ -53,8 +30,8 @@ TEST_F(FitCommandTest, RecoversSimulatedCoefficientsAndWritesContracts) {
   std::ofstream(dir_ / "gyro.yaml") << "name: nb\nsample_rate: 100 Hz\nterms:\n"
                                        "  - {type: arw, N: 0.2 deg/sqrt(h)}\n"
                                        "  - {type: bias_instability, B: 3 deg/h}\n";
-  ASSERT_EQ(Run("simulate --sensor " + Path("gyro.yaml") + " --duration 7200 --seed 5 --format f64 -o " +
-                Path("rec.f64")),
+  ASSERT_EQ(Run("simulate --sensor " + Path("gyro.yaml") +
+                " --duration 7200 --seed 5 --format f64 -o " + Path("rec.f64")),
             0)
       << Read("err.txt");
   ASSERT_EQ(Run("fit " + Path("rec.f64") + " --format f64 --rate 100 --units deg/s --json " +
@@ -63,14 +40,16 @@ TEST_F(FitCommandTest, RecoversSimulatedCoefficientsAndWritesContracts) {
       << Read("err.txt");
   const auto j = nlohmann::json::parse(Read("fit.json"));
   EXPECT_EQ(j["method"], "gls");
-  for (const char* key : {"Q", "N", "B", "K", "R"}) ASSERT_TRUE(j["coefficients"].contains(key)) << key;
+  for (const char* key : {"Q", "N", "B", "K", "R"})
+    ASSERT_TRUE(j["coefficients"].contains(key)) << key;
   const auto& n = j["coefficients"]["N"];
   const auto& b = j["coefficients"]["B"];
   EXPECT_EQ(n["unit"], "deg/sqrt(h)");
   EXPECT_EQ(b["unit"], "deg/h");
   EXPECT_NEAR(n["value"].get<double>(), 0.2, 3.0 * n["sigma"].get<double>());
   EXPECT_NEAR(b["value"].get<double>(), 3.0, 3.0 * b["sigma"].get<double>());
-  EXPECT_TRUE(j["fit"].contains("chi2") && j["fit"].contains("dof") && j["fit"].contains("converged"));
+  EXPECT_TRUE(j["fit"].contains("chi2") && j["fit"].contains("dof") &&
+              j["fit"].contains("converged"));
   EXPECT_TRUE(j["bandwidth_hz"].contains("found"));
   EXPECT_TRUE(j["provenance"].contains("git_sha"));
   const std::string kalibr = Read("imu.yaml");

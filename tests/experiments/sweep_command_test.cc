@@ -1,7 +1,7 @@
 // End-to-end tests of `allanlab sweep`: the avar_bias report, clear refusals, and resume after a
 // SIGKILL in the middle of a run giving the same table as an uninterrupted run.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "tests/support/command_test.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {
@@ -32,44 +33,16 @@ std::string SpecText(int trials, int seed) {
   return s.str();
 }
 
-// The table without its provenance comments (date and command line differ between runs).
-std::string TableBody(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string body;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("#", 0) == 0) continue;
-    body += line;
-    body += '\n';
-  }
-  return body;
-}
-
-class SweepCommandTest : public ::testing::Test {
+class SweepCommandTest : public testing_support::CommandTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / "allanlab_sweep";
-    dir_ += ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  int Run(const std::string& args) {
-    std::ostringstream command;
-    command << ALLANLAB_BINARY << ' ' << args << " > '" << (dir_ / "out.txt").string() << "' 2> '"
-            << (dir_ / "err.txt").string() << "'";
-    const int status = std::system(command.str().c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
+  SweepCommandTest() : CommandTest("allanlab_sweep") {}
   std::string P(const std::string& name) { return (dir_ / name).string(); }
-
-  fs::path dir_;
 };
 
 TEST_F(SweepCommandTest, WritesTheReportAndRemovesTheCheckpoint) {
   std::ofstream(dir_ / "spec.yaml") << SpecText(20, 3);
-  ASSERT_EQ(Run("sweep " + P("spec.yaml") + " --out " + P("out") + " --threads 2"), 0) << Read("err.txt");
+  ASSERT_EQ(Run("sweep " + P("spec.yaml") + " --out " + P("out") + " --threads 2"), 0)
+      << Read("err.txt");
   const std::string csv = Read("out/bias.csv");
   EXPECT_NE(csv.find("# git_sha: "), std::string::npos);
   EXPECT_NE(csv.find("# command: "), std::string::npos);
@@ -81,7 +54,8 @@ TEST_F(SweepCommandTest, WritesTheReportAndRemovesTheCheckpoint) {
       << Read("out.txt");
   // Same seed, one thread: the same table.
   ASSERT_EQ(Run("sweep " + P("spec.yaml") + " --out " + P("one") + " --threads 1 --batch 3"), 0);
-  EXPECT_EQ(TableBody(csv), TableBody(Read("one/bias.csv")));
+  EXPECT_EQ(testing_support::WithoutCommentLines(csv),
+            testing_support::WithoutCommentLines(Read("one/bias.csv")));
 }
 
 TEST_F(SweepCommandTest, RefusesBadSpecsWithOneLineNamingTheKey) {
@@ -102,8 +76,9 @@ TEST_F(SweepCommandTest, RefusesBadSpecsWithOneLineNamingTheKey) {
 
 TEST_F(SweepCommandTest, ResumeAfterSigkillMatchesAnUninterruptedRun) {
   std::ofstream(dir_ / "spec.yaml") << SpecText(250, 11);
-  ASSERT_EQ(Run("sweep " + P("spec.yaml") + " --out " + P("ref") + " --threads 2"), 0) << Read("err.txt");
-  const std::string reference = TableBody(Read("ref/bias.csv"));
+  ASSERT_EQ(Run("sweep " + P("spec.yaml") + " --out " + P("ref") + " --threads 2"), 0)
+      << Read("err.txt");
+  const std::string reference = testing_support::WithoutCommentLines(Read("ref/bias.csv"));
   ASSERT_FALSE(reference.empty());
 
   // The interrupted run: one thread, small batches; killed once the store holds a few batches.
@@ -146,7 +121,7 @@ TEST_F(SweepCommandTest, ResumeAfterSigkillMatchesAnUninterruptedRun) {
   const long resumed = std::strtol(summary.c_str() + at + 9, nullptr, 10);
   EXPECT_GT(resumed, 0) << summary;
   EXPECT_LT(resumed, 500) << summary;
-  EXPECT_EQ(reference, TableBody(Read("run/bias.csv")));
+  EXPECT_EQ(reference, testing_support::WithoutCommentLines(Read("run/bias.csv")));
   EXPECT_FALSE(fs::exists(store));
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/command_test.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {
@@ -17,17 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 #ifdef ALLANLAB_MPIEXEC
-std::string TableBody(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string body;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("#", 0) == 0) continue;
-    body += line;
-    body += '\n';
-  }
-  return body;
-}
-
 int Shell(const std::string& command, const fs::path& dir) {
   std::ostringstream full;
   full << command << " > '" << (dir / "out.txt").string() << "' 2> '" << (dir / "err.txt").string()
@@ -49,10 +39,12 @@ TEST(SweepMpi, TwoRanksGiveTheTableOfOneProcess) {
          "sensor: {model: {name: m, sample_rate: 100 Hz, terms: [{type: arw, N: 0.1 deg/sqrt(h)}, "
          "{type: bias_instability, B: 1 deg/h}]}}\n"
          "record: {samples: 4096}\nestimators: [overlapping, nonoverlapping]\n"
-         "sweep: {parameters: [{path: 'sensor.terms[1].B', values: [1 deg/h, 2 deg/h, 3 deg/h]}]}\n";
+         "sweep: {parameters: [{path: 'sensor.terms[1].B', values: [1 deg/h, 2 deg/h, 3 "
+         "deg/h]}]}\n";
   const std::string spec = (dir / "spec.yaml").string();
   std::ostringstream one;
-  one << ALLANLAB_BINARY << " sweep " << spec << " --out " << (dir / "one").string() << " --threads 2";
+  one << ALLANLAB_BINARY << " sweep " << spec << " --out " << (dir / "one").string()
+      << " --threads 2";
   ASSERT_EQ(Shell(one.str(), dir), 0) << testing_support::ReadAll(dir / "err.txt");
   std::ostringstream two;
   two << "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
@@ -61,7 +53,8 @@ TEST(SweepMpi, TwoRanksGiveTheTableOfOneProcess) {
   ASSERT_EQ(Shell(two.str(), dir), 0) << testing_support::ReadAll(dir / "err.txt");
   const std::string table = testing_support::ReadAll(dir / "two/mpi.csv");
   EXPECT_NE(table.find("# ranks: 2"), std::string::npos) << table;
-  EXPECT_EQ(TableBody(testing_support::ReadAll(dir / "one/mpi.csv")), TableBody(table));
+  EXPECT_EQ(testing_support::WithoutCommentLines(testing_support::ReadAll(dir / "one/mpi.csv")),
+            testing_support::WithoutCommentLines(table));
   // Every rank removed its checkpoint.
   for (const auto& entry : fs::directory_iterator(dir / "two")) {
     EXPECT_EQ(entry.path().string().find("checkpoint"), std::string::npos) << entry.path();
