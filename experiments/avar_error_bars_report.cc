@@ -243,7 +243,7 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<Row>& rows) {
       if (r.point != static_cast<int>(p) || r.estimator != "overlapping") continue;
       const auto it = std::find(ms.begin(), ms.end(), r.m);
       const double e = expected[static_cast<std::size_t>(it - ms.begin())];
-      const double lo = e * std::max(r.mean_ratio - r.rel_std, 1e-300);
+      const double lo = e * r.mean_ratio * r.mean_ratio / (r.mean_ratio + r.rel_std);
       const double hi = e * (r.mean_ratio + r.rel_std);
       out << FormatNumber(r.tau_s, 8) << ' ' << FormatNumber(std::sqrt(e) * kRadPerSToDegPerH, 8)
           << ' ' << FormatNumber(std::sqrt(e * r.mean_ratio) * kRadPerSToDegPerH, 8) << ' '
@@ -253,7 +253,7 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<Row>& rows) {
     out << "EOD\n";
   }
   out << "set multiplot layout " << lines << "," << columns << " title "
-      << "'" << spec.name << ": OADEV, exact theory vs Monte Carlo mean and ±1 std band'\n"
+      << "'" << spec.name << ": OADEV, exact theory vs Monte Carlo mean, band x// (1 + std/mean)'\n"
       << "set logscale xy\nset format y '%g'\nset xlabel 'tau [s]'\nset ylabel 'ADEV [deg/h]'\n"
       << "set key bottom left font ',8'\nset grid\n";
   for (std::size_t p = 0; p < panels; ++p) {
@@ -262,7 +262,7 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<Row>& rows) {
       if (c == '\'') c = ' ';
     }
     out << "set title '" << title << "' font ',9'\n"
-        << "plot $p" << p << " using 1:4:5 with filledcurves lc rgb '#b0c4de' title 'MC ±1 std', "
+        << "plot $p" << p << " using 1:4:5 with filledcurves lc rgb '#b0c4de' title 'MC mean x// (1 + std/mean)', "
         << "$p" << p << " using 1:2 with lines lw 2 lc rgb 'black' title 'exact theory', "
         << "$p" << p << " using 1:3 with points pt 7 ps 0.6 lc rgb 'red' title 'MC mean'\n";
   }

@@ -156,11 +156,14 @@ bool RenderGnuplotFigure(const std::string& body, const std::string& base_path, 
     std::ofstream out(script.path(), std::ios::trunc);
     out << "set terminal pngcairo size " << width_px << "," << height_px
         << " font 'sans,10'\n"
+        // Names such as seed_paper are text, not subscripts.
+        << "set termoption noenhanced\n"
         << "set output " << GnuplotQuoted(png.path()) << "\n"
         << body << "\n"
         << "set output\n"
         << "set terminal svg size " << width_px << "," << height_px
         << " dynamic font 'sans,10'\n"
+        << "set termoption noenhanced\n"
         << "set output " << GnuplotQuoted(svg.path()) << "\n"
         << "replot\n"
         << "set output\n";

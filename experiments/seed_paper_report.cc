@@ -191,19 +191,19 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<PointStats>& st
       const double tau = static_cast<double>(ms[i]) / point.sample_rate_hz;
       out << FormatNumber(tau, 8) << ' ' << FormatNumber(std::sqrt(e[i]) * kRadPerSToDegPerH, 8)
           << ' ' << FormatNumber(std::sqrt(e[i] * c->mean) * kRadPerSToDegPerH, 8) << ' '
-          << FormatNumber(std::sqrt(e[i] * std::max(c->mean - c->std, 1e-12)) * kRadPerSToDegPerH, 8)
+          << FormatNumber(std::sqrt(e[i] * c->mean * c->mean / (c->mean + c->std)) * kRadPerSToDegPerH, 8)
           << ' ' << FormatNumber(std::sqrt(e[i] * (c->mean + c->std)) * kRadPerSToDegPerH, 8)
           << '\n';
     }
     out << "EOD\n";
   }
   out << "set multiplot layout 1," << stats.size() << " title '" << spec.name
-      << ": OADEV, exact theory vs Monte Carlo mean and ±1 std band'\n"
+      << ": OADEV, exact theory vs Monte Carlo mean, band x// (1 + std/mean)'\n"
       << "set logscale xy\nset format y '%g'\nset xlabel 'tau [s]'\nset ylabel 'ADEV [deg/h]'\n"
       << "set grid\nset key bottom left\n";
   for (const PointStats& ps : stats) {
     out << "set title '" << spec.points.at(static_cast<std::size_t>(ps.point)).model.name << "'\n"
-        << "plot $p" << ps.point << " using 1:4:5 with filledcurves lc rgb '#b0c4de' title 'MC ±1 std', "
+        << "plot $p" << ps.point << " using 1:4:5 with filledcurves lc rgb '#b0c4de' title 'MC mean x// (1 + std/mean)', "
         << "$p" << ps.point << " using 1:2 with lines lw 2 lc rgb 'black' title 'exact theory', "
         << "$p" << ps.point << " using 1:3 with points pt 7 ps 0.5 lc rgb 'red' title 'MC mean'\n";
   }
