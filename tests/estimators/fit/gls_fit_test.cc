@@ -3,39 +3,23 @@
 // z-scores (estimate - truth) / sigma of all present coefficients have an RMS within
 // 1 +- 3/sqrt(2 n_z) of 1 (the SD of the RMS of n_z standard normals is 1/sqrt(2 n_z)) and none
 // beyond 4.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "estimators/allan_variance.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "sim/sensor_model.h"
 #include "sim/units.h"
+#include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
 namespace {
 
-std::vector<std::int64_t> LogDense(std::int64_t max_m, double per_decade) {
-  std::vector<std::int64_t> ms;
-  for (double x = 1; x <= static_cast<double>(max_m); x *= std::pow(10.0, 1.0 / per_decade)) {
-    const auto m = static_cast<std::int64_t>(std::llround(x));
-    if (ms.empty() || m > ms.back()) ms.push_back(m);
-  }
-  return ms;
-}
-
-AvarCurve Curve(double rate, std::int64_t n, const std::vector<std::int64_t>& ms,
-                const std::vector<double>& avar) {
-  AvarCurve c;
-  c.sample_period_s = 1.0 / rate;
-  c.num_samples = n;
-  c.m = ms;
-  for (std::int64_t m : ms) c.tau_s.push_back(m * c.sample_period_s);
-  c.avar = avar;
-  return c;
-}
+using testing_support::Curve;
+using testing_support::LogDense;
 
 struct Case {
   const char* name;
@@ -66,7 +50,8 @@ TEST(GlsFit, RecoversPresentCoefficientsWithHonestSigmas) {
     }
     FitSummary exact;
     ASSERT_TRUE(FitAvarModel(
-        options, Curve(rate, n, ms, model.ExpectedAvar(ms, {n, sim::AvarEstimatorKind::kOverlapping})),
+        options,
+        Curve(rate, n, ms, model.ExpectedAvar(ms, {n, sim::AvarEstimatorKind::kOverlapping})),
         &exact))
         << exact.message;
     for (auto [coef, value] : truth) {
@@ -77,14 +62,17 @@ TEST(GlsFit, RecoversPresentCoefficientsWithHonestSigmas) {
       const auto y = model.Generate(seed, 0, n);
       FitSummary s;
       ASSERT_TRUE(FitAvarModel(
-          options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)), &s))
+          options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)),
+          &s))
           << s.message;
       EXPECT_TRUE(s.converged) << c.name << " seed " << seed << ": " << s.message;
       for (auto [coef, value] : truth) {
         if (value == 0.0) continue;
         const auto& e = s.at(coef);
-        z.push_back((ToDatasheetUnit(coef, e.value_si) - value) / ToDatasheetUnit(coef, e.sigma_si));
-        EXPECT_LT(std::abs(z.back()), 4.0) << c.name << " " << CoefficientId(coef) << " seed " << seed;
+        z.push_back((ToDatasheetUnit(coef, e.value_si) - value) /
+                    ToDatasheetUnit(coef, e.sigma_si));
+        EXPECT_LT(std::abs(z.back()), 4.0)
+            << c.name << " " << CoefficientId(coef) << " seed " << seed;
       }
     }
   }
@@ -121,7 +109,8 @@ TEST(GlsFit, TermSelectionDropsAbsentTerms) {
     const auto y = model.Generate(seed, 0, n);
     FitSummary s;
     ASSERT_TRUE(FitAvarModel(
-        options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)), &s))
+        options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)),
+        &s))
         << s.message;
     ++fits;
     const bool ok = s.at(Coefficient::kN).fitted && s.at(Coefficient::kB).fitted &&
@@ -129,8 +118,8 @@ TEST(GlsFit, TermSelectionDropsAbsentTerms) {
                     !s.at(Coefficient::kR).fitted;
     correct += ok;
     EXPECT_TRUE(ok) << "seed " << seed << ": Q " << s.at(Coefficient::kQ).note << "; N "
-                    << s.at(Coefficient::kN).note << "; B " << s.at(Coefficient::kB).note
-                    << "; K " << s.at(Coefficient::kK).note << "; R " << s.at(Coefficient::kR).note;
+                    << s.at(Coefficient::kN).note << "; B " << s.at(Coefficient::kB).note << "; K "
+                    << s.at(Coefficient::kK).note << "; R " << s.at(Coefficient::kR).note;
   }
   EXPECT_EQ(correct, fits);
 }

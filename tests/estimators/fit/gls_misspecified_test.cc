@@ -14,26 +14,20 @@
 // point instead of held at the pilot, B came out about the same on the bump curves and lower on
 // the band-limited one (1.5 vs 6.9 deg/h); what the iteration changed was chi2 (shrunk by
 // 2 to 130 times here), which is why it is no longer done.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "estimators/fit/fit_avar_model.h"
 #include "estimators/fit/parametric_fit.h"
 #include "sim/units.h"
+#include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
 namespace {
 
-std::vector<std::int64_t> LogDense(std::int64_t max_m, double per_decade) {
-  std::vector<std::int64_t> ms;
-  for (double x = 1; x <= static_cast<double>(max_m); x *= std::pow(10.0, 1.0 / per_decade)) {
-    const auto m = static_cast<std::int64_t>(std::llround(x));
-    if (ms.empty() || m > ms.back()) ms.push_back(m);
-  }
-  return ms;
-}
+using testing_support::LogDense;
 
 AvarCurve ExpectedCurve(const sim::SensorModel& model, std::int64_t n) {
   AvarCurve c;
@@ -57,7 +51,8 @@ std::vector<Case> Cases() {
   for (auto [sigma, tc] : bumps) {
     sim::SensorModel m;
     m.sample_rate_hz = 100.0;
-    m.terms = {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)}, sim::GaussMarkov{units::DegPerHour(sigma), tc}};
+    m.terms = {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)},
+               sim::GaussMarkov{units::DegPerHour(sigma), tc}};
     out.push_back({"N + Gauss-Markov", m, sigma});
   }
   sim::SensorModel band;
@@ -81,7 +76,9 @@ TEST(GlsMisspecified, MisfitIsFlaggedAndFlickerDoesNotOutgrowTheBump) {
     EXPECT_LT(s.p_value, 1e-6) << c.name << ": chi2 " << s.chi2 << " on " << s.dof;
     EXPECT_NE(s.message.find("POOR FIT"), std::string::npos) << c.name << ": " << s.message;
     if (c.b_bound_deg_h > 0.0) {
-      const double b = s.at(Coefficient::kB).fitted ? ToDatasheetUnit(Coefficient::kB, s.at(Coefficient::kB).value_si) : 0.0;
+      const double b = s.at(Coefficient::kB).fitted
+                           ? ToDatasheetUnit(Coefficient::kB, s.at(Coefficient::kB).value_si)
+                           : 0.0;
       EXPECT_LE(b, c.b_bound_deg_h) << c.name << ": B inflated beyond the bump it imitates";
     }
   }

@@ -1,30 +1,26 @@
 // Parametric terms in the AVAR fit: the residual functor's Jacobian (analytic in the linear terms,
 // central differences in the parametric ones) against Ceres' own finite differences; exact
 // recovery of Gauss-Markov and harmonic parameters from noiseless expected curves.
-#include <cmath>
-#include <cstdio>
-#include <vector>
+#include "estimators/fit/parametric_fit.h"
 
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
 #include "estimators/fit/model_avar_residuals.h"
-#include "estimators/fit/parametric_fit.h"
 #include "sim/units.h"
+#include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
 namespace {
 
-std::vector<std::int64_t> LogDense(std::int64_t max_m, double per_decade) {
-  std::vector<std::int64_t> ms;
-  for (double x = 1; x <= static_cast<double>(max_m); x *= std::pow(10.0, 1.0 / per_decade)) {
-    const auto m = static_cast<std::int64_t>(std::llround(x));
-    if (ms.empty() || m > ms.back()) ms.push_back(m);
-  }
-  return ms;
-}
+using testing_support::LogDense;
 
-AvarCurve ExactCurve(const sim::SensorModel& model, std::int64_t n, const std::vector<std::int64_t>& ms) {
+AvarCurve ExactCurve(const sim::SensorModel& model, std::int64_t n,
+                     const std::vector<std::int64_t>& ms) {
   AvarCurve c;
   c.sample_period_s = 1.0 / model.sample_rate_hz;
   c.num_samples = n;
@@ -46,7 +42,8 @@ sim::SensorModel Model(std::vector<sim::NoiseTerm> terms) {
 TEST(ModelAvarResiduals, DerivativesMatchFiniteDifferences) {
   const std::int64_t n = 1 << 16;
   const auto ms = LogDense(n / 8, 4.0);
-  const AvarCurve curve = ExactCurve(Model({sim::WhiteRateNoise{units::DegPerSqrtHour(0.2)}}), n, ms);
+  const AvarCurve curve =
+      ExactCurve(Model({sim::WhiteRateNoise{units::DegPerSqrtHour(0.2)}}), n, ms);
   for (const char* name : {"GM", "H", "BW2"}) {
     const auto term = MakeParametricTerm(name);
     ModelAvarFunction f;
@@ -72,11 +69,13 @@ TEST(ModelAvarResiduals, DerivativesMatchFiniteDifferences) {
     const auto taus = static_cast<Eigen::Index>(curve.size());
     Eigen::VectorXd target = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), taus);
     Eigen::VectorXd sqrt_w(taus);
-    for (Eigen::Index k = 0; k < taus; ++k) sqrt_w(k) = std::sqrt(0.5 * curve.edf[k]) / curve.avar[k];
+    for (Eigen::Index k = 0; k < taus; ++k)
+      sqrt_w(k) = std::sqrt(0.5 * curve.edf[k]) / curve.avar[k];
     double theta[1] = {0.8 * units::DegPerSqrtHour(0.2) * units::DegPerSqrtHour(0.2)};
     // GM: sigma 5 deg/h, Tc 2 s; H: 5 deg/h at 0.3 Hz; BW2: fc 7 Hz.
     std::vector<double> u = term->parameters().size() == 2
-                                ? std::vector<double>{std::log(units::DegPerHour(5.0)), std::log(name[0] == 'G' ? 2.0 : 0.3)}
+                                ? std::vector<double>{std::log(units::DegPerHour(5.0)),
+                                                      std::log(name[0] == 'G' ? 2.0 : 0.3)}
                                 : std::vector<double>{std::log(7.0)};
     for (auto domain : {ModelAvarResiduals::Domain::kLinear, ModelAvarResiduals::Domain::kLog}) {
       Eigen::VectorXd t = target;
@@ -116,7 +115,9 @@ TEST(ModelAvarResiduals, DerivativesMatchFiniteDifferences) {
         }
       }
       if (domain == ModelAvarResiduals::Domain::kLog) continue;  // Ridders steps leave ln's domain
-      EXPECT_TRUE(checker.Probe(params, 1e-4, &results)) << name << " domain " << static_cast<int>(domain) << ": " << results.error_log.substr(0, 300);
+      EXPECT_TRUE(checker.Probe(params, 1e-4, &results))
+          << name << " domain " << static_cast<int>(domain) << ": "
+          << results.error_log.substr(0, 300);
     }
   }
 }
@@ -132,10 +133,12 @@ TEST(ParametricFit, RecoversParametersFromExactCurves) {
   const auto ms = LogDense(n / 8, 8.0);
   const ExactCase cases[] = {
       {"GM",
-       {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)}, sim::GaussMarkov{units::DegPerHour(20.0), 10.0}},
+       {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)},
+        sim::GaussMarkov{units::DegPerHour(20.0), 10.0}},
        {units::DegPerHour(20.0), 10.0}},
       {"H",
-       {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)}, sim::Harmonic{units::DegPerHour(40.0), 0.2, std::nullopt}},
+       {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)},
+        sim::Harmonic{units::DegPerHour(40.0), 0.2, std::nullopt}},
        {units::DegPerHour(40.0), 0.2}},
   };
   for (const ExactCase& c : cases) {
@@ -148,7 +151,8 @@ TEST(ParametricFit, RecoversParametersFromExactCurves) {
       ParametricFitSummary s;
       ASSERT_TRUE(FitAvarModelWithTerms(o, curve, &s)) << s.base.message;
       ASSERT_TRUE(s.extra[0].fitted) << c.term << ": " << s.extra[0].note;
-      EXPECT_NEAR(ToDatasheetUnit(Coefficient::kN, s.base.at(Coefficient::kN).value_si), 0.3, 3e-4) << c.term;
+      EXPECT_NEAR(ToDatasheetUnit(Coefficient::kN, s.base.at(Coefficient::kN).value_si), 0.3, 3e-4)
+          << c.term;
       for (std::size_t q = 0; q < c.expected_si.size(); ++q) {
         EXPECT_NEAR(s.extra[0].value_si[q] / c.expected_si[q], 1.0, 1e-3)
             << c.term << " " << s.extra[0].parameters[q].name;

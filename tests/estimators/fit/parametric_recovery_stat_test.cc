@@ -9,37 +9,21 @@
 // the correlations of the linear terms, while a random-phase sinusoid is not Gaussian and ties
 // the AVAR estimates of the taus it dominates together in a way neither part models. Its honest
 // uncertainty needs the harmonic in the covariance model or the parametric bootstrap.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "estimators/allan_variance.h"
 #include "estimators/fit/parametric_fit.h"
 #include "sim/units.h"
+#include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
 namespace {
 
-std::vector<std::int64_t> LogDense(std::int64_t max_m, double per_decade) {
-  std::vector<std::int64_t> ms;
-  for (double x = 1; x <= static_cast<double>(max_m); x *= std::pow(10.0, 1.0 / per_decade)) {
-    const auto m = static_cast<std::int64_t>(std::llround(x));
-    if (ms.empty() || m > ms.back()) ms.push_back(m);
-  }
-  return ms;
-}
-
-AvarCurve Curve(double rate, std::int64_t n, const std::vector<std::int64_t>& ms,
-                const std::vector<double>& avar) {
-  AvarCurve c;
-  c.sample_period_s = 1.0 / rate;
-  c.num_samples = n;
-  c.m = ms;
-  for (std::int64_t m : ms) c.tau_s.push_back(m * c.sample_period_s);
-  c.avar = avar;
-  return c;
-}
+using testing_support::Curve;
+using testing_support::LogDense;
 
 struct Case {
   const char* name;
@@ -54,7 +38,10 @@ TEST(ParametricRecovery, GlsRecoversPresentParametersWithinThreeReportedSigmas) 
   const auto ms = LogDense(n / 8, 8.0);
   const Case cases[] = {
       {"N+GM", {{Coefficient::kN, 0.3}}, "GM", {units::DegPerHour(20.0), 10.0}},
-      {"N+B+GM", {{Coefficient::kN, 0.3}, {Coefficient::kB, 10.0}}, "GM", {units::DegPerHour(20.0), 1.0}},
+      {"N+B+GM",
+       {{Coefficient::kN, 0.3}, {Coefficient::kB, 10.0}},
+       "GM",
+       {units::DegPerHour(20.0), 1.0}},
   };
   std::vector<double> z;
   for (const Case& c : cases) {
@@ -73,18 +60,22 @@ TEST(ParametricRecovery, GlsRecoversPresentParametersWithinThreeReportedSigmas) 
       const auto y = model.Generate(seed, 0, n);
       ParametricFitSummary s;
       ASSERT_TRUE(FitAvarModelWithTerms(
-          options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)), &s))
+          options, Curve(rate, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)),
+          &s))
           << s.base.message;
       ASSERT_TRUE(s.extra[0].fitted) << c.name << " seed " << seed << ": " << s.extra[0].note;
       for (auto [coef, value] : c.linear) {
         const auto& e = s.base.at(coef);
         ASSERT_TRUE(e.fitted) << c.name << " " << CoefficientId(coef) << " seed " << seed;
-        z.push_back((ToDatasheetUnit(coef, e.value_si) - value) / ToDatasheetUnit(coef, e.sigma_si));
-        EXPECT_LT(std::abs(z.back()), 3.0) << c.name << " " << CoefficientId(coef) << " seed " << seed;
+        z.push_back((ToDatasheetUnit(coef, e.value_si) - value) /
+                    ToDatasheetUnit(coef, e.sigma_si));
+        EXPECT_LT(std::abs(z.back()), 3.0)
+            << c.name << " " << CoefficientId(coef) << " seed " << seed;
       }
       for (std::size_t q = 0; q < c.params_si.size(); ++q) {
         z.push_back((s.extra[0].value_si[q] - c.params_si[q]) / s.extra[0].sigma_si[q]);
-        EXPECT_LT(std::abs(z.back()), 3.0) << c.name << " " << s.extra[0].parameters[q].name << " seed " << seed;
+        EXPECT_LT(std::abs(z.back()), 3.0)
+            << c.name << " " << s.extra[0].parameters[q].name << " seed " << seed;
       }
     }
   }

@@ -1,0 +1,35 @@
+#pragma once
+// Allan curves as the fit tests build them: averaging factors spaced evenly in log m, and an
+// AvarCurve from given values (exact expectations or one simulated record's estimates).
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+
+namespace allanlab::testing_support {
+
+// Distinct averaging factors 1 ... <= max_m, `per_decade` per decade (rounded, ascending).
+inline std::vector<std::int64_t> LogDense(std::int64_t max_m, double per_decade) {
+  std::vector<std::int64_t> ms;
+  for (double x = 1; x <= static_cast<double>(max_m); x *= std::pow(10.0, 1.0 / per_decade)) {
+    const auto m = static_cast<std::int64_t>(std::llround(x));
+    if (ms.empty() || m > ms.back()) ms.push_back(m);
+  }
+  return ms;
+}
+
+// The curve of a record of n samples at `rate_hz` with values `avar` [(rad/s)^2] at `ms`.
+inline estimators::AvarCurve Curve(double rate_hz, std::int64_t n,
+                                   const std::vector<std::int64_t>& ms,
+                                   const std::vector<double>& avar) {
+  estimators::AvarCurve c;
+  c.sample_period_s = 1.0 / rate_hz;
+  c.num_samples = n;
+  c.m = ms;
+  for (std::int64_t m : ms) c.tau_s.push_back(static_cast<double>(m) * c.sample_period_s);
+  c.avar = avar;
+  return c;
+}
+
+}  // namespace allanlab::testing_support
