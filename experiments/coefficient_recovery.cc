@@ -111,16 +111,8 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
     for (const GuideLine& g : guides) have = have || (g.sensor == r.sensor && g.coefficient == r.coefficient);
     if (!have) guides.push_back({r.sensor, r.coefficient, -0.5, r.duration_s, r.rmse, "T^-1/2"});
   }
-  const std::string base = context.output_dir + "/" + spec.name;
-  std::string images;
-  if (!RenderCoefficientPlots(rows, base, spec.name + " (relative RMSE and |bias| vs T)", guides,
-                              &images, why)) {
-    return false;
-  }
-  md << "\n## Figures\n\n" << images;
-  if (!WriteFileAtomically(base + ".csv", csv.str(), why)) return false;
-  if (!WriteFileAtomically(base + ".md", md.str(), why)) return false;
-  return true;
+  return WriteCoefficientReport(rows, context.output_dir + "/" + spec.name,
+                                spec.name + " (relative RMSE and |bias| vs T)", guides, csv.str(), md.str(), why);
 }
 
 }  // namespace allanlab::experiments

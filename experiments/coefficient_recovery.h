@@ -22,7 +22,8 @@ class CoefficientRecoveryExperiment : public Experiment {
   std::string Name() const override { return "coefficient_recovery"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }
-  // <spec.name>.csv, .md and <spec.name>_rmse.{png,svg} (relative RMSE and |bias| vs T).
+  // <spec.name>.csv, .md and <spec.name>_<sensor>_<coefficient>.{png,svg} (relative RMSE and
+  // |bias| vs T).
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;

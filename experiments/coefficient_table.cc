@@ -251,4 +251,13 @@ bool RenderCoefficientPlots(const std::vector<CoefficientRow>& rows, const std::
   return true;
 }
 
+bool WriteCoefficientReport(const std::vector<CoefficientRow>& rows, const std::string& base,
+                            const std::string& title_prefix, const std::vector<GuideLine>& guides,
+                            const std::string& csv, const std::string& markdown, std::string* why) {
+  std::string images;
+  if (!RenderCoefficientPlots(rows, base, title_prefix, guides, &images, why)) return false;
+  return WriteFileAtomically(base + ".csv", csv, why) &&
+         WriteFileAtomically(base + ".md", markdown + "\n## Figures\n\n" + images, why);
+}
+
 }  // namespace allanlab::experiments

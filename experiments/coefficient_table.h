@@ -75,5 +75,10 @@ std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const s
 bool RenderCoefficientPlots(const std::vector<CoefficientRow>& rows, const std::string& base,
                             const std::string& title_prefix, const std::vector<GuideLine>& guides,
                             std::string* markdown_images, std::string* why);
+// The report of a coefficient experiment: the plots of RenderCoefficientPlots, then <base>.csv
+// and <base>.md (the Markdown with a Figures section appended), each written atomically.
+bool WriteCoefficientReport(const std::vector<CoefficientRow>& rows, const std::string& base,
+                            const std::string& title_prefix, const std::vector<GuideLine>& guides,
+                            const std::string& csv, const std::string& markdown, std::string* why);
 
 }  // namespace allanlab::experiments

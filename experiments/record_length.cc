@@ -213,16 +213,8 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
                         "theory T^" + Cell(l.theory_hi, 3)});
     }
   }
-  const std::string base = context.output_dir + "/" + spec.name;
-  std::string images;
-  if (!RenderCoefficientPlots(rows, base, spec.name + " (theory slopes through GLS)", guides,
-                              &images, why)) {
-    return false;
-  }
-  md << "\n## Figures\n\n" << images;
-  if (!WriteFileAtomically(base + ".csv", csv.str(), why)) return false;
-  if (!WriteFileAtomically(base + ".md", md.str(), why)) return false;
-  return true;
+  return WriteCoefficientReport(rows, context.output_dir + "/" + spec.name,
+                                spec.name + " (theory slopes through GLS)", guides, csv.str(), md.str(), why);
 }
 
 }  // namespace allanlab::experiments
