@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "estimators/exact_quadratic_moments.h"
+
 namespace allanlab::estimators {
 
 std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
@@ -31,6 +33,42 @@ std::vector<double> ModelAvarEdf(const sim::SensorModel& model, std::span<const 
   for (const AvarMoments& moments : ModelAvarMoments(model, ms, shape))
     edf.push_back(moments.edf());
   return edf;
+}
+
+bool HasExactMoments(Statistic s) {
+  return s == Statistic::kAllanNonOverlapping || s == Statistic::kAllanOverlapping ||
+         s == Statistic::kModifiedAllan || s == Statistic::kHadamardNonOverlapping ||
+         s == Statistic::kHadamardOverlapping;
+}
+
+std::vector<AvarMoments> ModelStatisticMoments(const sim::SensorModel& model, Statistic s,
+                                               std::span<const std::int64_t> ms,
+                                               std::int64_t num_samples) {
+  if (s == Statistic::kAllanNonOverlapping || s == Statistic::kAllanOverlapping) {
+    const sim::RecordShape shape{num_samples, s == Statistic::kAllanOverlapping
+                                                  ? sim::AvarEstimatorKind::kOverlapping
+                                                  : sim::AvarEstimatorKind::kNonOverlapping};
+    return ModelAvarMoments(model, ms, shape);
+  }
+  std::vector<AvarMoments> moments(ms.size());
+  if (!HasExactMoments(s)) return moments;
+  const std::int64_t stride_per_m = s == Statistic::kHadamardNonOverlapping ? 1 : 0;
+  std::int64_t max_lag = 0;
+  for (std::int64_t m : ms) {
+    const std::int64_t count = TermCount(s, m, num_samples);
+    if (count < 1) continue;
+    const std::int64_t stride = stride_per_m ? m : 1;
+    max_lag = std::max(max_lag, (count - 1) * stride + 3 * m);
+  }
+  if (max_lag == 0) return moments;
+  const std::vector<double> r = model.GaussianAutocovariance(max_lag + 1);
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    const std::int64_t count = TermCount(s, ms[i], num_samples);
+    if (count < 1) continue;
+    const std::vector<double> filter = DifferenceFilter(s, ms[i]);
+    moments[i] = ExactQuadraticMoments(r, filter, count, stride_per_m ? ms[i] : 1);
+  }
+  return moments;
 }
 
 }  // namespace allanlab::estimators

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "estimators/exact_avar_variance.h"
+#include "estimators/statistic.h"
 #include "sim/avar_theory.h"
 #include "sim/sensor_model.h"
 
@@ -27,5 +28,20 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
 // EDF = 2 E^2 / Var for each m (0 where the moments are zero).
 std::vector<double> ModelAvarEdf(const sim::SensorModel& model, std::span<const std::int64_t> ms,
                                  const sim::RecordShape& shape);
+
+// True for the statistics ModelStatisticMoments covers: AVAR, OAVAR, MVAR, HVAR and OHVAR (their
+// estimates are averages of squared stationary filters, exact_quadratic_moments.h). TOTVAR's
+// reflected extension and TVAR are not covered.
+bool HasExactMoments(Statistic s);
+
+// Moments of the statistic's estimate at each m on num_samples rate samples, from the model's
+// Gaussian part as above (the term counts and strides of statistic.h: TermCount, stride m for the
+// non-overlapping AVAR and HVAR, 1 otherwise). Zero moments for an m the statistic does not
+// compute on that record or a statistic without HasExactMoments. AVAR and OAVAR take the O(N)
+// path above; the others cost O(TermCount x 3m) per m (N = 4096: well under a second for an
+// octave grid).
+std::vector<AvarMoments> ModelStatisticMoments(const sim::SensorModel& model, Statistic s,
+                                               std::span<const std::int64_t> ms,
+                                               std::int64_t num_samples);
 
 }  // namespace allanlab::estimators

@@ -11,6 +11,7 @@
 #include "estimators/confidence.h"
 #include "estimators/exact_edf.h"
 #include "estimators/tau_grid.h"
+#include "experiments/injected_fault.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -62,20 +63,42 @@ class Workspace : public TrialWorkspace {
   PointTheory theory;
 };
 
+// True when every term with a share in the AVAR is one sim::SensorModel::GaussianAutocovariance
+// describes, and there are no output quantizers.
+bool GaussianOnly(const SweepPoint& point) {
+  if (point.model.angle_quantizer || point.model.rate_quantizer) return false;
+  const double tau0 = 1.0 / point.sample_rate_hz;
+  const sim::RecordShape shape{std::max<std::int64_t>(point.num_samples, 2),
+                               sim::AvarEstimatorKind::kOverlapping};
+  for (const sim::NoiseTerm& term : point.model.terms) {
+    const std::string_view id = sim::TermId(term);
+    const bool gaussian = id == "quantization" || id == "arw" || id == "bias_instability" ||
+                          id == "bias_instability_gm_sum" || id == "rrw" || id == "gauss_markov";
+    const double level =
+        std::visit([&](const auto& t) { return t.ExpectedAvar(1, tau0, shape); }, term);
+    if (!gaussian && level > 0.0) return false;
+  }
+  return true;
+}
+
 PointTheory MakeTheory(const SweepSpec& spec, const SweepPoint& point) {
   PointTheory theory;
   theory.point = point.index;
   theory.ms = ErrorBarAveragingFactors(spec, point);
-  // Ramps and harmonics have no Gaussian part, so no exact EDF (exact_edf.h).
-  const bool gaussian = point.model.GaussianAutocovariance(1)[0] > 0.0;
+  // The exact EDF describes the model's Gaussian part only, so a model with a non-Gaussian term
+  // (ramp, harmonic, ...) gets none. (Testing R(0) > 0 instead would also drop lone flicker and
+  // random walk, whose generalised autocovariances start at R(0) = 0.)
+  const bool gaussian = GaussianOnly(point);
   for (Statistic s : ErrorBarStatistics()) {
     const sim::RecordShape shape{point.num_samples, KindOf(s)};
     theory.expected.push_back(point.model.ExpectedAvar(theory.ms, shape));
     std::vector<double> edf(theory.ms.size(), kNaN);
-    if (HasExactTheory(s) && gaussian) {
-      const std::vector<double> exact = estimators::ModelAvarEdf(point.model, theory.ms, shape);
+    if (estimators::HasExactMoments(s) && gaussian) {
+      const std::vector<estimators::AvarMoments> exact =
+          estimators::ModelStatisticMoments(point.model, s, theory.ms, point.num_samples);
       for (std::size_t i = 0; i < edf.size(); ++i) {
-        if (exact[i] > 0.0 && std::isfinite(exact[i])) edf[i] = exact[i];
+        const double e = exact[i].edf();
+        if (e > 0.0 && std::isfinite(e)) edf[i] = e;
       }
     }
     theory.exact_edf.push_back(std::move(edf));
@@ -206,6 +229,7 @@ std::vector<double> AvarErrorBarsDriver::Run(const SweepSpec& spec, const SweepP
     if (!estimators::ComputeAvar(options, rate, &summary)) {
       throw std::runtime_error(std::string(estimators::StatisticId(s)) + ": " + summary.message);
     }
+    for (estimators::AvarPoint& p : summary.points) p.value *= InjectedAvarScale();
     for (std::size_t mi = 0; mi < ms.size(); ++mi) {
       const estimators::AvarPoint* p = nullptr;
       for (const auto& candidate : summary.points) {

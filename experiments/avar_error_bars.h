@@ -10,8 +10,9 @@
 //   edf_simple/<est>/m=<m>       K - 1, K = floor(N/m) clusters (seed paper, IEEE 952)
 //   edf_gr/<est>/m=<m>           Greenhall-Riley EDF at the per-trial identified alpha (what
 //                                `allanlab avar` reports)
-//   edf_exact/<est>/m=<m>        2 E^2 / Var from the model (THEORY.md §2.1); NaN where not
-//                                available (other estimators, no Gaussian part)
+//   edf_exact/<est>/m=<m>        2 E^2 / Var from the model (THEORY.md §2.1,
+//                                estimators::ModelStatisticMoments); NaN for TOTVAR and for
+//                                models with a non-Gaussian term (ramp, harmonic, ...)
 //   in_ci<level>/<kind>/<est>/m=<m>  1 when the chi-square interval of that EDF kind at that
 //                                level covers the exact expectation; NaN without one
 // Records are rate samples of point.model, point.num_samples long; taus from spec.taus up to

@@ -86,8 +86,8 @@ TEST_F(AvarErrorBarsTest, EdfConstantsMatchClosedForms) {
     EXPECT_NEAR(run_->Column(Col("edf_exact", "nonoverlapping", m))[0],
                 2.0 * (clusters - 1) * (clusters - 1) / (3 * clusters - 4),
                 1e-9 * clusters) << m;
-    // No exact theory for the modified variance: NaN, so the table says n/a.
-    EXPECT_TRUE(std::isnan(run_->Column(Col("edf_exact", "modified", m))[0])) << m;
+    // No exact EDF for the total variance (reflected extension): NaN, so the table says n/a.
+    EXPECT_TRUE(std::isnan(run_->Column(Col("edf_exact", "total", m))[0])) << m;
   }
 }
 
@@ -113,6 +113,21 @@ TEST_F(AvarErrorBarsTest, ScatterMatchesExactEdfNotTheSimpleFormula) {
     const double relative_se = std::sqrt(2.0 / kTrials + 12.0 / (edf * kTrials));
     EXPECT_NEAR(variance / (2.0 / edf), 1.0, kZ * relative_se) << m;
     EXPECT_GT(variance / (2.0 / simple), 1.0 + kZ * relative_se) << "simple formula not optimistic, m=" << m;
+  }
+}
+
+// The modified and Hadamard estimators have an exact EDF too: their relative scatter (the ratio
+// is normalised by E[OAVAR], so divide by its mean) matches 2/edf.
+TEST_F(AvarErrorBarsTest, ModifiedAndHadamardScatterMatchesTheirExactEdf) {
+  for (const char* est : {"modified", "hadamard"}) {
+    for (std::int64_t m : {1, 4, 16, 64}) {
+      const double edf = run_->Column(Col("edf_exact", est, m))[0];
+      ASSERT_GT(edf, 0.0) << est << " m=" << m;
+      const std::vector<double> ratio = run_->Column(Col("ratio", est, m));
+      const double rel_variance = Variance(ratio) / (Mean(ratio) * Mean(ratio));
+      const double relative_se = std::sqrt(2.0 / kTrials + 12.0 / (edf * kTrials));
+      EXPECT_NEAR(rel_variance / (2.0 / edf), 1.0, kZ * relative_se) << est << " m=" << m;
+    }
   }
 }
 
