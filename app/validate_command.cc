@@ -102,6 +102,32 @@ bool ReadGolden(const fs::path& path, GoldenTable* table, std::string* why) {
   return true;
 }
 
+// 0/1 columns (interval coverage, failure and found indicators): their mean is a rate.
+bool IsRateColumn(const std::string& column) {
+  return column.rfind("in_ci", 0) == 0 || column.rfind("missing/", 0) == 0 ||
+         column.rfind("failed/", 0) == 0 || column.rfind("converged/", 0) == 0 ||
+         column.find("found/") != std::string::npos;
+}
+
+// The Monte Carlo standard error a comparison uses (kToleranceRule states it in every golden
+// table). A rate gets the binomial sqrt(p (1 - p) / n) with p kept 1/n away from 0 and 1, so
+// that "all 40 trials covered" still tolerates a flip or two rather than none.
+double StandardError(const std::string& column, std::int64_t count, double mean, double se) {
+  if (IsRateColumn(column) && count > 0 && std::isfinite(mean)) {
+    const double n = static_cast<double>(count);
+    const double p = std::clamp(mean, 1.0 / n, 1.0 - 1.0 / n);
+    return p > 0.0 && p < 1.0 ? std::sqrt(p * (1.0 - p) / n) : 0.0;
+  }
+  return std::isfinite(se) ? se : 0.0;
+}
+
+constexpr const char* kToleranceRule =
+    "# tolerance: a number moved when |now - golden| > z sqrt(se_now^2 + se_golden^2) (z = 5 unless\n"
+    "#   --z), se = its Monte Carlo standard error: sample std / sqrt(count) for a mean over trials;\n"
+    "#   binomial sqrt(p (1 - p) / count), p kept >= 1/count from 0 and 1, for 0/1 columns (in_ci*,\n"
+    "#   missing/, failed/, converged/, *found/); columns with se 0 (exact constants such as\n"
+    "#   edf_exact) must match to 1e-12 relative. A changed trial count is always a move.\n";
+
 bool WriteGolden(const fs::path& path, const experiments::SweepSpec& spec,
                  const std::vector<experiments::PointStats>& stats, const Provenance& provenance,
                  std::string* why) {
@@ -109,7 +135,7 @@ bool WriteGolden(const fs::path& path, const experiments::SweepSpec& spec,
   if (!out.Open(path.string(), why)) return false;
   out.stream() << ProvenanceCommentLines(provenance) << "# spec: " << spec.name << " (hash "
                << std::hex << spec.Hash() << std::dec << ")\n"
-               << "point,column,count,mean,standard_error\n";
+               << kToleranceRule << "point,column,count,mean,standard_error\n";
   for (const experiments::PointStats& point : stats) {
     for (const experiments::ColumnStats& c : point.columns) {
       out.stream() << point.point << ',' << c.column << ',' << c.count << ',' << Exact(c.mean) << ','
@@ -139,8 +165,8 @@ std::vector<std::string> Compare(const std::string& name, const GoldenTable& gol
       ++*compared;
       const GoldenValue& g = it->second;
       const bool both_nan = std::isnan(g.mean) && std::isnan(c.mean);
-      const double se_now = std::isfinite(c.standard_error) ? c.standard_error : 0.0;
-      const double se_old = std::isfinite(g.standard_error) ? g.standard_error : 0.0;
+      const double se_now = StandardError(c.column, c.count, c.mean, c.standard_error);
+      const double se_old = StandardError(c.column, g.count, g.mean, g.standard_error);
       const double diff = c.mean - g.mean;
       const double tolerance = z * std::sqrt(se_now * se_now + se_old * se_old) +
                                1e-12 * std::max(std::abs(c.mean), std::abs(g.mean));
@@ -234,7 +260,7 @@ Subcommand AddValidateCommand(CLI::App* parent) {
       kCommand,
       "Regression check: rerun the fixed sweep points of experiments/specs/validate and compare "
       "every number with the golden tables (z = 5 on the Monte Carlo error).");
-  cmd->add_flag("--quick", options->quick, "only the quick set (under a minute on 2 cores)");
+  cmd->add_flag("--quick", options->quick, "only the quick set (about 20 s of CPU on 2 cores)");
   cmd->add_flag("--update", options->update, "rewrite the golden tables instead of comparing");
   cmd->add_option("--specs", options->specs_dir, "spec folder (default: the source tree's)")
       ->type_name("DIR");

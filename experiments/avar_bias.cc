@@ -9,6 +9,7 @@
 
 #include "estimators/allan_family.h"
 #include "estimators/tau_grid.h"
+#include "experiments/injected_fault.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -42,18 +43,6 @@ std::vector<std::int64_t> AveragingFactors(const SweepSpec& spec, const SweepPoi
     if (m >= 1) ms.push_back(m);
   }
   return ms;
-}
-
-// The injected scale of the test hook: 1 unless ALLANLAB_INJECT_AVAR_SCALE is set.
-double InjectedScale() {
-  static const double scale = [] {
-    const char* text = std::getenv("ALLANLAB_INJECT_AVAR_SCALE");
-    if (text == nullptr || *text == '\0') return 1.0;
-    char* end = nullptr;
-    const double value = std::strtod(text, &end);
-    return (*end == '\0' && value > 0.0) ? value : 1.0;
-  }();
-  return scale;
 }
 
 struct Workspace : TrialWorkspace {
@@ -121,7 +110,7 @@ std::vector<double> AvarBiasDriver::Run(const SweepSpec& spec, const SweepPoint&
     for (std::size_t k = 0; k < w->ms.size(); ++k) {
       while (next < summary.points.size() && summary.points[next].m < w->ms[k]) ++next;
       const bool found = next < summary.points.size() && summary.points[next].m == w->ms[k];
-      values.push_back(found ? InjectedScale() * summary.points[next].value / w->expected[si][k]
+      values.push_back(found ? InjectedAvarScale() * summary.points[next].value / w->expected[si][k]
                              : std::nan(""));
     }
   }

@@ -6,8 +6,7 @@
 // Columns, per estimator of spec.estimators (overlapping and nonoverlapping only: those have an
 // exact expectation in sim/) and per averaging factor m of spec.taus with m <= N/4:
 //   avar_ratio/<estimator>/m=<m>   AVAR_hat(m) / E[AVAR_hat(m)]   (mean - 1 is the bias)
-// Test hook: ALLANLAB_INJECT_AVAR_SCALE=<factor> in the environment multiplies every estimate
-// (read once, here only) so a test can prove that `validate` catches a broken estimator.
+// Test hook: ALLANLAB_INJECT_AVAR_SCALE (experiments/injected_fault.h) multiplies every estimate.
 #include <cstdint>
 #include <string>
 #include <vector>

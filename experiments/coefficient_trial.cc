@@ -14,6 +14,7 @@
 #include "estimators/avar.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "estimators/fit/slope_method.h"
+#include "experiments/injected_fault.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -128,6 +129,7 @@ class Workspace : public TrialWorkspace {
 void AppendCoefficient(const PointPlan& plan, Coefficient c, bool found, double value,
                        bool has_sigma, double sigma, std::vector<double>* row) {
   const double truth = plan.truth.at(c);
+  value *= InjectedCoefficientScale();
   const double rel = found ? value / truth - 1.0 : kNaN;
   row->push_back(rel);
   row->push_back(rel * rel);
@@ -248,6 +250,7 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
   if (!estimators::ComputeAvar(options, record, &avar)) {
     throw std::runtime_error("avar: " + avar.message);
   }
+  for (estimators::AvarPoint& p : avar.points) p.value *= InjectedAvarScale();
   estimators::AvarCurve curve;
   curve.sample_period_s = options.sample_period_s;
   curve.num_samples = avar.num_samples;
@@ -276,7 +279,8 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
         const bool found = usable && r.found;
         AppendCoefficient(plan, c, found, r.value_si, false, 0.0, &row);
         if (c == Coefficient::kB && plan.slope_read_target) {
-          const double rel = found ? r.value_si / SlopeMethodBTarget(plan.truth) - 1.0 : kNaN;
+          const double read = InjectedCoefficientScale() * r.value_si;
+          const double rel = found ? read / SlopeMethodBTarget(plan.truth) - 1.0 : kNaN;
           row.push_back(rel);
           row.push_back(rel * rel);
         }

@@ -15,6 +15,7 @@
 #include "estimators/fit/noise_coefficient.h"
 #include "estimators/fit/slope_method.h"
 #include "estimators/tau_grid.h"
+#include "experiments/injected_fault.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -150,6 +151,7 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
   options.confidence_method = estimators::ConfidenceMethod::kGreenhallRiley;
   estimators::AvarSummary summary;
   if (!estimators::ComputeAvar(options, rate, &summary)) throw std::runtime_error(summary.message);
+  for (estimators::AvarPoint& p : summary.points) p.value *= InjectedAvarScale();
 
   estimators::AvarCurve curve;
   curve.sample_period_s = tau0;
@@ -181,10 +183,12 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
   const estimators::SlopeMethodResult slopes = estimators::ReadSlopes(curve);
   const estimators::SlopeReading& n_line = slopes.at(Coefficient::kN);
   const estimators::SlopeReading& b_line = slopes.at(Coefficient::kB);
-  const double n_curve = sigma_1s / 60.0;
+  const double injected = InjectedCoefficientScale();
+  const double n_curve = injected * sigma_1s / 60.0;
   const double n_line_value =
-      n_line.found ? estimators::ToDatasheetUnit(Coefficient::kN, n_line.value_si) : kNaN;
-  const double b_min = sigma_min / kFloorFactor;
+      n_line.found ? injected * estimators::ToDatasheetUnit(Coefficient::kN, n_line.value_si)
+                   : kNaN;
+  const double b_min = injected * sigma_min / kFloorFactor;
   const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
   const double fc = bandwidth.found ? bandwidth.cutoff_first_order_hz : kNaN;
   const double peak = bandwidth.found ? bandwidth.peak_tau_s : kNaN;

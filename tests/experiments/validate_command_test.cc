@@ -1,5 +1,5 @@
 // `allanlab validate`: the quick set passes against the committed golden tables, and a 3 % scale
-// error injected into the Allan estimates (ALLANLAB_INJECT_AVAR_SCALE, experiments/avar_bias.h)
+// error injected into the Allan estimates or into the coefficients (experiments/injected_fault.h)
 // makes it fail, naming what moved. Also --update and the refusals.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 
@@ -36,17 +37,59 @@ class ValidateCommandTest : public ::testing::Test {
   }
   std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
 
+  // A spec folder holding copies of some of the source tree's quick specs (compared with the
+  // committed golden tables, which --golden defaults to).
+  std::string QuickSubset(std::initializer_list<const char*> names) {
+    const fs::path source = fs::path(ALLANLAB_TEST_DATA_DIR).parent_path().parent_path();
+    fs::create_directories(dir_ / "subset/quick");
+    for (const char* name : names) {
+      const std::string file = std::string(name) + ".yaml";
+      fs::copy_file(source / "experiments/specs/validate/quick" / file, dir_ / "subset/quick" / file);
+    }
+    return (dir_ / "subset").string();
+  }
+
   fs::path dir_;
 };
 
-TEST_F(ValidateCommandTest, InjectedScaleErrorIsARegression) {
-  ASSERT_EQ(Run("ALLANLAB_INJECT_AVAR_SCALE=1.03", "validate --quick --threads 2"), 1)
+// What CI's regression check is: the whole quick set against the committed golden tables.
+TEST_F(ValidateCommandTest, CleanBuildPassesTheQuickSet) {
+  ASSERT_EQ(Run("", "validate --quick --threads 2"), 0) << Read("out.txt") << Read("err.txt");
+  EXPECT_NE(Read("out.txt").find("validate: ok, "), std::string::npos) << Read("out.txt");
+}
+
+TEST_F(ValidateCommandTest, InjectedAvarScaleErrorIsARegression) {
+  const std::string specs = QuickSubset({"avar_bias_quick", "avar_error_bars_quick"});
+  ASSERT_EQ(Run("ALLANLAB_INJECT_AVAR_SCALE=1.03", "validate --quick --threads 2 --specs " + specs),
+            1)
       << Read("out.txt") << Read("err.txt");
-  EXPECT_NE(Read("out.txt").find("moved: avar_bias_quick point 0 avar_ratio/overlapping/m=1: "),
+  const std::string out = Read("out.txt");
+  EXPECT_NE(out.find("moved: avar_bias_quick point 0 avar_ratio/overlapping/m=1: "),
             std::string::npos)
-      << Read("out.txt");
+      << out;
+  EXPECT_NE(out.find("moved: avar_error_bars_quick point 0 ratio/overlapping/m=1: "),
+            std::string::npos)
+      << out;
   EXPECT_NE(Read("err.txt").find("allanlab validate: error: regression: "), std::string::npos)
       << Read("err.txt");
+}
+
+// A 3 % error in every coefficient the drivers read or fit is caught by the coefficient tables'
+// points (each method's N), not only by the Allan-variance ones.
+TEST_F(ValidateCommandTest, InjectedCoefficientScaleErrorIsARegression) {
+  const std::string specs =
+      QuickSubset({"coefficient_recovery_quick", "record_length_quick", "seed_paper_quick"});
+  ASSERT_EQ(Run("ALLANLAB_INJECT_COEFFICIENT_SCALE=1.03",
+                "validate --quick --threads 2 --specs " + specs),
+            1)
+      << Read("out.txt") << Read("err.txt");
+  const std::string out = Read("out.txt");
+  for (const char* moved : {"moved: coefficient_recovery_quick point 0 rel_err/gls/N: ",
+                            "moved: coefficient_recovery_quick point 0 rel_err/wls/N: ",
+                            "moved: record_length_quick point 1 rel_err/gls/N: ",
+                            "moved: seed_paper_quick point 0 N_line/slope: "}) {
+    EXPECT_NE(out.find(moved), std::string::npos) << moved << '\n' << out;
+  }
 }
 
 TEST_F(ValidateCommandTest, UpdateWritesGoldenTablesThatThenPass) {
