@@ -10,6 +10,7 @@
 #include <boost/random/normal_distribution.hpp>
 
 #include "sim/fft.h"
+#include "sim/kasdin_finite_record.h"
 
 namespace allanlab::sim {
 namespace {
@@ -109,6 +110,10 @@ void FlickerNoise::FillAutocovariance(double, std::span<double> r) const {
 
 double FlickerNoise::ExpectedAvar(std::int64_t m, double, const RecordShape& shape) const {
   if (bias_instability_rad_per_s == 0.0) return 0.0;
+  if (shape.estimator == AvarEstimatorKind::kOverlapping) {
+    return bias_instability_rad_per_s * bias_instability_rad_per_s *
+           KasdinOverlappingAvar(m, shape.num_samples);
+  }
   const std::vector<double> s = CumulativeSum(KasdinCoefficients(shape.num_samples));
   return FiniteRecordAvar(s, bias_instability_rad_per_s * bias_instability_rad_per_s, m, 0, shape);
 }

@@ -35,7 +35,8 @@ struct FlickerNoise {
   // increments, i.e. without the start-up transient).
   void FillAutocovariance(double tau0_s, std::span<double> r) const;
   // Exact E[AVAR_hat(m)] for the generated record of shape.num_samples samples, including the
-  // +44 % excess at m = 1 and the finite-record deficit at large m (THEORY.md §1d).
+  // +44 % excess at m = 1 and the finite-record deficit at large m (THEORY.md §1d). Overlapping:
+  // O(log N) per m (kasdin_finite_record.h); non-overlapping: the O(N) direct sum.
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // Stationary-increment value (no finite-record deficit).
   double StationaryAvar(std::int64_t m) const;

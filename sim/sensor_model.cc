@@ -5,6 +5,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include "sim/kasdin_finite_record.h"
+
 namespace allanlab::sim {
 namespace {
 
@@ -95,9 +97,14 @@ struct DirectTheory {
   const RecordShape& shape;
 
   std::vector<double> operator()(const FlickerNoise& t) const {
-    const std::vector<double> cumulative = CumulativeSum(KasdinCoefficients(shape.num_samples));
     const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
     std::vector<double> out;
+    if (shape.estimator == AvarEstimatorKind::kOverlapping) {
+      // O(log N) per m (kasdin_finite_record.h) instead of the record-sized direct sum.
+      for (std::int64_t m : ms) out.push_back(b2 * KasdinOverlappingAvar(m, shape.num_samples));
+      return out;
+    }
+    const std::vector<double> cumulative = CumulativeSum(KasdinCoefficients(shape.num_samples));
     for (std::int64_t m : ms) out.push_back(FiniteRecordAvar(cumulative, b2, m, 0, shape));
     return out;
   }
