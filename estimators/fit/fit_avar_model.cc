@@ -191,6 +191,7 @@ bool FitOptions::IsValid(std::string* why) const {
     if (why) *why = "fit: max_reweightings must be >= 1";
     return false;
   }
+  if (uncertainty == FitUncertainty::kBootstrap && !bootstrap.IsValid(why)) return false;
   return true;
 }
 
@@ -227,6 +228,12 @@ class CurveCache {
     if (!covariance_) covariance_ = std::make_unique<AvarCovarianceModel>(curve_, options_.terms);
     return *covariance_;
   }
+  // Builds everything fits with `fit` (a subset of the terms, no term selection) will ask for,
+  // so that concurrent fits of curves with this geometry (bootstrap replicates) only read.
+  void Prepare(const FitOptions& fit) {
+    for (Coefficient c : fit.terms) Shape(static_cast<int>(c));
+    if (fit.method == FitMethod::kGls) Covariance();
+  }
 
  private:
   const AvarCurve& curve_;
@@ -248,17 +255,92 @@ std::array<double, kTerms> SquaredCoefficients(const FitSummary& s) {
   }
   return theta;
 }
+
+// The fit with term selection (backward elimination), all on one cache.
+bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
+                 FitSummary* summary);
+// Replaces the sigmas of the fitted coefficients by the bootstrap spread (header).
+void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
+               FitSummary* summary);
 }  // namespace
 
 bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary* summary) {
+  CurveCache cache(curve, options);
+  if (!FitSelected(options, curve, &cache, summary)) return false;
+  for (CoefficientEstimate& e : summary->coefficients) e.covariance_sigma_si = e.sigma_si;
+  if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, &cache, summary);
+  return true;
+}
+
+namespace {
+
+void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
+               FitSummary* summary) {
+  FitOptions refit = options;
+  refit.select_terms = false;
+  refit.uncertainty = FitUncertainty::kCovariance;
+  refit.terms.clear();
+  sim::SensorModel model;
+  model.sample_rate_hz = 1.0 / curve.sample_period_s;
+  for (Coefficient c : kAllCoefficients) {
+    const CoefficientEstimate& e = summary->at(c);
+    if (!e.fitted) continue;
+    refit.terms.push_back(c);
+    model.terms.push_back(TermFor(c, e.value_si));
+  }
+  std::string why;
+  if (refit.terms.empty() || curve.num_samples <= 0 || !model.IsValid(&why)) {
+    std::ostringstream os;
+    os << "; bootstrap not run ("
+       << (refit.terms.empty() ? "no fitted terms" : curve.num_samples <= 0 ? "record length unknown" : why.c_str())
+       << "): covariance uncertainties";
+    summary->message += os.str();
+    return;
+  }
+  cache->Prepare(refit);
+  const BootstrapSpread spread = ParametricBootstrap(
+      model, curve, options.bootstrap, refit.terms.size(),
+      [&](const AvarCurve& replicate, std::vector<double>* values, std::string* message) {
+        FitSummary s;
+        if (!FitFixedTerms(refit, replicate, cache, &s)) {
+          *message = s.message;
+          return false;
+        }
+        for (std::size_t j = 0; j < refit.terms.size(); ++j) {
+          const CoefficientEstimate& e = s.at(refit.terms[j]);
+          (*values)[j] = e.fitted ? e.value_si : 0.0;
+        }
+        return true;
+      });
+  summary->bootstrap_trials = spread.trials;
+  summary->bootstrap_used = spread.used;
+  std::ostringstream os;
+  if (spread.used < 2) {
+    os << "; bootstrap failed (" << spread.used << " of " << spread.trials
+       << " replicates refitted; " << spread.first_failure << "): covariance uncertainties";
+    summary->message += os.str();
+    return;
+  }
+  for (std::size_t j = 0; j < refit.terms.size(); ++j) {
+    CoefficientEstimate& e = summary->coefficients[static_cast<int>(refit.terms[j])];
+    e.sigma_si = spread.sigma[j];
+    e.bootstrap_bias_si = spread.mean[j] - e.value_si;
+  }
+  summary->uncertainty = FitUncertainty::kBootstrap;
+  os << "; uncertainties from a parametric bootstrap (" << spread.used << " of " << spread.trials
+     << " replicates, seed " << options.bootstrap.seed << ")";
+  if (!spread.first_failure.empty()) os << "; first failed " << spread.first_failure;
+  summary->message += os.str();
+}
+
+bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
+                 FitSummary* summary) {
   if (!options.select_terms || options.method == FitMethod::kSlope) {
-    CurveCache cache(curve, options);
-    return FitFixedTerms(options, curve, &cache, summary);
+    return FitFixedTerms(options, curve, cache, summary);
   }
   FitOptions current = options;
   current.select_terms = false;
-  CurveCache cache(curve, options);
-  if (!FitFixedTerms(current, curve, &cache, summary)) return false;
+  if (!FitFixedTerms(current, curve, cache, summary)) return false;
   // Critical value of 0.5 chi2_0 + 0.5 chi2_1 at the level: the chi2_1 quantile at 2 * level.
   const double critical =
       boost::math::quantile(boost::math::complement(boost::math::chi_squared(1.0), 2.0 * options.selection_level));
@@ -268,14 +350,14 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
     // those of one weighted least-squares problem (never negative).
     const std::array<double, kTerms> weights = SquaredCoefficients(*summary);
     FitSummary reference;
-    if (!FitFixedTerms(current, curve, &cache, &reference, &weights)) break;
+    if (!FitFixedTerms(current, curve, cache, &reference, &weights)) break;
     double best_increase = 0.0;
     std::size_t best = current.terms.size();
     for (std::size_t t = 0; t < current.terms.size(); ++t) {
       FitOptions without = current;
       without.terms.erase(without.terms.begin() + static_cast<std::ptrdiff_t>(t));
       FitSummary trial;
-      if (!FitFixedTerms(without, curve, &cache, &trial, &weights)) continue;
+      if (!FitFixedTerms(without, curve, cache, &trial, &weights)) continue;
       const double increase = trial.chi2 - reference.chi2;
       if (best == current.terms.size() || increase < best_increase) {
         best_increase = increase;
@@ -289,7 +371,7 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
         " < " + std::to_string(critical) + " (likelihood-ratio test at " +
         std::to_string(options.selection_level) + ")";
     current.terms.erase(current.terms.begin() + static_cast<std::ptrdiff_t>(best));
-    if (!FitFixedTerms(current, curve, &cache, summary)) return false;  // refit, weights iterated
+    if (!FitFixedTerms(current, curve, cache, summary)) return false;  // refit, weights iterated
   }
   for (Coefficient c : options.terms) {
     CoefficientEstimate& e = summary->coefficients[static_cast<int>(c)];
@@ -303,8 +385,6 @@ bool FitAvarModel(const FitOptions& options, const AvarCurve& curve, FitSummary*
   }
   return true;
 }
-
-namespace {
 
 bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
                    FitSummary* summary, const std::array<double, kTerms>* weight_model_si) {

@@ -24,7 +24,10 @@
 //            built for overlapping starts (non-overlapping would need another pair count and is
 //            not worth it: the overlapping estimator dominates it at every tau).
 // Uncertainties: the covariance (S' W S)^{-1} of the squared coefficients (W = Omega^{-1} for
-// GLS), propagated to c_i = sqrt(c_i^2) to first order.
+// GLS), propagated to c_i = sqrt(c_i^2) to first order; or, with FitUncertainty::kBootstrap, the
+// spread of refits of curves simulated from the fitted model (parametric_bootstrap.h): the
+// fitted terms only, no term selection in the replicates, the shapes and GLS covariance blocks
+// shared by all replicates.
 // WLS treats the taus as independent, which overlapping curves are not; the experiments measure
 // how far that makes its error bars optimistic.
 #include <array>
@@ -33,11 +36,14 @@
 
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/noise_coefficient.h"
+#include "estimators/fit/parametric_bootstrap.h"
 #include "estimators/fit/slope_method.h"
 
 namespace allanlab::estimators {
 
 enum class FitMethod { kSlope, kWls, kLogWls, kGls };
+// Where the standard uncertainties come from (see the header comment).
+enum class FitUncertainty { kCovariance, kBootstrap };
 
 struct FitOptions {
   FitMethod method = FitMethod::kWls;
@@ -53,6 +59,10 @@ struct FitOptions {
   // the null) at `selection_level`: 2.706 at 5 %.
   bool select_terms = true;
   double selection_level = 0.05;
+  // kBootstrap: sigma = standard deviation of `bootstrap.trials` refits of simulated curves
+  // (the slope method included, which has no covariance sigma of its own).
+  FitUncertainty uncertainty = FitUncertainty::kCovariance;
+  BootstrapOptions bootstrap;
   bool IsValid(std::string* why) const;
 };
 
@@ -62,6 +72,8 @@ struct CoefficientEstimate {
   bool dropped = false;  // asked but removed by term selection (see note for the test value)
   double value_si = 0.0;
   double sigma_si = 0.0;  // standard uncertainty (0 when not fitted)
+  double covariance_sigma_si = 0.0;  // the covariance sigma (= sigma_si unless bootstrapped)
+  double bootstrap_bias_si = 0.0;    // mean of the replicates' values - value_si (bootstrap)
   std::string note;
 };
 
@@ -79,6 +91,11 @@ struct FitSummary {
   // model does not describe the curve; then coefficients and sigmas are those of the closest
   // wrong model.
   double p_value = 1.0;
+  // The uncertainty actually reported: kBootstrap only if the bootstrap ran with >= 2 usable
+  // replicates (otherwise the covariance sigmas stay and the message says why).
+  FitUncertainty uncertainty = FitUncertainty::kCovariance;
+  int bootstrap_trials = 0;  // replicates simulated
+  int bootstrap_used = 0;    // replicates whose refit succeeded
   bool ok = false;
   std::string message;
 };

@@ -169,6 +169,7 @@ bool ParametricFitOptions::IsValid(std::string* why) const {
     if (why) *why = "fit: max_iterations must be >= 1";
     return false;
   }
+  if (uncertainty == FitUncertainty::kBootstrap && !bootstrap.IsValid(why)) return false;
   return true;
 }
 
@@ -190,8 +191,107 @@ std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCu
   return out;
 }
 
+namespace {
+
+// One fit with covariance uncertainties (the body of FitAvarModelWithTerms).
+bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
+             ParametricFitSummary* summary);
+
+// Replaces every fitted parameter's sigma by the bootstrap spread (parametric_bootstrap.h).
+void Bootstrap(const ParametricFitOptions& options, const AvarCurve& curve,
+               ParametricFitSummary* summary) {
+  FitSummary& base = summary->base;
+  ParametricFitOptions refit = options;
+  refit.uncertainty = FitUncertainty::kCovariance;
+  std::vector<int> linear;
+  for (Coefficient c : kAllCoefficients) {
+    if (base.at(c).asked) linear.push_back(static_cast<int>(c));
+  }
+  std::size_t parameters = linear.size();
+  for (const ParametricEstimate& e : summary->extra) parameters += e.value_si.size();
+  const sim::SensorModel model = FittedModel(options, curve, *summary);
+  std::string why;
+  if (model.terms.empty() || curve.num_samples <= 0 || !model.IsValid(&why)) {
+    std::ostringstream os;
+    os << "; bootstrap not run ("
+       << (model.terms.empty() ? "nothing fitted" : curve.num_samples <= 0 ? "record length unknown" : why.c_str())
+       << "): covariance uncertainties";
+    base.message += os.str();
+    return;
+  }
+  const std::vector<ParametricEstimate>& original = summary->extra;
+  const BootstrapSpread spread = ParametricBootstrap(
+      model, curve, options.bootstrap, parameters,
+      [&](const AvarCurve& replicate, std::vector<double>* values, std::string* message) {
+        ParametricFitSummary s;
+        if (!FitOnce(refit, replicate, &s)) {
+          *message = s.base.message;
+          return false;
+        }
+        std::size_t q = 0;
+        for (int i : linear) {
+          const CoefficientEstimate& e = s.base.coefficients[i];
+          (*values)[q++] = e.fitted ? e.value_si : 0.0;
+        }
+        for (std::size_t t = 0; t < s.extra.size(); ++t) {
+          if (original[t].fitted && !s.extra[t].fitted) {
+            *message = s.extra[t].short_name;
+            *message += " not fitted: ";
+            *message += s.extra[t].note;
+            return false;
+          }
+          for (double v : s.extra[t].value_si) (*values)[q++] = v;
+        }
+        return true;
+      });
+  base.bootstrap_trials = spread.trials;
+  base.bootstrap_used = spread.used;
+  std::ostringstream os;
+  if (spread.used < 2) {
+    os << "; bootstrap failed (" << spread.used << " of " << spread.trials
+       << " replicates refitted; " << spread.first_failure << "): covariance uncertainties";
+    base.message += os.str();
+    return;
+  }
+  std::size_t q = 0;
+  for (int i : linear) {
+    CoefficientEstimate& e = base.coefficients[i];
+    if (e.fitted) {
+      e.sigma_si = spread.sigma[q];
+      e.bootstrap_bias_si = spread.mean[q] - e.value_si;
+    }
+    ++q;
+  }
+  for (ParametricEstimate& e : summary->extra) {
+    e.bootstrap_bias_si.assign(e.value_si.size(), 0.0);
+    for (std::size_t k = 0; k < e.value_si.size(); ++k, ++q) {
+      if (!e.fitted) continue;
+      e.sigma_si[k] = spread.sigma[q];
+      e.bootstrap_bias_si[k] = spread.mean[q] - e.value_si[k];
+    }
+  }
+  base.uncertainty = FitUncertainty::kBootstrap;
+  os << "; uncertainties from a parametric bootstrap (" << spread.used << " of " << spread.trials
+     << " replicates, seed " << options.bootstrap.seed << ")";
+  if (!spread.first_failure.empty()) os << "; first failed " << spread.first_failure;
+  base.message += os.str();
+}
+
+}  // namespace
+
 bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve& curve,
                            ParametricFitSummary* summary) {
+  if (!FitOnce(options, curve, summary)) return false;
+  for (CoefficientEstimate& e : summary->base.coefficients) e.covariance_sigma_si = e.sigma_si;
+  for (ParametricEstimate& e : summary->extra) e.covariance_sigma_si = e.sigma_si;
+  if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, summary);
+  return true;
+}
+
+namespace {
+
+bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
+             ParametricFitSummary* summary) {
   *summary = ParametricFitSummary{};
   FitSummary& base = summary->base;
   base.method = options.method;
@@ -431,6 +531,8 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
   base.message = os.str();
   return true;
 }
+
+}  // namespace
 
 sim::SensorModel FittedModel(const ParametricFitOptions& options, const AvarCurve& curve,
                              const ParametricFitSummary& summary) {

@@ -39,6 +39,11 @@ struct ParametricFitOptions {
                                     Coefficient::kK, Coefficient::kR};
   std::vector<std::shared_ptr<const ParametricTerm>> extra;  // at most one band-limit
   int max_iterations = 200;  // Ceres iterations per stage
+  // kBootstrap: every sigma from the spread of refits of curves simulated from the fitted model
+  // (parametric_bootstrap.h); a replicate in which a parametric term could not be fitted counts
+  // as failed. The harmonic amplitude needs it: its covariance sigma is several times too small.
+  FitUncertainty uncertainty = FitUncertainty::kCovariance;
+  BootstrapOptions bootstrap;
   bool IsValid(std::string* why) const;
 };
 
@@ -48,6 +53,8 @@ struct ParametricEstimate {
   std::vector<ParameterSpec> parameters;
   std::vector<double> value_si;   // in parameters order
   std::vector<double> sigma_si;   // standard uncertainties (0 if not fitted)
+  std::vector<double> covariance_sigma_si;  // the covariance sigmas (= sigma_si unless bootstrapped)
+  std::vector<double> bootstrap_bias_si;    // mean of the replicates - value_si (bootstrap only)
   bool fitted = false;
   std::string note;               // why not fitted, or caveats (at a bound)
 };
