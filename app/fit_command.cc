@@ -85,7 +85,21 @@ std::string Format(double v) {
   return buffer;
 }
 
-void WriteTable(std::ostream& os, const estimators::FitSummary& s,
+// Which sigma the outputs carry, in words.
+std::string UncertaintyText(const estimators::FitSummary& s, const FitCommandOptions& o) {
+  std::ostringstream os;
+  if (s.uncertainty == estimators::FitUncertainty::kBootstrap) {
+    os << "parametric bootstrap (" << s.bootstrap_used << " of " << s.bootstrap_trials
+       << " replicates of the fitted model, seed " << o.seed << ")";
+  } else if (o.uncertainty == "bootstrap") {
+    os << "fit covariance (the bootstrap did not run; see the fit message)";
+  } else {
+    os << "fit covariance";
+  }
+  return os.str();
+}
+
+void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::FitSummary& s,
                 const std::vector<estimators::ParametricEstimate>& extra,
                 const estimators::BandwidthEstimate& bw) {
   os << "coefficient  value          +- sigma      unit            slope method\n";
@@ -115,6 +129,7 @@ void WriteTable(std::ostream& os, const estimators::FitSummary& s,
     }
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
   }
+  os << "uncertainty: " << UncertaintyText(s, o) << "\n";
   os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
      << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
      << s.message << "\n";
@@ -134,6 +149,16 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
                                const estimators::BandwidthEstimate& bw, const Provenance& p) {
   nlohmann::ordered_json j;
   j["method"] = o.method;
+  const bool bootstrapped = s.uncertainty == estimators::FitUncertainty::kBootstrap;
+  nlohmann::ordered_json uncertainty;
+  uncertainty["method"] = bootstrapped ? "bootstrap" : "covariance";
+  uncertainty["requested"] = o.uncertainty;
+  if (o.uncertainty == "bootstrap") {
+    uncertainty["replicates"] = s.bootstrap_trials;
+    uncertainty["replicates_used"] = s.bootstrap_used;
+    uncertainty["seed"] = o.seed;
+  }
+  j["uncertainty"] = uncertainty;
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::object();
   for (Coefficient c : estimators::kAllCoefficients) {
     const auto& e = s.at(c);
@@ -141,6 +166,10 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
     nlohmann::ordered_json entry;
     entry["value"] = e.fitted ? estimators::ToDatasheetUnit(c, e.value_si) : 0.0;
     entry["sigma"] = estimators::ToDatasheetUnit(c, e.sigma_si);
+    if (bootstrapped && e.fitted) {
+      entry["covariance_sigma"] = estimators::ToDatasheetUnit(c, e.covariance_sigma_si);
+      entry["bootstrap_bias"] = estimators::ToDatasheetUnit(c, e.bootstrap_bias_si);
+    }
     entry["unit"] = std::string(estimators::DatasheetUnit(c));
     entry["fitted"] = e.fitted;
     if (!e.note.empty()) entry["note"] = e.note;
@@ -157,6 +186,10 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
       entry[spec.name] = {{"value", e.fitted ? e.value_si[q] / spec.si_per_datasheet : 0.0},
                           {"sigma", e.fitted ? e.sigma_si[q] / spec.si_per_datasheet : 0.0},
                           {"unit", spec.datasheet_unit}};
+      if (bootstrapped && e.fitted && q < e.bootstrap_bias_si.size()) {
+        entry[spec.name]["covariance_sigma"] = e.covariance_sigma_si[q] / spec.si_per_datasheet;
+        entry[spec.name]["bootstrap_bias"] = e.bootstrap_bias_si[q] / spec.si_per_datasheet;
+      }
     }
     if (!e.note.empty()) entry["note"] = e.note;
     coefficients[e.short_name] = entry;
@@ -230,6 +263,18 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     return Failure{kExitUsageError, "--terms: H, GM and BW need a fit method (gls, wls or logwls), not slope"};
   }
   fit.select_terms = o.select_terms;
+  if (o.uncertainty == "bootstrap") {
+    fit.uncertainty = estimators::FitUncertainty::kBootstrap;
+  } else if (o.uncertainty != "covariance") {
+    return Failure{kExitUsageError, "--uncertainty: unknown '" + o.uncertainty + "' (expected covariance or bootstrap)"};
+  }
+  fit.bootstrap.trials = o.bootstrap_trials;
+  fit.bootstrap.seed = o.seed;
+  if (fit.uncertainty == estimators::FitUncertainty::kBootstrap && !fit.bootstrap.IsValid(&why)) {
+    return Failure{kExitUsageError, "--bootstrap-trials: " + why};
+  }
+  parametric.uncertainty = fit.uncertainty;
+  parametric.bootstrap = fit.bootstrap;
 
   std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.curve.path}};
   if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
@@ -282,8 +327,9 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   p.Add("taus", o.curve.taus);
   p.Add("method", o.method);
   p.Add("terms", o.terms + (o.select_terms ? " (with term selection)" : ""));
+  p.Add("uncertainty", UncertaintyText(summary, o));
 
-  WriteTable(std::cout, summary, parametric_summary.extra, bandwidth);
+  WriteTable(std::cout, o, summary, parametric_summary.extra, bandwidth);
   std::cout.flush();
   if (json.is_open()) json.stream() << FitJson(o, summary, parametric_summary.extra, bandwidth, p).dump(2) << "\n";
   if (kalibr.is_open()) {
@@ -327,6 +373,19 @@ Subcommand AddFitCommand(CLI::App* parent) {
   cmd->add_flag("!--no-select", options->select_terms,
                 "keep every requested term (default: drop terms the data do not support, by a "
                 "likelihood-ratio test at 5 %)");
+  cmd->add_option("--uncertainty", options->uncertainty,
+                  "covariance (default: from the fit's weight matrix) or bootstrap (the spread of "
+                  "refits of records simulated from the fitted model: honest where the model "
+                  "covariance is not, e.g. a harmonic's amplitude; costs one simulation, curve and "
+                  "fit per replicate)")
+      ->type_name("covariance|bootstrap");
+  cmd->add_option("--bootstrap-trials", options->bootstrap_trials,
+                  "replicates of the parametric bootstrap (default 100, at least 2)")
+      ->type_name("N");
+  cmd->add_option("--seed", options->seed,
+                  "seed of the bootstrap's simulated records (default 1; same seed => same sigmas "
+                  "for any thread count)")
+      ->type_name("N");
   cmd->add_option("--json", options->json_path, "also write the coefficients as JSON with provenance")
       ->type_name("OUT.json");
   cmd->add_option("--kalibr", options->kalibr_path,

@@ -7,8 +7,11 @@
 // sigma and unit, bandwidth_hz, fit chi2/dof/converged, provenance); --kalibr (gyroscope noise
 // density and random walk for Kalibr/VINS/OpenVINS); --plot (data with intervals, fitted total and
 // each term). Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.
+// --uncertainty bootstrap replaces the covariance sigmas by a parametric bootstrap
+// (estimators/fit/parametric_bootstrap.h); table and JSON say which one was used.
 // Exit codes as app/subcommand.h: 2 usage, 1 unreadable file, curve or fit failure.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 
 #include "app/avar_command.h"
@@ -21,6 +24,9 @@ struct FitCommandOptions {
   std::string method = "gls";           // slope, wls, logwls, gls
   std::string terms = "Q,N,B,K,R";      // asked terms
   bool select_terms = true;
+  std::string uncertainty = "covariance";  // covariance or bootstrap
+  int bootstrap_trials = 100;              // replicates of the parametric bootstrap
+  std::uint64_t seed = 1;                  // of the bootstrap's simulated records
   std::string json_path, kalibr_path, plot_path;
 };
 

@@ -66,8 +66,47 @@ TEST_F(FitCommandTest, RefusesBadInput) {
   EXPECT_NE(Read("err.txt").find("--method"), std::string::npos);
   EXPECT_EQ(Run("fit " + Path("short.csv") + " --terms N,X"), 2);
   EXPECT_NE(Read("err.txt").find("--terms"), std::string::npos);
+  EXPECT_EQ(Run("fit " + Path("short.csv") + " --uncertainty magic"), 2);
+  EXPECT_NE(Read("err.txt").find("--uncertainty"), std::string::npos);
+  EXPECT_EQ(Run("fit " + Path("short.csv") + " --uncertainty bootstrap --bootstrap-trials 1"), 2);
+  EXPECT_NE(Read("err.txt").find("--bootstrap-trials"), std::string::npos);
   EXPECT_EQ(Run("fit " + Path("short.csv") + " --json " + Path("j.json")), 1);
   EXPECT_FALSE(fs::exists(dir_ / "j.json"));  // no partial output
+}
+
+// --uncertainty bootstrap: the JSON says so and carries both sigmas; the same seed gives the
+// same sigmas with one thread or two.
+TEST_F(FitCommandTest, BootstrapUncertaintyIsLabelledAndDeterministic) {
+  std::ofstream(dir_ / "gyro.yaml") << "name: nb\nsample_rate: 100 Hz\nterms:\n"
+                                       "  - {type: arw, N: 0.2 deg/sqrt(h)}\n"
+                                       "  - {type: bias_instability, B: 3 deg/h}\n";
+  ASSERT_EQ(Run("simulate --sensor " + Path("gyro.yaml") +
+                " --duration 600 --seed 5 --format f64 -o " + Path("rec.f64")),
+            0)
+      << Read("err.txt");
+  const std::string fit = "fit " + Path("rec.f64") +
+                          " --format f64 --rate 100 --terms N,B --no-select --uncertainty bootstrap "
+                          "--bootstrap-trials 6 --seed 3 --json ";
+  setenv("OMP_NUM_THREADS", "1", 1);
+  const int single = Run(fit + Path("one.json"));
+  unsetenv("OMP_NUM_THREADS");
+  ASSERT_EQ(single, 0) << Read("err.txt");
+  EXPECT_NE(Read("out.txt").find("uncertainty: parametric bootstrap (6 of 6"), std::string::npos)
+      << Read("out.txt");
+  setenv("OMP_NUM_THREADS", "2", 1);
+  const int dual = Run(fit + Path("two.json"));
+  unsetenv("OMP_NUM_THREADS");
+  ASSERT_EQ(dual, 0) << Read("err.txt");
+  const auto one = nlohmann::json::parse(Read("one.json"));
+  const auto two = nlohmann::json::parse(Read("two.json"));
+  EXPECT_EQ(one["uncertainty"]["method"], "bootstrap");
+  EXPECT_EQ(one["uncertainty"]["replicates_used"], 6);
+  for (const char* key : {"N", "B"}) {
+    const auto& c = one["coefficients"][key];
+    ASSERT_TRUE(c.contains("covariance_sigma") && c.contains("bootstrap_bias")) << key;
+    EXPECT_GT(c["sigma"].get<double>(), 0.0) << key;
+    EXPECT_EQ(c["sigma"], two["coefficients"][key]["sigma"]) << key;
+  }
 }
 
 }  // namespace
