@@ -148,7 +148,9 @@ std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const S
   }
   std::ostringstream rule;
   rule << "fits use taus whose white-noise AVAR deficit from the band-limit is <= "
-       << Cell(kMaxBandLimitDeficit * 100) << " % (" << taus.str() << ")";
+       << Cell(kMaxBandLimitDeficit * 100) << " % and <= " << Cell(kMaxBandLimitDeficitInSd)
+       << " of the relative sd sqrt(4m/3N) of a white-noise OAVAR estimate there ("
+       << taus.str() << ")";
   f.emplace_back("fit taus", rule.str());
   f.emplace_back("slope method curve", "the same taus up to m = N/" +
                                            std::to_string(kSlopeMethodMaxFraction) +

@@ -212,7 +212,9 @@ std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sa
   for (std::int64_t m : candidates) {
     if (m < 1) continue;
     const double deficit = 1.0 - white.ExpectedAvar(m, shape) / unit.ExpectedAvar(m, tau0, shape);
-    if (std::abs(deficit) <= kMaxBandLimitDeficit) return m;
+    // Relative sd of an overlapping white-noise AVAR estimate, sqrt(2 / EDF), EDF ~ 1.5 N/m.
+    const double sd = std::sqrt(4.0 * static_cast<double>(m) / (3.0 * static_cast<double>(num_samples)));
+    if (std::abs(deficit) <= std::min(kMaxBandLimitDeficit, kMaxBandLimitDeficitInSd * sd)) return m;
   }
   return candidates.back() + 1;  // no tau qualifies: the fits see an empty curve and fail
 }
