@@ -60,6 +60,31 @@ void BM_CovarianceModel(benchmark::State& state) {
 }
 BENCHMARK(BM_CovarianceModel)->Unit(benchmark::kMillisecond);
 
+// The covariance model of `allanlab fit`'s default curve on a 1e7-sample record at 200 Hz
+// (dense:10 taus up to N/8, as the end-to-end figure in results/benchmarks/fit.md), with and
+// without flicker (B needs the record-length variogram table).
+void BM_CovarianceModel1e7(benchmark::State& state) {
+  AvarCurve c;
+  c.sample_period_s = 0.005;
+  c.num_samples = 10000000;
+  for (double x = 1; x <= c.num_samples / 8; x *= std::pow(10.0, 0.1)) {
+    const auto m = static_cast<std::int64_t>(std::llround(x));
+    if (c.m.empty() || m > c.m.back()) c.m.push_back(m);
+  }
+  for (std::int64_t m : c.m) {
+    c.tau_s.push_back(m * c.sample_period_s);
+    c.avar.push_back(1.0);
+  }
+  std::vector<Coefficient> terms(std::begin(kAllCoefficients), std::end(kAllCoefficients));
+  if (state.range(0) == 0) terms.erase(terms.begin() + static_cast<int>(Coefficient::kB));
+  for (auto _ : state) {
+    AvarCovarianceModel model(c, terms);
+    benchmark::DoNotOptimize(&model);
+  }
+  state.counters["taus"] = static_cast<double>(c.size());
+}
+BENCHMARK(BM_CovarianceModel1e7)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace allanlab::estimators
 

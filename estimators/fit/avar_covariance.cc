@@ -21,16 +21,17 @@ class Variograms {
   Variograms(double tau0, std::int64_t max_lag, bool with_flicker) : tau0_(tau0) {
     if (!with_flicker) return;
     flicker_.assign(static_cast<std::size_t>(max_lag + 1), 0.0);
-    // R(j) = -(2/pi) sum_{i=1}^{j} 1/(2i-1); V(k+1) - V(k) = R(0) + 2 sum_{j=1}^{k} R(j).
-    // Compensated running sums (Neumaier), so the table keeps ~1e-15 relative over 1e6 lags.
-    CompensatedSum r, u, v;
-    for (std::int64_t k = 0; k < max_lag; ++k) {
-      if (k > 0) {
-        r.Add(-(2.0 / std::numbers::pi) / (2.0 * static_cast<double>(k) - 1.0));
-        u.Add(2.0 * r.Value());
-      }
-      v.Add(u.Value());
-      flicker_[static_cast<std::size_t>(k + 1)] = v.Value();
+    // Unit B: R(j) = -(2/pi) H(j), H(j) = sum_{i=1}^{j} 1/(2i-1), and summing V(k+1) - V(k) =
+    // R(0) + 2 sum_{j=1}^{k} R(j) twice in closed form gives
+    //   V(u) = -(4/pi) [(u^2 - 1/4) H(u-1) / 2 - (u^2 - 1)/8 - u(u-1)/4],
+    // so one compensated running sum (H) makes the table instead of three nested ones.
+    CompensatedSum h;
+    for (std::int64_t k = 1; k <= max_lag; ++k) {
+      if (k >= 2) h.Add(1.0 / (2.0 * static_cast<double>(k) - 3.0));
+      const auto u = static_cast<double>(k);
+      flicker_[static_cast<std::size_t>(k)] =
+          -(4.0 / std::numbers::pi) *
+          (0.5 * (u * u - 0.25) * h.Value() - 0.125 * (u * u - 1.0) - 0.25 * u * (u - 1.0));
     }
   }
 
@@ -87,8 +88,16 @@ AvarCovarianceModel::AvarCovarianceModel(const AvarCurve& curve, std::span<const
   const std::int64_t n = curve.num_samples;
   const bool with_flicker =
       std::find(terms_.begin(), terms_.end(), static_cast<int>(Coefficient::kB)) != terms_.end();
-  const std::int64_t max_m = curve.m.back();
-  const Variograms variograms(curve.sample_period_s, n + 4 * max_m + 2, with_flicker);
+  // The largest lag any pair reads: |k + b m2 - a m1| <= core + 2 max(m1, m2), largest for the
+  // pair of the two longest taus (core grows with m1 + m2). The table is record-sized: building
+  // only what is read saves a third of its time and memory.
+  std::int64_t max_lag = 0;
+  for (std::int64_t m1 : curve.m) {
+    const std::int64_t m2 = curve.m.back();
+    const std::int64_t far = std::max(n - 2 * m1 + 1, n - 2 * m2 + 1);
+    max_lag = std::max(max_lag, std::min<std::int64_t>(4 * (m1 + m2), far) + 2 * std::max(m1, m2));
+  }
+  const Variograms variograms(curve.sample_period_s, max_lag + 2, with_flicker);
 
   const std::size_t p = terms_.size();
   g_.assign(p, std::vector<Eigen::MatrixXd>(p, Eigen::MatrixXd::Zero(taus_, taus_)));
