@@ -245,8 +245,11 @@ class CurveCache {
 
 // `weight_model_si` (squared SI coefficients): weights (WLS) or covariance (GLS) fixed from this
 // model instead of iterated, so that nested fits are compared under the same weights.
+// `start_si` (squared SI coefficients): where the iterative log-WLS solve starts instead of the
+// default; the linear methods are solved exactly and ignore it.
 bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
-                   FitSummary* summary, const std::array<double, kTerms>* weight_model_si = nullptr);
+                   FitSummary* summary, const std::array<double, kTerms>* weight_model_si = nullptr,
+                   const std::array<double, kTerms>* start_si = nullptr);
 
 std::array<double, kTerms> SquaredCoefficients(const FitSummary& s) {
   std::array<double, kTerms> theta{};
@@ -351,25 +354,49 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
     const std::array<double, kTerms> weights = SquaredCoefficients(*summary);
     FitSummary reference;
     if (!FitFixedTerms(current, curve, cache, &reference, &weights)) break;
-    double best_increase = 0.0;
+    std::vector<FitSummary> trials(current.terms.size());
+    std::vector<char> trial_ok(current.terms.size(), 0);
     std::size_t best = current.terms.size();
     for (std::size_t t = 0; t < current.terms.size(); ++t) {
       FitOptions without = current;
       without.terms.erase(without.terms.begin() + static_cast<std::ptrdiff_t>(t));
-      FitSummary trial;
-      if (!FitFixedTerms(without, curve, cache, &trial, &weights)) continue;
-      const double increase = trial.chi2 - reference.chi2;
-      if (best == current.terms.size() || increase < best_increase) {
-        best_increase = increase;
-        best = t;
+      trial_ok[t] = FitFixedTerms(without, curve, cache, &trials[t], &weights) ? 1 : 0;
+      if (trial_ok[t] && (best == current.terms.size() || trials[t].chi2 < trials[best].chi2)) best = t;
+    }
+    if (best == current.terms.size()) break;
+    // A nested fit is a feasible point of the full one, so the full cost can never be higher.
+    // The linear methods are solved exactly; the log-WLS cost (nu/2)(ln a - ln sum c_i^2 S_i)^2
+    // is not convex in c^2 and its iterative solve can stop in a worse minimum (negative "chi2
+    // increases" of thousands on real records): restart the full fit from the best nested
+    // solution.
+    if (trials[best].chi2 < reference.chi2 - 1e-9 * std::max(1.0, reference.chi2)) {
+      const std::array<double, kTerms> start = SquaredCoefficients(trials[best]);
+      FitSummary restarted;
+      if (FitFixedTerms(current, curve, cache, &restarted, &weights, &start) &&
+          restarted.chi2 < reference.chi2) {
+        reference = restarted;
+        // Log-WLS weights do not depend on the model: the restarted fit is the better full fit.
+        if (options.method == FitMethod::kLogWls && restarted.chi2 < summary->chi2) *summary = restarted;
       }
     }
-    if (best == current.terms.size() || best_increase >= critical) break;
+    double best_increase = trials[best].chi2 - reference.chi2;
+    const double rounding = 1e-9 * std::max(1.0, reference.chi2);
+    if (best_increase < 0.0 && best_increase >= -rounding) best_increase = 0.0;
+    if (best_increase >= critical) break;
     const Coefficient dropped = current.terms[best];
-    notes[static_cast<int>(dropped)] =
-        "dropped by term selection: removing it raises chi2 by " + std::to_string(best_increase) +
-        " < " + std::to_string(critical) + " (likelihood-ratio test at " +
-        std::to_string(options.selection_level) + ")";
+    std::ostringstream note;
+    note << "dropped by term selection: removing it raises chi2 by " << best_increase << " < "
+         << critical << " (likelihood-ratio test at " << options.selection_level;
+    if (options.method == FitMethod::kLogWls) {
+      note << "; on the log-WLS cost, an approximate likelihood ratio for chi-square-distributed "
+              "estimates";
+    }
+    if (best_increase < 0.0) {
+      note << "; negative: the full fit did not reach the nested one's cost even when restarted "
+              "from it";
+    }
+    note << ")";
+    notes[static_cast<int>(dropped)] = note.str();
     current.terms.erase(current.terms.begin() + static_cast<std::ptrdiff_t>(best));
     if (!FitFixedTerms(current, curve, cache, summary)) return false;  // refit, weights iterated
   }
@@ -387,7 +414,8 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
 }
 
 bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache* cache,
-                   FitSummary* summary, const std::array<double, kTerms>* weight_model_si) {
+                   FitSummary* summary, const std::array<double, kTerms>* weight_model_si,
+                   const std::array<double, kTerms>* start_si) {
   *summary = FitSummary{};
   summary->method = options.method;
   std::string why;
@@ -443,7 +471,7 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
   }
 
   std::array<double, kTerms> theta{};
-  for (int i : p.asked) theta[i] = 0.1;
+  for (int i : p.asked) theta[i] = start_si ? std::max((*start_si)[i], 0.0) / p.scale[i] : 0.1;
   std::vector<double> expected = curve.avar;  // first weights from the data
   if (weight_model_si) {
     expected.assign(taus, 0.0);
