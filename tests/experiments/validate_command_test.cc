@@ -83,7 +83,7 @@ TEST_F(ValidateCommandTest, InjectedCoefficientScaleErrorIsARegression) {
                             "moved: coefficient_recovery_quick point 0 rel_err/wls/N: ",
                             "moved: record_length_quick point 1 rel_err/gls/N: ",
                             "moved: seed_paper_quick point 0 N_line/slope: "}) {
-    EXPECT_NE(out.find(moved), std::string::npos) << moved << '\n' << out;
+    EXPECT_NE(out.find(moved), std::string::npos) << moved << '\n' << out << Read("err.txt");
   }
 }
 
