@@ -3,6 +3,7 @@
 // makes it fail, naming what moved. Also --update and the refusals.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -23,6 +24,10 @@ class ValidateCommandTest : public ::testing::Test {
   void SetUp() override {
     dir_ = fs::temp_directory_path() / "allanlab_validate";
     dir_ += ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    // The process id too: two checkouts' suites running at once on one machine must not share
+    // (and remove_all) each other's folder.
+    dir_ += "_";
+    dir_ += std::to_string(::getpid());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
