@@ -69,6 +69,9 @@ class BandLimitChain {
   // autocovariance `r_in` (lags 0..lags+len(q)-1): R_y(j) = sum_d rq(d) R_x(j + d).
   std::vector<double> HeldOutputAutocovariance(const std::vector<double>& r_in,
                                                std::int64_t lags) const;
+  // rq(d) = sum_a q_a q_{a+d}, d = 0..len(q)-1: the autocorrelation of held_response() (even in
+  // d, two-sided sum 1).
+  const std::vector<double>& held_autocorrelation() const { return held_autocorrelation_; }
 
  private:
   BandLimit limit_;

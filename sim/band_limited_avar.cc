@@ -1,0 +1,168 @@
+#include "sim/band_limited_avar.h"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include <boost/math/special_functions/digamma.hpp>
+
+namespace allanlab::sim {
+namespace {
+
+// phi(x), x = 0..len(rq)-1 (header): how far rq smooths the kink of |x|.
+std::vector<double> KinkKernel(const std::vector<double>& rq) {
+  const auto taps = static_cast<std::int64_t>(rq.size());
+  std::vector<double> phi(rq.size(), 0.0);
+  for (std::int64_t x = 0; x < taps; ++x) {
+    long double s = rq[0] * static_cast<long double>(x);
+    for (std::int64_t d = 1; d < taps; ++d) {
+      s += rq[d] * static_cast<long double>(std::abs(x + d) + std::abs(x - d));
+    }
+    phi[static_cast<std::size_t>(x)] = static_cast<double>(s - x);
+  }
+  return phi;
+}
+
+// R_x at lags lo..lo+n-1 of a held term. Random walk and Kasdin flicker in closed form (their
+// windows sit at lags up to 2m + len(q), which filling from lag 0 would make O(m)); the other
+// terms through their FillAutocovariance.
+template <typename T>
+std::vector<long double> LagWindow(const T& t, double tau0_s, std::int64_t lo, std::int64_t n) {
+  std::vector<long double> r(static_cast<std::size_t>(n));
+  if constexpr (std::is_same_v<T, RandomWalkRate>) {
+    const long double step_var = static_cast<long double>(t.rrw_rad_per_s_per_sqrt_s) *
+                                 t.rrw_rad_per_s_per_sqrt_s * tau0_s;
+    for (std::int64_t i = 0; i < n; ++i) r[i] = -0.5L * static_cast<long double>(lo + i) * step_var;
+  } else if constexpr (std::is_same_v<T, FlickerNoise>) {
+    // R(k) = -(2 B^2 / pi) sum_{i=1..k} 1/(2i - 1) (FlickerNoise::FillAutocovariance), the sum
+    // being (psi(k + 1/2) - psi(1/2)) / 2; summed directly while that is cheap.
+    const long double scale = 2.0L * t.bias_instability_rad_per_s * t.bias_instability_rad_per_s /
+                              std::numbers::pi_v<long double>;
+    long double h = 0.0L;
+    if (lo < 4096) {
+      for (std::int64_t i = 1; i <= lo; ++i) h += 1.0L / (2.0L * i - 1.0L);
+    } else {
+      h = 0.5L * (boost::math::digamma(static_cast<long double>(lo) + 0.5L) -
+                  boost::math::digamma(0.5L));
+    }
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (i > 0) h += 1.0L / (2.0L * static_cast<long double>(lo + i) - 1.0L);
+      r[i] = -scale * h;
+    }
+  } else {
+    std::vector<double> full(static_cast<std::size_t>(lo + n));
+    t.FillAutocovariance(tau0_s, full);
+    for (std::int64_t i = 0; i < n; ++i) r[i] = full[static_cast<std::size_t>(lo + i)];
+  }
+  return r;
+}
+
+template <typename T>
+concept HasAutocovariance = requires(const T& t, std::span<double> r) {
+  t.FillAutocovariance(1.0, r);
+};
+
+// sum_{|x| < len(phi)} phi(|x|) R(|c + x|) for a window centre c >= 0.
+template <typename T>
+long double KinkSum(const T& t, double tau0_s, const std::vector<double>& phi, std::int64_t c) {
+  const auto taps = static_cast<std::int64_t>(phi.size());
+  const std::int64_t lo = std::max<std::int64_t>(0, c - (taps - 1));
+  const std::int64_t hi = c + taps - 1;
+  const std::vector<long double> r = LagWindow(t, tau0_s, lo, hi - lo + 1);
+  auto at = [&](std::int64_t lag) { return r[static_cast<std::size_t>(std::abs(lag) - lo)]; };
+  long double s = 0.0L;
+  for (std::int64_t x = -(taps - 1); x < taps; ++x) s += phi[static_cast<std::size_t>(std::abs(x))] * at(c + x);
+  return s;
+}
+
+struct Change {
+  const BandLimitChain& chain;
+  double tau0_s;
+  std::span<const std::int64_t> ms;
+  std::vector<double>* out;
+
+  bool operator()(const WhiteRateNoise& t) const {
+    // Output autocovariance over its whole support (zero beyond: the response is truncated).
+    const double internal_var = t.arw_rad_per_sqrt_s * t.arw_rad_per_sqrt_s / chain.internal_period_s();
+    const auto support = static_cast<std::int64_t>(chain.internal_response().size()) /
+                             chain.oversampling() + 2;
+    const std::vector<double> r = chain.WhiteOutputAutocovariance(internal_var, support);
+    out->clear();
+    for (std::int64_t m : ms) {
+      long double sum = static_cast<long double>(2 * m) * r[0];
+      for (std::int64_t j = 1; j < std::min(2 * m, support); ++j) {
+        sum += 2.0L * AllanLagWeight(m, j) * static_cast<long double>(r[static_cast<std::size_t>(j)]);
+      }
+      const long double md = static_cast<long double>(m);
+      const long double filtered = sum / (2.0L * md * md);
+      const long double own = static_cast<long double>(t.arw_rad_per_sqrt_s) * t.arw_rad_per_sqrt_s /
+                              (md * tau0_s);
+      out->push_back(static_cast<double>(filtered - own));
+    }
+    return true;
+  }
+  bool operator()(const Harmonic&) const { return false; }
+  template <typename T>
+  bool operator()(const T& t) const {
+    out->clear();
+    if constexpr (T::kPath == SignalPath::kDigital || std::is_same_v<T, RateRamp>) {
+      out->assign(ms.size(), 0.0);
+      return true;
+    } else if constexpr (HasAutocovariance<T>) {
+      const std::vector<double> phi = KinkKernel(chain.held_autocorrelation());
+      const long double at_zero = KinkSum(t, tau0_s, phi, 0);
+      for (std::int64_t m : ms) {
+        const long double md = static_cast<long double>(m);
+        const long double s = -3.0L * at_zero + 4.0L * KinkSum(t, tau0_s, phi, m) -
+                              KinkSum(t, tau0_s, phi, 2 * m);
+        out->push_back(static_cast<double>(s / (2.0L * md * md)));
+      }
+      return true;
+    } else {
+      (void)t;
+      return false;
+    }
+  }
+};
+
+}  // namespace
+
+bool BandLimitAvarChange(const NoiseTerm& term, const BandLimitChain& chain, double tau0_s,
+                         std::span<const std::int64_t> ms, std::vector<double>* change) {
+  std::vector<double> out;
+  out.reserve(ms.size());
+  if (!std::visit(Change{chain, tau0_s, ms, &out}, term)) return false;
+  *change = std::move(out);
+  return true;
+}
+
+std::vector<double> FastExpectedAvar(const SensorModel& model, std::span<const std::int64_t> ms,
+                                     const RecordShape& shape) {
+  if (!model.band_limit.enabled()) return model.ExpectedAvar(ms, shape);
+  const double tau0 = 1.0 / model.sample_rate_hz;
+  const BandLimitChain chain(model.band_limit, model.sample_rate_hz);
+  // The quantizers' share: the model without terms.
+  SensorModel rest = model;
+  rest.terms.clear();
+  std::vector<double> total = rest.ExpectedAvar(ms, shape);
+  SensorModel one = model;
+  one.angle_quantizer.reset();
+  one.rate_quantizer.reset();
+  std::vector<double> change;
+  for (const NoiseTerm& term : model.terms) {
+    one.terms = {term};
+    std::vector<double> part;
+    if (BandLimitAvarChange(term, chain, tau0, ms, &change)) {
+      one.band_limit.kind = LowPassKind::kNone;
+      part = one.ExpectedAvar(ms, shape);
+      for (std::size_t k = 0; k < ms.size(); ++k) part[k] += change[k];
+      one.band_limit = model.band_limit;
+    } else {
+      part = one.ExpectedAvar(ms, shape);
+    }
+    for (std::size_t k = 0; k < ms.size(); ++k) total[k] += part[k];
+  }
+  return total;
+}
+
+}  // namespace allanlab::sim
