@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -18,6 +19,7 @@
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
+#include "estimators/fit/band_limited_fit.h"
 #include "estimators/fit/bandwidth_estimate.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "estimators/fit/parametric_fit.h"
@@ -40,7 +42,8 @@ bool ParseMethod(const std::string& text, FitMethod* method) {
   return true;
 }
 
-bool ParseTerms(const std::string& text, std::vector<Coefficient>* terms,
+bool ParseTerms(const std::string& text, sim::OutputSampling bw_sampling, int bw_oversampling,
+                std::vector<Coefficient>* terms,
                 std::vector<std::shared_ptr<const estimators::ParametricTerm>>* extra, std::string* why) {
   std::stringstream ss(text);
   std::string id;
@@ -48,6 +51,10 @@ bool ParseTerms(const std::string& text, std::vector<Coefficient>* terms,
     Coefficient c;
     if (estimators::ParseCoefficient(id, &c)) {
       terms->push_back(c);
+    } else if (id == "BW" || id == "BW2") {
+      extra->push_back(estimators::MakeBandLimitTerm(
+          id == "BW" ? sim::LowPassKind::kFirstOrder : sim::LowPassKind::kButterworth2, bw_sampling,
+          bw_oversampling));
     } else if (auto t = estimators::MakeParametricTerm(id); t && id.size() <= 3) {
       extra->push_back(std::move(t));
     } else {
@@ -99,6 +106,14 @@ std::string UncertaintyText(const estimators::FitSummary& s, const FitCommandOpt
   return os.str();
 }
 
+// The fitted band-limit cutoff among the parametric estimates, or nullptr.
+const estimators::ParametricEstimate* FittedBandLimit(const std::vector<estimators::ParametricEstimate>& extra) {
+  for (const auto& e : extra) {
+    if (e.id == "bandwidth" && e.fitted) return &e;
+  }
+  return nullptr;
+}
+
 void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::FitSummary& s,
                 const std::vector<estimators::ParametricEstimate>& extra,
                 const estimators::BandwidthEstimate& bw) {
@@ -133,14 +148,23 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
      << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
      << s.message << "\n";
+  os << "taus: " << s.taus_used << " from " << Format(s.tau_min_s) << " s to " << Format(s.tau_max_s)
+     << " s\n";
+  if (!s.band_limit.empty()) os << "band-limit: " << s.band_limit << "\n";
+  if (const auto* f = FittedBandLimit(extra)) {
+    os << "bandwidth: fitted fc " << Format(f->value_si[0]) << " +- " << Format(f->sigma_si[0]) << " Hz ("
+       << (f->short_name == "BW2" ? "2nd-order Butterworth" : "first order") << "); ";
+  } else {
+    os << "bandwidth: ";
+  }
   if (bw.found) {
-    os << "bandwidth: ADEV peak at " << Format(bw.peak_tau_s) << " +- " << Format(bw.peak_tau_sigma_s)
+    os << "inflection (ADEV peak) at " << Format(bw.peak_tau_s) << " +- " << Format(bw.peak_tau_sigma_s)
        << " s -> fc " << Format(bw.cutoff_first_order_hz) << " +- "
        << Format(bw.cutoff_first_order_sigma_hz) << " Hz (first order; time constant "
        << Format(bw.time_constant_s) << " s) or " << Format(bw.cutoff_butterworth2_hz)
        << " Hz (2nd-order Butterworth)\n";
   } else {
-    os << "bandwidth: not estimated (" << bw.note << ")\n";
+    os << "inflection not found (" << bw.note << ")\n";
   }
 }
 
@@ -205,9 +229,25 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
   } else {
     bandwidth["note"] = bw.note;
   }
+  if (const auto* f = FittedBandLimit(extra)) {
+    bandwidth["fitted"] = {{"filter", f->short_name == "BW2" ? "butterworth2" : "first_order"},
+                           {"value", f->value_si[0]},
+                           {"sigma", f->sigma_si[0]},
+                           {"sampling", o.bw_sampling},
+                           {"oversampling", o.bw_oversampling}};
+  } else {
+    bandwidth["fitted"] = nullptr;
+  }
   j["bandwidth_hz"] = bandwidth;
-  j["fit"] = {{"chi2", s.chi2}, {"dof", s.dof}, {"p_value", s.p_value}, {"converged", s.converged},
-              {"taus_used", s.taus_used}, {"message", s.message}};
+  j["fit"] = {{"chi2", s.chi2},
+              {"dof", s.dof},
+              {"p_value", s.p_value},
+              {"converged", s.converged},
+              {"taus_used", s.taus_used},
+              {"tau_min_s", s.tau_min_s},
+              {"tau_max_s", s.tau_max_s},
+              {"band_limit", s.band_limit},
+              {"message", s.message}};
   j["provenance"] = ProvenanceJson(p);
   return j;
 }
@@ -257,8 +297,32 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
   }
   fit.terms.clear();
+  estimators::BandLimitedFitOptions auto_fit;
+  if (o.band_limit == "auto") auto_fit.policy = estimators::BandLimitPolicy::kAuto;
+  else if (o.band_limit == "off") auto_fit.policy = estimators::BandLimitPolicy::kOff;
+  else return Failure{kExitUsageError, "--band-limit: unknown '" + o.band_limit + "' (expected auto or off)"};
+  if (o.bw_sampling == "average") auto_fit.sampling = sim::OutputSampling::kAverage;
+  else if (o.bw_sampling == "point") auto_fit.sampling = sim::OutputSampling::kPoint;
+  else return Failure{kExitUsageError, "--bw-sampling: unknown '" + o.bw_sampling + "' (expected average or point)"};
+  if (o.bw_oversampling < 1 || o.bw_oversampling > 256) {
+    return Failure{kExitUsageError, "--bw-oversampling: must be an integer in [1, 256], got " +
+                                        std::to_string(o.bw_oversampling)};
+  }
+  auto_fit.oversampling = o.bw_oversampling;
+  if (!std::isfinite(o.min_tau_s) || o.min_tau_s < 0.0) {
+    return Failure{kExitUsageError, "--min-tau: must be a finite number >= 0 s"};
+  }
+  if (!std::isfinite(o.max_tau_s) || o.max_tau_s < 0.0) {
+    return Failure{kExitUsageError, "--max-tau: must be a finite number > 0 s (0: no limit)"};
+  }
+  const double max_tau = o.max_tau_s > 0.0 ? o.max_tau_s : std::numeric_limits<double>::infinity();
+  if (o.min_tau_s >= max_tau) {
+    return Failure{kExitUsageError, "--min-tau must be below --max-tau"};
+  }
   estimators::ParametricFitOptions parametric;
-  if (!ParseTerms(o.terms, &fit.terms, &parametric.extra, &why)) return Failure{kExitUsageError, "--terms: " + why};
+  if (!ParseTerms(o.terms, auto_fit.sampling, auto_fit.oversampling, &fit.terms, &parametric.extra, &why)) {
+    return Failure{kExitUsageError, "--terms: " + why};
+  }
   if (!parametric.extra.empty() && fit.method == FitMethod::kSlope) {
     return Failure{kExitUsageError, "--terms: H, GM and BW need a fit method (gls, wls or logwls), not slope"};
   }
@@ -293,18 +357,35 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   if (const int code = ComputeCurveFromFile(curve_options, kCommand, &report, &why); code != kExitOk) {
     return Failure{code, why};
   }
-  const estimators::AvarCurve curve = CurveOf(report);
-  if (curve.size() < 2) {
+  const estimators::AvarCurve full_curve = CurveOf(report);
+  if (full_curve.size() < 2) {
     return Failure{kExitRuntimeError, o.curve.path + ": the record gives " +
-                                          std::to_string(curve.size()) +
+                                          std::to_string(full_curve.size()) +
                                           " usable taus (constant or too short): nothing to fit"};
+  }
+  const estimators::AvarCurve curve = estimators::TauRange(full_curve, o.min_tau_s, max_tau);
+  if (curve.size() < 2) {
+    std::ostringstream os;
+    os << o.curve.path << ": " << curve.size() << " of the curve's " << full_curve.size()
+       << " taus (" << full_curve.tau_s.front() << " s to " << full_curve.tau_s.back()
+       << " s) lie in the --min-tau/--max-tau range: nothing to fit";
+    return Failure{kExitRuntimeError, os.str()};
   }
   estimators::FitSummary summary;
   estimators::ParametricFitSummary parametric_summary;
   std::optional<sim::SensorModel> fitted_model;
   if (parametric.extra.empty()) {
-    if (!estimators::FitAvarModel(fit, curve, &summary)) {
-      return Failure{kExitRuntimeError, o.curve.path + ": " + summary.message};
+    auto_fit.fit = fit;
+    estimators::BandLimitedFitSummary s;
+    if (!estimators::FitWithBandLimit(auto_fit, curve, &s)) {
+      return Failure{kExitRuntimeError, o.curve.path + ": " + s.fit.message};
+    }
+    summary = s.fit;
+    if (s.band_limited) {
+      parametric_summary.base = s.fit;
+      parametric_summary.extra = s.extra;
+      parametric_summary.ok = true;
+      fitted_model = estimators::FittedModel(s.parametric, curve, parametric_summary);
     }
   } else {
     // No term selection with parametric terms (parametric_fit.h): every requested term is kept.
@@ -314,6 +395,9 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
       return Failure{kExitRuntimeError, o.curve.path + ": " + parametric_summary.base.message};
     }
     summary = parametric_summary.base;
+    summary.tau_min_s = curve.tau_s.front();
+    summary.tau_max_s = curve.tau_s.back();
+    summary.band_limit = "as asked in --terms";
     fitted_model = estimators::FittedModel(parametric, curve, parametric_summary);
   }
   const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
@@ -328,6 +412,11 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   p.Add("method", o.method);
   p.Add("terms", o.terms + (o.select_terms ? " (with term selection)" : ""));
   p.Add("uncertainty", UncertaintyText(summary, o));
+  p.Add("band_limit", o.band_limit + " (" + o.bw_sampling + " output, L = " + std::to_string(o.bw_oversampling) + ")");
+  if (o.min_tau_s > 0.0 || o.max_tau_s > 0.0) {
+    p.Add("tau_range", ShortestDecimal(o.min_tau_s) + " s to " +
+                           (o.max_tau_s > 0.0 ? ShortestDecimal(o.max_tau_s) + " s" : std::string("end")));
+  }
 
   WriteTable(std::cout, o, summary, parametric_summary.extra, bandwidth);
   std::cout.flush();
@@ -370,6 +459,19 @@ Subcommand AddFitCommand(CLI::App* parent) {
                   "(harmonic Omega0, f0), GM (Gauss-Markov sigma, Tc), BW or BW2 (band-limit fc, "
                   "first order or 2nd-order Butterworth; no term selection with these)")
       ->type_name("LIST");
+  cmd->add_option("--band-limit", options->band_limit,
+                  "auto (default): when the short taus show a band-limit, fit it (BW or BW2, the "
+                  "lower chi2) with the other terms, and say so; off: the IEEE 952 terms only")
+      ->type_name("auto|off");
+  cmd->add_option("--bw-sampling", options->bw_sampling,
+                  "output of the band-limit chain assumed by BW/BW2: average (default: each output "
+                  "the mean of L internal samples, N stays the long-tau white level) or point")
+      ->type_name("average|point");
+  cmd->add_option("--bw-oversampling", options->bw_oversampling,
+                  "internal rate / output rate L of the assumed chain (default 8)")
+      ->type_name("L");
+  cmd->add_option("--min-tau", options->min_tau_s, "fit only taus >= S seconds")->type_name("S");
+  cmd->add_option("--max-tau", options->max_tau_s, "fit only taus <= S seconds")->type_name("S");
   cmd->add_flag("!--no-select", options->select_terms,
                 "keep every requested term (default: drop terms the data do not support, by a "
                 "likelihood-ratio test at 5 %)");

@@ -6,7 +6,9 @@
 // Outputs: a table on stdout; --json (the issue 4 contract: method, coefficients with value,
 // sigma and unit, bandwidth_hz, fit chi2/dof/converged, provenance); --kalibr (gyroscope noise
 // density and random walk for Kalibr/VINS/OpenVINS); --plot (data with intervals, fitted total and
-// each term). Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.
+// each term). A short-tau band-limit is detected and fitted by default (--band-limit auto), the
+// fitted cutoff reported beside the inflection reading; --min-tau/--max-tau restrict the taus.
+// Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.
 // --uncertainty bootstrap replaces the covariance sigmas by a parametric bootstrap
 // (estimators/fit/parametric_bootstrap.h); table and JSON say which one was used.
 // Exit codes as app/subcommand.h: 2 usage, 1 unreadable file, curve or fit failure.
@@ -27,6 +29,14 @@ struct FitCommandOptions {
   std::string uncertainty = "covariance";  // covariance or bootstrap
   int bootstrap_trials = 100;              // replicates of the parametric bootstrap
   std::uint64_t seed = 1;                  // of the bootstrap's simulated records
+  // Band-limit handling (estimators/fit/band_limited_fit.h): auto (detect and fit) or off, and
+  // the chain assumed for BW/BW2 (averaged or point-sampled output, oversampling L).
+  std::string band_limit = "auto";
+  std::string bw_sampling = "average";
+  int bw_oversampling = 8;
+  // Manual tau range of the fit, s (0 / inf: the whole curve).
+  double min_tau_s = 0.0;
+  double max_tau_s = 0.0;  // 0: no upper limit
   std::string json_path, kalibr_path, plot_path;
 };
 

@@ -31,4 +31,20 @@ bool AvarCurve::IsValid(std::string* why) const {
   return true;
 }
 
+AvarCurve TauRange(const AvarCurve& curve, double min_tau_s, double max_tau_s) {
+  AvarCurve out = curve;
+  out.m.clear();
+  out.tau_s.clear();
+  out.avar.clear();
+  out.edf.clear();
+  for (std::size_t k = 0; k < curve.size(); ++k) {
+    if (curve.tau_s[k] < min_tau_s || curve.tau_s[k] > max_tau_s) continue;
+    out.m.push_back(curve.m[k]);
+    out.tau_s.push_back(curve.tau_s[k]);
+    out.avar.push_back(curve.avar[k]);
+    if (!curve.edf.empty()) out.edf.push_back(curve.edf[k]);
+  }
+  return out;
+}
+
 }  // namespace allanlab::estimators

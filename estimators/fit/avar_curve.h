@@ -23,4 +23,8 @@ struct AvarCurve {
   bool IsValid(std::string* why) const;
 };
 
+// The points with min_tau_s <= tau <= max_tau_s (a manual tau range for a fit; record length
+// and estimator kept, so GLS covariances stay those of the full record).
+AvarCurve TauRange(const AvarCurve& curve, double min_tau_s, double max_tau_s);
+
 }  // namespace allanlab::estimators

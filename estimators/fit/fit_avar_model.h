@@ -83,6 +83,10 @@ struct FitSummary {
   const CoefficientEstimate& at(Coefficient c) const { return coefficients[static_cast<int>(c)]; }
   SlopeMethodResult slope;  // the slope-method reading, always computed for comparison
   int taus_used = 0;
+  // The tau range of those taus, and what the fit did about a short-tau band-limit
+  // (band_limited_fit.h; empty when not asked).
+  double tau_min_s = 0.0, tau_max_s = 0.0;
+  std::string band_limit;
   int iterations = 0;
   bool converged = false;
   double chi2 = 0.0;  // sum of squared weighted (GLS: whitened) residuals at the solution

@@ -11,6 +11,7 @@
 
 #include "estimators/fit/avar_covariance.h"
 #include "estimators/fit/model_avar_residuals.h"
+#include "sim/band_limited_avar.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -34,6 +35,8 @@ class ModelPieces {
     }
   }
   int nonlinear() const { return nonlinear_; }
+  // The linear terms' own (unfiltered) scaled shapes; filled by the first Evaluate().
+  const Eigen::MatrixXd& Unfiltered() const { return unfiltered_; }
   const std::vector<int>& offsets() const { return offset_; }
 
   // SI parameters of extra term t from u.
@@ -57,16 +60,38 @@ class ModelPieces {
   void Evaluate(const double* u, Eigen::MatrixXd* shapes, Eigen::VectorXd* extra) {
     const auto taus = static_cast<Eigen::Index>(curve_.size());
     const sim::SensorModel base = Base(u);
+    if (unfiltered_.size() == 0) {
+      // The linear terms' own exact shapes, computed once (the flicker one is O(N) per tau).
+      unfiltered_.resize(taus, static_cast<Eigen::Index>(linear_.size()));
+      sim::SensorModel m;
+      m.sample_rate_hz = base.sample_rate_hz;
+      for (std::size_t j = 0; j < linear_.size(); ++j) {
+        m.terms = {TermFor(static_cast<Coefficient>(linear_[j]), 1.0)};
+        const std::vector<double> e = ModelAvarOnCurve(m, curve_);
+        for (Eigen::Index k = 0; k < taus; ++k) unfiltered_(k, static_cast<Eigen::Index>(j)) = e[k] * scale_[j];
+      }
+    }
     std::vector<double> key;
     if (base.band_limit.enabled()) key = {base.band_limit.cutoff_hz};
     auto it = shapes_.find(key);
     if (it == shapes_.end()) {
-      Eigen::MatrixXd s(taus, static_cast<Eigen::Index>(linear_.size()));
-      for (std::size_t j = 0; j < linear_.size(); ++j) {
-        sim::SensorModel m = base;
-        m.terms = {TermFor(static_cast<Coefficient>(linear_[j]), 1.0)};
-        const std::vector<double> e = ModelAvarOnCurve(m, curve_);
-        for (Eigen::Index k = 0; k < taus; ++k) s(k, static_cast<Eigen::Index>(j)) = e[k] * scale_[j];
+      Eigen::MatrixXd s = unfiltered_;
+      if (base.band_limit.enabled()) {
+        // Filtered = own exact shape + the band-limit's change (sim/band_limited_avar.h), so a new
+        // cutoff costs O(len(q)) per tau and term.
+        const sim::BandLimitChain chain(base.band_limit, base.sample_rate_hz);
+        std::vector<double> change;
+        for (std::size_t j = 0; j < linear_.size(); ++j) {
+          const sim::NoiseTerm term = TermFor(static_cast<Coefficient>(linear_[j]), 1.0);
+          if (sim::BandLimitAvarChange(term, chain, curve_.sample_period_s, curve_.m, &change)) {
+            for (Eigen::Index k = 0; k < taus; ++k) s(k, static_cast<Eigen::Index>(j)) += change[k] * scale_[j];
+          } else {
+            sim::SensorModel m = base;
+            m.terms = {term};
+            const std::vector<double> e = ModelAvarOnCurve(m, curve_);
+            for (Eigen::Index k = 0; k < taus; ++k) s(k, static_cast<Eigen::Index>(j)) = e[k] * scale_[j];
+          }
+        }
       }
       if (shapes_.size() > 64) shapes_.clear();
       it = shapes_.emplace(key, s).first;
@@ -90,6 +115,7 @@ class ModelPieces {
   std::vector<const ParametricTerm*> extra_;
   std::vector<int> offset_;
   int nonlinear_ = 0;
+  Eigen::MatrixXd unfiltered_;
   std::map<std::vector<double>, Eigen::MatrixXd> shapes_;
 };
 
@@ -175,20 +201,7 @@ bool ParametricFitOptions::IsValid(std::string* why) const {
 
 std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCurve& curve) {
   const sim::RecordShape shape{curve.num_samples, curve.estimator};
-  if (!model.band_limit.enabled()) return model.ExpectedAvar(curve.m, shape);
-  // Exact filtered AVAR up to 2000 filter time constants, unfiltered beyond (header).
-  const double cap_tau = 2000.0 / (2.0 * std::numbers::pi * model.band_limit.cutoff_hz);
-  std::vector<std::int64_t> near, far;
-  for (std::size_t k = 0; k < curve.size(); ++k) (curve.tau_s[k] <= cap_tau ? near : far).push_back(curve.m[k]);
-  std::vector<double> out;
-  if (!near.empty()) out = model.ExpectedAvar(near, shape);
-  if (!far.empty()) {
-    sim::SensorModel unfiltered = model;
-    unfiltered.band_limit.kind = sim::LowPassKind::kNone;
-    const std::vector<double> f = unfiltered.ExpectedAvar(far, shape);
-    out.insert(out.end(), f.begin(), f.end());
-  }
-  return out;
+  return sim::FastExpectedAvar(model, curve.m, shape);
 }
 
 namespace {
@@ -440,6 +453,20 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
         const Eigen::MatrixXd omega = AvarCovarianceModel(curve, options.terms).Covariance(pilot);
         const Eigen::VectorXd d = omega.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
         r = d.asDiagonal() * omega * d.asDiagonal();
+        // Standard deviations: the pilot's expectation times the exact relative standard
+        // deviation of its linear terms' estimates. The curve's own EDFs (`avar`'s) are
+        // optimistic at the longest taus: with them a 1 h tg100 record gave K = 3.0 +- 0.66
+        // deg/h/sqrt(h) (true 0), with these 3.1 +- 1.4, as FitAvarModel's exact Omega does.
+        // Only when every parametric term is a modifier (the band-limit): additive ones (GM, H,
+        // outliers) have estimate variances the covariance model does not know, so there the
+        // curve's EDFs stay.
+        bool modifiers_only = true;
+        for (const ParametricTerm* t : active) modifiers_only = modifiers_only && t->modifies_other_terms();
+        const Eigen::VectorXd lin =
+            pieces.Unfiltered() * Eigen::Map<const Eigen::VectorXd>(theta.data(), static_cast<Eigen::Index>(theta.size()));
+        for (Eigen::Index k = 0; k < n && modifiers_only; ++k) {
+          if (lin(k) > 0.0) sd(k) = std::max(e(k), 1e-300) * std::sqrt(omega(k, k)) / lin(k);
+        }
       }
       if (!Whiten(sd.asDiagonal() * r * sd.asDiagonal(), &w)) {
         base.message = "fit: the pilot covariance is not positive definite";

@@ -11,17 +11,22 @@
 //      whose weights do not depend on the model;
 //   3. final (kWls, kGls): linear-domain residuals whitened by a weight matrix fixed at the pilot
 //      (as in fit_avar_model.h: never iterated, see there why). kWls: diagonal nu/(2 E_pilot^2).
-//      kGls: Omega = D R D with D = diag(E_pilot sqrt(2/nu)) (the pilot's variances, parametric
-//      terms included) and R the correlation matrix of the exact covariance of the pilot's
-//      linear terms (avar_covariance.h); R ignores how the parametric terms correlate the taus,
-//      which is second order where they are small and is what the bootstrap option is for.
+//      kGls: Omega = D R D with R the correlation matrix of the exact covariance of the pilot's
+//      linear terms (avar_covariance.h) and D = diag(E_pilot sqrt(2/nu)) (the pilot's variances,
+//      parametric terms included). nu: the curve's EDFs with additive parametric terms (their
+//      estimates' variances are not in the covariance model); with the band-limit alone the
+//      exact covariance's own, 2 E_lin^2 / Omega_kk (the curve's EDFs are optimistic at the
+//      longest taus). R and nu ignore how the parametric terms change the estimates'
+//      correlations and EDFs (the band-limit: at the shortest taus), which is second order where
+//      they are small and is what the bootstrap option is for.
 // Jacobian: analytic in the linear terms, central differences in the parametric parameters
 // (ln scale); the residual functor passes Ceres' gradient check (tests). Uncertainties:
 // (J' J)^{-1} of the whitened problem at the solution, mapped back to SI.
 // No term selection here: the caller compares chi2 of nested fits (issue 6 does).
-// With the band-limit, the exact filtered AVAR is computed for taus up to 2000 filter time
-// constants (1/(2 pi fc)); beyond, the unfiltered exact shapes are used (relative difference
-// below 1e-3 there, far under the EDF noise of those taus).
+// With the band-limit, each term's AVAR is its own exact AVAR plus the band-limit's change
+// (sim/band_limited_avar.h: exact for all but Kasdin flicker, whose start-up x band-limit product
+// is left out), so the linear terms' own shapes are computed once and a new cutoff costs
+// O(len(q)) per tau and term.
 #include <memory>
 #include <string>
 #include <vector>
@@ -76,8 +81,7 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
 sim::SensorModel FittedModel(const ParametricFitOptions& options, const AvarCurve& curve,
                              const ParametricFitSummary& summary);
 
-// Expected AVAR of a model on the curve's averaging factors and record (SensorModel::ExpectedAvar
-// with the long-tau band-limit shortcut described above).
+// Expected AVAR of a model on the curve's averaging factors and record (sim::FastExpectedAvar).
 std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCurve& curve);
 
 }  // namespace allanlab::estimators

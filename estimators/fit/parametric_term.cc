@@ -4,7 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Dense>
+
 #include "estimators/fit/parametric_fit.h"
+#include "sim/band_limited_avar.h"
 #include "sim/units.h"
 
 namespace allanlab::estimators {
@@ -36,6 +39,35 @@ std::vector<double> LogGrid(double lo, double hi, double per_decade) {
   std::vector<double> g;
   for (double x = lo; x <= hi * (1.0 + 1e-12); x *= std::pow(10.0, 1.0 / per_decade)) g.push_back(x);
   return g;
+}
+
+// Smallest weighted SSE (weights nu/(2 a^2)) of sum_i x_i columns[i] against the curve over
+// x >= 0: every subset of columns solved unconstrained, infeasible ones skipped (a handful of
+// columns, so 2^n small solves).
+double BestNonNegativeFit(const AvarCurve& c, const std::vector<std::vector<double>>& columns) {
+  const auto n = static_cast<Eigen::Index>(c.size());
+  const auto p = static_cast<int>(columns.size());
+  Eigen::VectorXd y(n);
+  Eigen::MatrixXd a(n, p);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const double sw = std::sqrt(0.5 * Edf(c, kk)) / c.avar[kk];
+    y(k) = sw * c.avar[kk];
+    for (int i = 0; i < p; ++i) a(k, i) = sw * columns[static_cast<std::size_t>(i)][kk];
+  }
+  double best = y.squaredNorm();
+  for (int mask = 1; mask < (1 << p); ++mask) {
+    std::vector<Eigen::Index> cols;
+    for (int i = 0; i < p; ++i) {
+      if (mask & (1 << i)) cols.push_back(i);
+    }
+    Eigen::MatrixXd sub(n, static_cast<Eigen::Index>(cols.size()));
+    for (std::size_t j = 0; j < cols.size(); ++j) sub.col(static_cast<Eigen::Index>(j)) = a.col(cols[j]);
+    const Eigen::VectorXd x = sub.colPivHouseholderQr().solve(y);
+    if ((x.array() < 0.0).any() || !x.allFinite()) continue;
+    best = std::min(best, (y - sub * x).squaredNorm());
+  }
+  return best;
 }
 
 // A term with one amplitude and one scale parameter whose continuous AVAR shape (unit amplitude)
@@ -157,11 +189,10 @@ class HarmonicTerm final : public AmplitudeScaleTerm {
   }
 };
 
-constexpr int kBandLimitOversampling = 8;
-
 class BandLimitTerm final : public ParametricTerm {
  public:
-  explicit BandLimitTerm(sim::LowPassKind kind) : kind_(kind) {
+  BandLimitTerm(sim::LowPassKind kind, sim::OutputSampling sampling, int oversampling)
+      : kind_(kind), sampling_(sampling), oversampling_(oversampling) {
     specs_ = {{"fc", "Hz", "Hz", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
   }
   std::string_view id() const override { return "bandwidth"; }
@@ -170,43 +201,48 @@ class BandLimitTerm final : public ParametricTerm {
   }
   const std::vector<ParameterSpec>& parameters() const override { return specs_; }
   bool modifies_other_terms() const override { return true; }
-  // From a tenth of the inverse longest tau to 0.45 of the internal rate (L = 8).
+  // From a tenth of the inverse longest tau to 0.45 of the internal rate.
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
     *lower = {0.1 / c.tau_s.back()};
-    *upper = {0.45 * kBandLimitOversampling / c.sample_period_s};
+    *upper = {0.45 * oversampling_ / c.sample_period_s};
   }
   void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
-    model->band_limit = sim::BandLimit{kind_, p[0], kBandLimitOversampling, sim::OutputSampling::kPoint};
+    model->band_limit = sim::BandLimit{kind_, p[0], oversampling_, sampling_};
   }
-  // The cutoff whose band-limited baseline (rescaled as a whole) fits the curve best, on a grid
-  // from fs/100 to the upper bound; false if no cutoff beats the unfiltered baseline.
+  // The cutoff at which the baseline's terms, band-limited and each rescaled (non-negative
+  // weighted least squares), fit the curve best, on a grid from fs/100 to the upper bound; false
+  // if no cutoff beats the unfiltered baseline. Rescaling each term matters: a baseline fitted
+  // without the band-limit has bent its terms to mimic it (N low, B high).
   bool InitialGuess(const AvarCurve& curve, std::span<const double>, const sim::SensorModel& without,
                     std::vector<double>* params, std::string* why) const override {
-    auto score = [&](const sim::SensorModel& model) {
-      const std::vector<double> e = ModelAvarOnCurve(model, curve);
-      double ea = 0.0, ee = 0.0;
-      for (std::size_t k = 0; k < curve.size(); ++k) {
-        const double w = 0.5 * Edf(curve, k) / (curve.avar[k] * curve.avar[k]);
-        ea += w * e[k] * curve.avar[k];
-        ee += w * e[k] * e[k];
-      }
-      const double s = ee > 0.0 ? ea / ee : 0.0;
-      double sse = 0.0;
-      for (std::size_t k = 0; k < curve.size(); ++k) {
-        const double w = 0.5 * Edf(curve, k) / (curve.avar[k] * curve.avar[k]);
-        sse += w * (curve.avar[k] - s * e[k]) * (curve.avar[k] - s * e[k]);
-      }
-      return sse;
-    };
     std::vector<double> lower, upper;
     Bounds(curve, &lower, &upper);
-    const double baseline = score(without);
+    // Each baseline term's own AVAR once; each cutoff adds the band-limit's change.
+    std::vector<std::vector<double>> own;
+    for (const sim::NoiseTerm& t : without.terms) {
+      sim::SensorModel one = without;
+      one.terms = {t};
+      own.push_back(ModelAvarOnCurve(one, curve));
+    }
+    const double baseline = BestNonNegativeFit(curve, own);
     double best = baseline, best_fc = 0.0;
     for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_period_s), upper[0], 6.0)) {
       sim::SensorModel model = without;
       const double p[] = {fc};
       ApplyTo(p, &model);
-      const double s = score(model);
+      const sim::BandLimitChain chain(model.band_limit, model.sample_rate_hz);
+      std::vector<std::vector<double>> columns = own;
+      std::vector<double> change;
+      for (std::size_t i = 0; i < without.terms.size(); ++i) {
+        if (sim::BandLimitAvarChange(without.terms[i], chain, curve.sample_period_s, curve.m, &change)) {
+          for (std::size_t k = 0; k < change.size(); ++k) columns[i][k] += change[k];
+        } else {
+          sim::SensorModel one = model;
+          one.terms = {without.terms[i]};
+          columns[i] = ModelAvarOnCurve(one, curve);
+        }
+      }
+      const double s = BestNonNegativeFit(curve, columns);
       if (s < best) {
         best = s;
         best_fc = fc;
@@ -222,6 +258,8 @@ class BandLimitTerm final : public ParametricTerm {
 
  private:
   sim::LowPassKind kind_;
+  sim::OutputSampling sampling_;
+  int oversampling_;
   std::vector<ParameterSpec> specs_;
 };
 
@@ -239,8 +277,9 @@ void ParametricTerm::Bounds(const AvarCurve&, std::vector<double>* lower, std::v
 std::unique_ptr<ParametricTerm> MakeGaussMarkovTerm() { return std::make_unique<GaussMarkovTerm>(); }
 std::unique_ptr<ParametricTerm> MakeRandomTelegraphTerm() { return std::make_unique<RandomTelegraphTerm>(); }
 std::unique_ptr<ParametricTerm> MakeHarmonicTerm() { return std::make_unique<HarmonicTerm>(); }
-std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind) {
-  return std::make_unique<BandLimitTerm>(kind);
+std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind, sim::OutputSampling sampling,
+                                                  int oversampling) {
+  return std::make_unique<BandLimitTerm>(kind, sampling, oversampling);
 }
 
 std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name) {

@@ -75,12 +75,18 @@ std::unique_ptr<ParametricTerm> MakeRandomTelegraphTerm();
 // Random-phase sinusoid, sim::Harmonic: parameters Omega0 (peak, rad/s; deg/h) and f0 (Hz).
 // AVAR = Omega0^2 (sin^2(x)/x)^2, x = pi f0 tau (exact point-sampled form in sim/).
 std::unique_ptr<ParametricTerm> MakeHarmonicTerm();
-// The band-limit (sim::BandLimit, point sampling, oversampling 8) of the given filter kind:
-// parameter fc (Hz).
-std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind);
+// The band-limit (sim::BandLimit) of the given filter kind, output sampling and oversampling L:
+// parameter fc (Hz), bounded by 0.45 L fs. With averaged output the long-tau white level is the
+// input's (N keeps its meaning whatever fc); point sampling folds the filter's tail above fs/2
+// back into the band (the fitted N is then the density before the chain). Precondition: L in
+// [1, 256].
+std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind,
+                                                  sim::OutputSampling sampling = sim::OutputSampling::kPoint,
+                                                  int oversampling = 8);
 
 // By CLI name ("GM", "RTS", "H", "BW", "BW2") or id ("gauss_markov", "random_telegraph",
-// "harmonic", "bandwidth" = first order); nullptr if unknown.
+// "harmonic", "bandwidth" = first order); band-limits with point sampling, L = 8; nullptr if
+// unknown.
 std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name);
 
 }  // namespace allanlab::estimators
