@@ -39,8 +39,12 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
     summary->fit.message = why;
     return false;
   }
+  // Detection compares covariance fits; a bootstrap (if asked) runs once, on the reported fit.
+  const bool bootstrap = options.fit.uncertainty == FitUncertainty::kBootstrap;
+  FitOptions plain_options = options.fit;
+  plain_options.uncertainty = FitUncertainty::kCovariance;
   FitSummary plain;
-  if (!FitAvarModel(options.fit, curve, &plain)) {
+  if (!FitAvarModel(plain_options, curve, &plain)) {
     summary->fit = plain;
     return false;
   }
@@ -49,6 +53,15 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
   summary->fit = plain;
   summary->ok = true;
   auto finish = [&](const std::string& decision) {
+    if (bootstrap && !summary->band_limited) {
+      FitSummary with;
+      if (!FitAvarModel(options.fit, curve, &with)) {
+        summary->fit = with;
+        summary->ok = false;
+        return false;
+      }
+      summary->fit = with;
+    }
     summary->fit.band_limit = decision;
     if (curve.size() > 0) {
       summary->fit.tau_min_s = curve.tau_s.front();
@@ -99,6 +112,15 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
      << "); threshold " << critical << " at " << options.detection_level;
   if (!(drop > critical)) return finish("none detected: " + os.str() + notes);
 
+  if (bootstrap) {
+    best_options.uncertainty = options.fit.uncertainty;
+    best_options.bootstrap = options.fit.bootstrap;
+    if (!FitAvarModelWithTerms(best_options, curve, &best)) {
+      summary->fit = best.base;
+      summary->ok = false;
+      return false;
+    }
+  }
   summary->band_limited = true;
   summary->parametric = best_options;
   summary->extra = best.extra;

@@ -19,6 +19,8 @@
 // data do not support sit at zero with their one-sigma bound.
 // The chain assumed (averaged or point-sampled output, oversampling L) is an option: averaging
 // keeps N the long-tau white level (parametric_term.h); the seed presets average with L = 8.
+// With FitUncertainty::kBootstrap the candidates are compared on covariance fits and only the
+// reported one is bootstrapped.
 #include <string>
 #include <vector>
 
