@@ -100,6 +100,8 @@ AvarCovarianceModel::AvarCovarianceModel(const AvarCurve& curve, std::span<const
   const Variograms variograms(curve.sample_period_s, max_lag + 2, with_flicker);
 
   const std::size_t p = terms_.size();
+  const auto q_position = static_cast<std::size_t>(
+      std::find(terms_.begin(), terms_.end(), static_cast<int>(Coefficient::kQ)) - terms_.begin());
   g_.assign(p, std::vector<Eigen::MatrixXd>(p, Eigen::MatrixXd::Zero(taus_, taus_)));
   std::vector<double> c(p);
   for (std::size_t x = 0; x < taus_; ++x) {
@@ -121,14 +123,37 @@ AvarCovarianceModel::AvarCovarianceModel(const AvarCurve& curve, std::span<const
       }
       const double scale = -1.0 / (2.0 * static_cast<double>(m1) * static_cast<double>(m2));
       std::array<double, 5> all{};
+      // Quantization (white angle) has V(u) = const for u > 0, so C_Q(k) vanishes except at the
+      // isolated lags k = a m1 - b m2 where one of the nine lags is zero: a strided grid misses
+      // those spikes or weights them by the stride (Q + N fits had N's sigma 4x too small). With
+      // a stride, every product with C_Q is summed exactly over the spikes instead.
+      const bool q_spikes = stride > 1 && q_position < p;
       for (std::int64_t k = -core; k <= core; k += stride) {
         const double count = PairCount(k, t1, t2) * static_cast<double>(stride);
         if (count == 0.0) continue;
         variograms.Cross(offsets, weights, k, scale, &all);
         for (std::size_t i = 0; i < p; ++i) c[i] = all[static_cast<std::size_t>(terms_[i])];
+        if (q_spikes) c[q_position] = 0.0;
         for (std::size_t i = 0; i < p; ++i) {
           const double ci = count * c[i];
           for (std::size_t j = i; j < p; ++j) acc[i][j] += ci * c[j];
+        }
+      }
+      if (q_spikes) {
+        std::vector<std::int64_t> spikes(offsets, offsets + 9);
+        for (std::int64_t& k : spikes) k = -k;
+        std::sort(spikes.begin(), spikes.end());
+        spikes.erase(std::unique(spikes.begin(), spikes.end()), spikes.end());
+        for (std::int64_t k : spikes) {
+          const double count = PairCount(k, t1, t2);
+          if (count == 0.0) continue;
+          variograms.Cross(offsets, weights, k, scale, &all);
+          for (std::size_t i = 0; i < p; ++i) c[i] = all[static_cast<std::size_t>(terms_[i])];
+          for (std::size_t i = 0; i < p; ++i) {
+            for (std::size_t j = i; j < p; ++j) {
+              if (i == q_position || j == q_position) acc[i][j] += count * c[i] * c[j];
+            }
+          }
         }
       }
       if (with_flicker) {

@@ -11,8 +11,9 @@
 // Quantization, white and random-walk noise give C(k) = 0 for |k| >= 2(m1 + m2); flicker has a
 // tail C(k) ~ -m1 m2 R''(k), with R''(k) = -(B^2/pi) psi''(k + 1/2), summed on a geometric grid.
 // Sums over more than 256 lags in the core are taken with a stride (relative error < 1e-3; the
-// result is a weight and an error bar, not a reference value). The ramp R is deterministic and
-// adds no variance here.
+// result is a weight and an error bar, not a reference value), except the products with
+// quantization's C_Q, which is nonzero only at the isolated lags k = a m1 - b m2 and is summed
+// there exactly. The ramp R is deterministic and adds no variance here.
 #include <array>
 #include <span>
 #include <vector>
