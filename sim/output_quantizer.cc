@@ -1,6 +1,8 @@
 #include "sim/output_quantizer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <boost/random/uniform_real_distribution.hpp>
 
@@ -34,12 +36,45 @@ bool RateQuantizer::IsValid(std::string* why) const {
   return CheckPositive(lsb_rad_per_s, "rate quantizer LSB", why);
 }
 
-void RateQuantizer::Apply(std::span<double> rate) const {
-  for (double& v : rate) v = lsb_rad_per_s * std::nearbyint(v / lsb_rad_per_s);
+void RateQuantizer::Apply(std::span<double> rate, double offset_lsb) const {
+  for (double& v : rate) v = lsb_rad_per_s * std::nearbyint(v / lsb_rad_per_s + offset_lsb);
 }
 
 double RateQuantizer::ApproximateAvar(std::int64_t m) const {
   return lsb_rad_per_s * lsb_rad_per_s / (12.0 * static_cast<double>(m));
+}
+
+std::vector<double> RateQuantizer::ErrorAutocovariance(std::span<const double> r) const {
+  const double lsb2 = lsb_rad_per_s * lsb_rad_per_s;
+  const double pi2 = std::numbers::pi * std::numbers::pi;
+  std::vector<double> out(r.size(), 0.0);
+  if (r.empty()) return out;
+  out[0] = lsb2 / 12.0;
+  // Beyond kMaxK the series is summed as its tail integral; terms below 1e-17 of lsb^2 stop it.
+  constexpr int kMaxK = 2000;
+  for (std::size_t j = 1; j < r.size(); ++j) {
+    const double d = std::max(0.0, 2.0 * (r[0] - r[j])) / lsb2;  // D(j) in lsb^2
+    if (d == 0.0) {
+      out[j] = lsb2 / 12.0;  // the signal has not moved: the error repeats itself
+      continue;
+    }
+    const double rate = 2.0 * pi2 * d;
+    if (rate > 40.0) continue;  // exp(-40) ~ 4e-18: the error has decorrelated
+    double sum = 0.0;
+    int k = 1;
+    for (; k <= kMaxK; ++k) {
+      const double kk = static_cast<double>(k) * k;
+      const double term = std::exp(-rate * kk) / kk;
+      sum += term;
+      if (term < 1e-17) break;
+    }
+    if (k > kMaxK) {
+      // sum_{k > K} e^{-a k^2} / k^2 ~ int_K^inf e^{-a x^2} / x^2 dx; for a K^2 << 1 about 1/K.
+      sum += std::exp(-rate * kMaxK * kMaxK) / (kMaxK + 0.5);
+    }
+    out[j] = lsb2 / (2.0 * pi2) * sum;
+  }
+  return out;
 }
 
 }  // namespace allanlab::sim

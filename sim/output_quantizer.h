@@ -4,10 +4,13 @@
 //    (the residual is kept, so no angle is lost); it adds IEEE quantization noise with
 //    Q = lsb / sqrt(12) when the angle moves over many LSBs (THEORY.md §1a).
 //  * RateQuantizer: each rate sample rounded to an LSB; it adds white noise of variance lsb^2/12
-//    when the rate noise spans several LSBs, and strongly distorts the curve when it does not.
+//    when the rate noise spans several LSBs, and correlated error that distorts the curve when it
+//    does not (a band-limited or slowly wandering signal crosses few levels between samples).
+//    ErrorAutocovariance gives the error's exact second moments for a Gaussian signal.
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "sim/seeding.h"
 
@@ -25,11 +28,25 @@ struct AngleQuantizer {
 
 struct RateQuantizer {
   double lsb_rad_per_s = 0.0;  // rate LSB
+  // Offset each record by u * lsb, u ~ U[0, 1) drawn per record, before rounding: the unknown
+  // place of a real sensor's bias on its output grid. ErrorAutocovariance averages over that
+  // offset, so with it the theory is exact for a Gaussian signal; without it (offset 0) the
+  // theory holds when the signal wanders over several LSBs during the record.
+  bool random_offset = false;
   bool IsValid(std::string* why) const;
-  // rate[k] <- lsb * round(rate[k] / lsb).
-  void Apply(std::span<double> rate_rad_per_s) const;
-  // Approximate added AVAR: (lsb^2 / 12) / m.
+  // rate[k] <- lsb * round(rate[k] / lsb + offset_lsb).
+  void Apply(std::span<double> rate_rad_per_s, double offset_lsb = 0.0) const;
+  // Approximate added AVAR for busy noise: (lsb^2 / 12) / m.
   double ApproximateAvar(std::int64_t m) const;
+  // Autocovariance R_e(j), j = 0..n-1, of the error e = Qz(x) - x for a Gaussian signal x of
+  // (generalised) autocovariance R (n entries, rate^2), the offset on the grid uniform. The
+  // sawtooth's Fourier series (Widrow & Kollar, "Quantization Noise", 2008, ch. 10, with the
+  // Gaussian characteristic function of the increment x_j - x_0 of variance D(j) = 2 (R(0) - R(j))):
+  //   R_e(j) = sum_{k >= 1} lsb^2 / (2 pi^2 k^2) exp(-2 pi^2 k^2 D(j) / lsb^2),  R_e(0) = lsb^2/12.
+  // Under the same average e is uncorrelated with x, so the output's autocovariance is R + R_e and
+  // its AVAR is AVAR_x + AvarFromAutocovariance(R_e) (THEORY.md §0). When D(j) >> lsb^2 at j = 1
+  // this is the white lsb^2/12 of ApproximateAvar.
+  std::vector<double> ErrorAutocovariance(std::span<const double> signal_autocovariance) const;
 };
 
 }  // namespace allanlab::sim

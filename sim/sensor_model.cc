@@ -5,6 +5,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include <boost/random/uniform_real_distribution.hpp>
+
 #include "sim/kasdin_finite_record.h"
 
 namespace allanlab::sim {
@@ -267,7 +269,14 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     Engine engine = engine_for(kQuantizerStream);
     angle_quantizer->Apply(engine, tau0, out);
   }
-  if (rate_quantizer) rate_quantizer->Apply(out);
+  if (rate_quantizer) {
+    double offset = 0.0;
+    if (rate_quantizer->random_offset) {
+      Engine engine = engine_for(kRateQuantizerStream);
+      offset = boost::random::uniform_real_distribution<double>(0.0, 1.0)(engine);
+    }
+    rate_quantizer->Apply(out, offset);
+  }
   return out;
 }
 
@@ -287,14 +296,29 @@ std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
                                            : std::visit(DirectTheory{tau0, ms, shape}, term);
     for (std::size_t k = 0; k < ms.size(); ++k) result[k] += part[k];
   }
+  std::vector<double> error;  // the rate quantizer's error autocovariance
+  if (rate_quantizer) {
+    std::int64_t max_m = 0;
+    for (std::int64_t m : ms) max_m = std::max(max_m, m);
+    error = rate_quantizer->ErrorAutocovariance(SignalAutocovariance(2 * max_m));
+  }
   for (std::size_t k = 0; k < ms.size(); ++k) {
     if (angle_quantizer) result[k] += angle_quantizer->ApproximateAvar(static_cast<double>(ms[k]) * tau0);
-    if (rate_quantizer) result[k] += rate_quantizer->ApproximateAvar(ms[k]);
+    if (rate_quantizer) result[k] += AvarFromAutocovariance(ms[k], error);
   }
   return result;
 }
 
 std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const {
+  std::vector<double> total = SignalAutocovariance(lags);
+  if (rate_quantizer) {
+    const std::vector<double> error = rate_quantizer->ErrorAutocovariance(total);
+    for (std::size_t j = 0; j < total.size(); ++j) total[j] += error[j];
+  }
+  return total;
+}
+
+std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
   const double tau0 = 1.0 / sample_rate_hz;
   std::vector<double> total(static_cast<std::size_t>(lags), 0.0);
   std::optional<BandLimitChain> chain;

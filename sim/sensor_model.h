@@ -29,28 +29,38 @@ struct SensorModel {
   bool IsValid(std::string* why) const;
 
   // A record of n samples for (seed, trial). Term i draws from stream i of (seed, trial); the
-  // angle quantizer from stream kQuantizerStream. Bit-identical for the same arguments whatever
+  // angle quantizer from stream kQuantizerStream, the rate quantizer's offset from
+  // kRateQuantizerStream. Bit-identical for the same arguments whatever
   // the thread. Precondition: IsValid().
   std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n) const;
 
   // Exact E[AVAR_hat(m)] of Generate()'s records (rad/s)^2, band-limit and finite record
-  // included. With output quantizers the quantizers' share is the usual approximation (see
-  // output_quantizer.h) and ExpectedAvarIsExact() is false.
+  // included. The rate quantizer's share comes from its error autocovariance on the Gaussian
+  // part's (output_quantizer.h): exact with random_offset, the busy-noise limit otherwise. The
+  // angle quantizer's is the usual approximation. ExpectedAvarIsExact() says which.
   double ExpectedAvar(std::int64_t m, const RecordShape& shape) const;
   // The same for a list of averaging factors (shares the per-term set-up work).
   std::vector<double> ExpectedAvar(std::span<const std::int64_t> ms, const RecordShape& shape) const;
-  bool ExpectedAvarIsExact() const { return !angle_quantizer && !rate_quantizer; }
+  bool ExpectedAvarIsExact() const {
+    return !angle_quantizer && (!rate_quantizer || rate_quantizer->random_offset);
+  }
 
   // Generalised autocovariance of the Gaussian (linear) part of the output at lags 0..lags-1,
   // band-limit included, for exact estimator variances (THEORY.md §2.1). Flicker enters with its
   // stationary-increment form (no start-up transient); deterministic terms, harmonics, outliers
-  // and quantizers are left out.
+  // and the angle quantizer are left out. The rate quantizer's error enters with its exact
+  // second moments (so estimator variances treat it as Gaussian: an approximation).
   std::vector<double> GaussianAutocovariance(std::int64_t lags) const;
 
   // Continuous IEEE 952 sum of the terms' asymptotes at tau (no band-limit, no quantizers).
   double AsymptoticAvar(double tau_s) const;
 
   static constexpr std::uint64_t kQuantizerStream = 1000;
+  static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset
+
+ private:
+  // GaussianAutocovariance before the rate quantizer.
+  std::vector<double> SignalAutocovariance(std::int64_t lags) const;
 };
 
 }  // namespace allanlab::sim
