@@ -79,8 +79,8 @@ bool Plottable(double x, double y) {
 }
 
 bool HasBars(const PlotSeries& s) {
-  return s.style == PlotStyle::kPoints && s.y_low.size() == s.x.size() &&
-         s.y_high.size() == s.x.size();
+  return (s.style == PlotStyle::kPoints || s.style == PlotStyle::kBand) &&
+         s.y_low.size() == s.x.size() && s.y_high.size() == s.x.size();
 }
 
 std::string SlopeLabel(double slope) {
@@ -110,8 +110,13 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     const PlotSeries& series = plot.series[s];
     std::vector<std::pair<double, double>> valid, valid_bars;
+    if (series.style == PlotStyle::kBand && !HasBars(series)) continue;
     for (std::size_t i = 0; i < std::min(series.x.size(), series.y.size()); ++i) {
       if (!Plottable(series.x[i], series.y[i])) continue;
+      if (series.style == PlotStyle::kBand &&
+          !(Plottable(series.x[i], series.y_low[i]) && Plottable(series.x[i], series.y_high[i]))) {
+        continue;
+      }
       valid.emplace_back(series.x[i], series.y[i]);
       x_lo = std::min(x_lo, series.x[i]);
       x_hi = std::max(x_hi, series.x[i]);
@@ -153,6 +158,26 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
      << "set samples 200\n"
      << "set xrange [" << ShortestDecimal(x_lo / 1.5) << ":" << ShortestDecimal(x_hi * 1.5) << "]\n"
      << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
+  // Spans: rectangles behind the curves, each with a dummy keyed clause when titled (objects
+  // have no key entry of their own).
+  std::vector<std::string> span_keys;
+  for (std::size_t i = 0; i < plot.spans.size(); ++i) {
+    const PlotSpan& span = plot.spans[i];
+    if (!(span.x_min > 0) || !(span.x_max >= span.x_min) || !std::isfinite(span.x_max)) continue;
+    // A one-point span gets a width of a factor 1.05 each way on the log axis.
+    const double lo = span.x_min == span.x_max ? span.x_min / 1.05 : span.x_min;
+    const double hi = span.x_min == span.x_max ? span.x_max * 1.05 : span.x_max;
+    const double opacity = std::clamp(span.opacity, 0.0, 1.0);
+    os << "set object " << i + 1 << " rect from " << ShortestDecimal(lo) << ", graph 0 to "
+       << ShortestDecimal(hi) << ", graph 1 behind fc rgb " << Quoted(span.color)
+       << " fs transparent solid " << ShortestDecimal(opacity) << " noborder\n";
+    if (!span.title.empty() &&
+        std::find(span_keys.begin(), span_keys.end(), span.title) == span_keys.end()) {
+      span_keys.push_back(span.title);
+      span_keys.push_back(span.color);
+      span_keys.push_back(ShortestDecimal(opacity));
+    }
+  }
   for (std::size_t s = 0; s < points.size(); ++s) {
     os << "$s" << s << " << EOD\n";
     for (std::size_t i = 0; i < points[s].size(); ++i) {
@@ -207,9 +232,18 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
       case PlotStyle::kDashedLine:
         style = "using 1:2 with lines lw 1.5 dt 2";
         break;
+      case PlotStyle::kBand:
+        style = "using 1:3:4 with filledcurves fs transparent solid 0.25 noborder";
+        break;
     }
-    clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb '" + Color(s) + "' title " +
+    const std::string color = kept[s]->color.empty() ? Color(s) : kept[s]->color;
+    clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb " + Quoted(color) + " title " +
                       Quoted(kept[s]->title));
+  }
+  for (std::size_t k = 0; k + 2 < span_keys.size(); k += 3) {
+    // NaN draws nothing but puts the span's colour in the key.
+    clauses.push_back("NaN with filledcurves fs transparent solid " + span_keys[k + 2] +
+                      " noborder fc rgb " + Quoted(span_keys[k + 1]) + " title " + Quoted(span_keys[k]));
   }
   os << "plot ";
   for (std::size_t i = 0; i < clauses.size(); ++i) {

@@ -8,7 +8,9 @@
 
 namespace allanlab::app {
 
-enum class PlotStyle { kPoints, kLine, kDashedLine };
+// kBand: a translucent filled area between y_low and y_high (an envelope or confidence band);
+// y is its centre, used for the axis ranges only.
+enum class PlotStyle { kPoints, kLine, kDashedLine, kBand };
 
 struct PlotSeries {
   std::string title;  // key entry
@@ -17,9 +19,19 @@ struct PlotSeries {
   std::vector<double> y;  // same length as x, in the unit of AllanPlot::y_label
   // Optional vertical error bars (e.g. confidence intervals), kPoints only: when both have the
   // length of x, each point gets a bar from y_low to y_high. An end a log axis cannot show (<= 0,
-  // NaN, inf) is drawn at the point itself, so a one-sided bar stays one-sided.
+  // NaN, inf) is drawn at the point itself, so a one-sided bar stays one-sided. kBand needs both
+  // (its lower and upper edge; points with an edge a log axis cannot show are skipped).
   std::vector<double> y_low = {};
   std::vector<double> y_high = {};
+  std::string color = {};  // gnuplot colour ('#rrggbb'); empty: the palette colour of its index
+};
+
+// A shaded stretch of the x axis over the whole height (e.g. where a record leaves its model).
+struct PlotSpan {
+  double x_min = 0.0, x_max = 0.0;  // x_min == x_max: a thin span around one point
+  std::string color = "#ff7f0e";    // gnuplot colour name or '#rrggbb'
+  double opacity = 0.15;            // 0..1
+  std::string title;                // key entry ("" : none); spans with the same title share it
 };
 
 struct AllanPlot {
@@ -29,6 +41,8 @@ struct AllanPlot {
   // Drawn in order, later ones on top. Points that a log axis cannot show (<= 0, NaN, inf) are
   // skipped; a series left empty is dropped.
   std::vector<PlotSeries> series;
+  // Drawn behind the series, in order.
+  std::vector<PlotSpan> spans;
   // Log-log slopes of the faint guide lines. Each guide is the line of that slope that touches
   // series[guide_series] from below (the tangent of the slope method, IEEE 952 Annex C), so a
   // guide hugs the curve where that noise type dominates. guide_series < 0: no guides.

@@ -263,6 +263,11 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
   for (const auto& n : s.notes) os << (markdown ? "- " : "  ") << "note: " << n << "\n";
 }
 
+// The record's OAVAR with the 95 % band of each model (the exact chi-square distribution of the
+// OAVAR view, envelope.h) and the gap regions of every view shaded. PSD regions are drawn at
+// tau = 1/(2 f): a convention (the Allan filter's response to a sinusoid of frequency f peaks near
+// f tau = 0.37 and has its first null at f tau = 1), so the shading says where to look, not an
+// exact tau range; the key says so.
 AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
   AllanPlot plot;
   plot.title = title;
@@ -272,24 +277,62 @@ AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
     for (double v : avar) y.push_back(std::sqrt(v) * unit);
     return y;
   };
-  plot.series.push_back({"record", PlotStyle::kPoints, s.curve.tau_s, adev(s.curve.avar)});
-  const sim::RecordShape shape{s.num_samples, sim::AvarEstimatorKind::kOverlapping};
-  plot.series.push_back({"baseline model", PlotStyle::kDashedLine, s.curve.tau_s,
-                         adev(s.baseline_model.ExpectedAvar(s.curve.m, shape))});
-  if (s.verdict_candidate >= 0) {
-    const auto& c = s.candidates[s.verdict_candidate];
-    plot.series.push_back({"with " + c.id(), PlotStyle::kLine, s.curve.tau_s, adev(c.model.ExpectedAvar(s.curve.m, shape))});
-  }
-  for (const GapRegion& r : s.regions) {
-    if (r.view != View::kOavar) continue;
-    std::vector<double> x, y;
-    for (std::size_t i = 0; i < s.curve.size(); ++i) {
-      if (s.curve.tau_s[i] >= r.x_min && s.curve.tau_s[i] <= r.x_max) {
-        x.push_back(s.curve.tau_s[i]);
-        y.push_back(std::sqrt(s.curve.avar[i]) * unit);
-      }
+  // A model's mean curve and its 95 % band, both as ADEV.
+  auto band = [&](const sim::SensorModel& model, const std::string& name, const std::string& color,
+                  PlotSeries* line) {
+    const OavarTheory t = ExactOavar(model, s.curve.m, s.num_samples);
+    PlotSeries b{name + " 95 % band", PlotStyle::kBand, s.curve.tau_s, adev(t.mean)};
+    for (std::size_t i = 0; i < t.mean.size(); ++i) {
+      const bool ok = t.mean[i] > 0.0 && t.edf[i] > 0.0;
+      const Band r = ok ? ChiSquareBand(t.mean[i], t.edf[i], 0.95) : Band{};
+      b.y_low.push_back(std::sqrt(r.low) * unit);
+      b.y_high.push_back(std::sqrt(r.high) * unit);
     }
-    plot.series.push_back({"gap (OAVAR)", PlotStyle::kLine, x, y});
+    b.color = color;
+    *line = PlotSeries{name, PlotStyle::kDashedLine, s.curve.tau_s, adev(t.mean)};
+    line->color = color;
+    return b;
+  };
+  PlotSeries baseline_line, candidate_line;
+  plot.series.push_back(band(s.baseline_model, "baseline model", "#1f77b4", &baseline_line));
+  const bool have_candidate = s.verdict_candidate >= 0;
+  if (have_candidate) {
+    const auto& c = s.candidates[s.verdict_candidate];
+    const std::string name = (s.verdict == "unexplained" ? "best tried: with " : "with ") + c.id();
+    plot.series.push_back(band(c.model, name, "#2ca02c", &candidate_line));
+    candidate_line.style = PlotStyle::kLine;
+  }
+  PlotSeries record{"record", PlotStyle::kPoints, s.curve.tau_s, adev(s.curve.avar)};
+  record.color = "#000000";
+  plot.guide_series = static_cast<int>(plot.series.size());
+  plot.series.push_back(record);
+  plot.series.push_back(baseline_line);
+  if (have_candidate) plot.series.push_back(candidate_line);
+  for (const GapRegion& r : s.regions) {
+    PlotSpan span;
+    span.x_min = r.x_min;
+    span.x_max = r.x_max;
+    switch (r.view) {
+      case View::kOavar:
+        span.color = "#d62728";
+        span.title = "gap: oavar";
+        break;
+      case View::kHadamard:
+        span.color = "#9467bd";
+        span.title = "gap: hadamard";
+        break;
+      case View::kPsd:
+        span.x_min = 1.0 / (2.0 * r.x_max);
+        span.x_max = 1.0 / (2.0 * r.x_min);
+        span.color = "#ff7f0e";
+        span.title = "gap: psd, drawn at tau = 1/(2f) (a convention)";
+        break;
+      default:
+        span.color = "#8c564b";
+        span.title = "gap: halves / dynamic / kurtosis";
+        break;
+    }
+    plot.spans.push_back(span);
   }
   return plot;
 }

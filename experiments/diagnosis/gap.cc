@@ -43,6 +43,13 @@ double BonferroniThreshold(double alpha, int points) {
   return -boost::math::quantile(normal, alpha / (2.0 * std::max(points, 1)));
 }
 
+Band ChiSquareBand(double expected, double edf, double probability) {
+  const boost::math::chi_squared chi2(edf);
+  const double tail = 0.5 * (1.0 - probability);
+  return {expected * boost::math::quantile(chi2, tail) / edf,
+          expected * boost::math::quantile(boost::math::complement(chi2, tail)) / edf};
+}
+
 GapMetrics Metrics(const std::vector<double>& z) {
   GapMetrics m;
   int inside = 0;

@@ -25,6 +25,14 @@ double ZFromEnvelope(double observed, double mean, double sd, int trials);
 // Phi^{-1}(1 - alpha / (2 points)).
 double BonferroniThreshold(double alpha, int points);
 
+// Central `probability` range of one estimate OAVAR_hat ~ expected chi2_edf / edf (the exact
+// view's distribution above): where a record of the model falls with that probability.
+// Precondition: expected > 0, edf > 0, 0 < probability < 1.
+struct Band {
+  double low = 0.0, high = 0.0;
+};
+Band ChiSquareBand(double expected, double edf, double probability);
+
 // One view of one record against one model.
 struct ViewResiduals {
   View view = View::kOavar;
