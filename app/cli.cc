@@ -6,6 +6,7 @@
 
 #include "app/avar_command.h"
 #include "app/diagnose_command.h"
+#include "app/diagnosis_benchmark_command.h"
 #include "app/fit_command.h"
 #include "app/provenance.h"
 #include "app/simulate_command.h"
@@ -23,6 +24,7 @@ constexpr SubcommandFactory kSubcommands[] = {
     AddAvarCommand,
     AddFitCommand,
     AddDiagnoseCommand,
+    AddDiagnosisBenchmarkCommand,
     AddSweepCommand,
     AddValidateCommand,
 };

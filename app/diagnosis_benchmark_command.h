@@ -1,0 +1,50 @@
+#pragma once
+// `allanlab diagnosis-benchmark`: the blind benchmark of `allanlab diagnose` (issue 6, "Proof on
+// data whose effect is withheld"). From --seed, --recordings cases are drawn
+// (experiments/diagnosis/benchmark_case.h: preset, length, rate, effect or none, strength); each is
+// written as a sensor spec (the preset's IEEE 952 terms plus the effect) and a raw f64 record by
+// `simulate`'s own code (RunSimulate), diagnosed by the CLI itself (a child process `allanlab
+// diagnose FILE --format f64 --rate R --units rad/s --json OUT`: default settings, told only the
+// file's format, rate and unit), its JSON read back and scored
+// (benchmark_score.h). Writes <out-dir>/benchmark.csv, benchmark.md (benchmark_report.h) and
+// benchmark.png (detection and right-effect rate vs strength), with provenance.
+//   --recordings N      (default 80)    --seed S (default 1)
+//   --out-dir DIR       (default results/diagnosis)
+//   --work-dir DIR      where the specs, records and diagnoses go (default: a fresh directory in
+//                       the system temp dir); records are deleted once diagnosed unless --keep-work
+//   --max-samples N     cap on samples per record (default 1080000; the rate is lowered to fit)
+//   --min-duration S --max-duration S --min-rate HZ --max-rate HZ   (defaults 1800, 10800, 100, 1000)
+//   --control-fraction F (default 0.4)
+//   --jobs J            diagnoses at once (default 2; each is a process)
+//   --timing FILE       per-recording CPU (user + sys) and wall seconds, CSV (not deterministic, so
+//                       kept out of the tables)
+// Deterministic: the tables depend on the seed and options only (diagnose is deterministic for any
+// thread count). Exit codes: 2 usage, 1 a recording could not be written or an output not
+// written (a diagnose failure on a record is a row, not an error), 0 otherwise.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+
+#include "app/subcommand.h"
+
+namespace allanlab::app {
+
+struct DiagnosisBenchmarkOptions {
+  int recordings = 80;
+  std::uint64_t seed = 1;
+  std::string out_dir = "results/diagnosis";
+  std::string work_dir;
+  bool keep_work = false;
+  std::int64_t max_samples = 1080000;
+  double min_duration_s = 1800.0, max_duration_s = 10800.0;
+  double min_rate_hz = 100.0, max_rate_hz = 1000.0;
+  double control_fraction = 0.4;
+  int jobs = 2;
+  std::string timing_path;
+  bool plot = true;  // --no-plot: no PNG (machines without gnuplot)
+};
+
+Subcommand AddDiagnosisBenchmarkCommand(CLI::App* parent);
+int RunDiagnosisBenchmark(const DiagnosisBenchmarkOptions& options, const std::string& command_line);
+
+}  // namespace allanlab::app
