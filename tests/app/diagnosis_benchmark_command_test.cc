@@ -1,0 +1,63 @@
+// Smoke test of `allanlab diagnosis-benchmark`: three tiny recordings end to end (draw, spec,
+// simulate, diagnose as a child process, score, tables), the same tables for one and two threads
+// and for one and two concurrent diagnoses, and a refused command line that writes nothing.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "tests/support/command_test.h"
+
+namespace allanlab::app {
+namespace {
+
+class DiagnosisBenchmarkCommandTest : public testing_support::CommandTest {
+ protected:
+  DiagnosisBenchmarkCommandTest() : CommandTest("allanlab_diagnosis_benchmark", "diagnosis-benchmark") {}
+  std::string Args(const std::string& out, int jobs) {
+    std::ostringstream a;
+    a << "--recordings 3 --seed 3 --min-duration 60 --max-duration 120 --max-samples 30000 --no-plot --jobs "
+      << jobs << " --out-dir " << Path(out) << " --work-dir " << Path(out + "_work");
+    return a.str();
+  }
+};
+
+TEST_F(DiagnosisBenchmarkCommandTest, WritesTheTablesDeterministically) {
+  ASSERT_EQ(Run(Args("a", 2)), 0) << Read("err.txt");
+  const std::string csv = Read("a/benchmark.csv");
+  const std::string body = testing_support::WithoutCommentLines(csv);
+  int lines = 0;
+  for (char ch : body) lines += ch == '\n';
+  EXPECT_EQ(lines, 4) << body;  // header + 3 recordings
+  EXPECT_NE(csv.find("# seed: 3"), std::string::npos);
+  EXPECT_NE(csv.find("# command: "), std::string::npos);
+  const std::string md = Read("a/benchmark.md");
+  for (const char* section : {"## Targets", "## Confusion matrix", "## Controls", "## Localization",
+                              "## Held-out gap shrinkage", "## Recordings", "## Provenance"}) {
+    EXPECT_NE(md.find(section), std::string::npos) << section;
+  }
+  // The records are deleted once diagnosed; specs and diagnoses stay in the work directory.
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "a_work" / "rec0.f64"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "a_work" / "rec0.yaml"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "a_work" / "rec0.diagnosis.json"));
+
+  // One thread per diagnosis (inherited by the child processes), one diagnosis at a time.
+  ::setenv("OMP_NUM_THREADS", "1", 1);
+  const int code = Run(Args("b", 1));
+  ::unsetenv("OMP_NUM_THREADS");
+  ASSERT_EQ(code, 0) << Read("err.txt");
+  EXPECT_EQ(testing_support::WithoutCommentLines(Read("b/benchmark.csv")), body);
+}
+
+TEST_F(DiagnosisBenchmarkCommandTest, RefusesBadOptionsAndWritesNothing) {
+  EXPECT_EQ(Run("--recordings 0 --no-plot --out-dir " + Path("c")), 2);
+  EXPECT_NE(Read("err.txt").find("--recordings"), std::string::npos) << Read("err.txt");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "c" / "benchmark.csv"));
+  EXPECT_EQ(Run("--min-duration 100 --max-duration 50 --no-plot --out-dir " + Path("c")), 2);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "c" / "benchmark.csv"));
+}
+
+}  // namespace
+}  // namespace allanlab::app
