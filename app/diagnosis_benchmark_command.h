@@ -15,6 +15,8 @@
 //   --max-samples N     cap on samples per record (default 1080000; the rate is lowered to fit)
 //   --min-duration S --max-duration S --min-rate HZ --max-rate HZ   (defaults 1800, 10800, 100, 1000)
 //   --control-fraction F (default 0.4)
+//   --reuse             a recording whose diagnosis JSON an earlier run of the same draw left in
+//                       --work-dir (same record path and sample count) is scored from it, not rerun
 //   --jobs J            diagnoses at once (default 2; each is a process)
 //   --timing FILE       per-recording CPU (user + sys) and wall seconds, CSV (not deterministic, so
 //                       kept out of the tables)
@@ -40,6 +42,7 @@ struct DiagnosisBenchmarkOptions {
   double min_rate_hz = 100.0, max_rate_hz = 1000.0;
   double control_fraction = 0.4;
   int jobs = 2;
+  bool reuse = false;
   std::string timing_path;
   bool plot = true;  // --no-plot: no PNG (machines without gnuplot)
 };

@@ -323,7 +323,7 @@ TEST_F(SimulateCommandTest, MistypedSubcommandIsNamed) {
   const RunResult r = Run("simulat --duration 1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
-            "allanlab: error: unknown command 'simulat' (known: simulate, avar, fit, diagnose, sweep, validate; see allanlab --help)\n");
+            "allanlab: error: unknown command 'simulat' (known: simulate, avar, fit, diagnose, diagnosis-benchmark, sweep, validate; see allanlab --help)\n");
 }
 
 // A run that must fail: its exit code, a word its message must contain, and the arguments, in
