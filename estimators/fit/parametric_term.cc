@@ -201,9 +201,13 @@ class BandLimitTerm final : public ParametricTerm {
   }
   const std::vector<ParameterSpec>& parameters() const override { return specs_; }
   bool modifies_other_terms() const override { return true; }
-  // From a tenth of the inverse longest tau to 0.45 of the internal rate.
+  // From a thousandth of the output rate (or a tenth of the inverse longest tau, if higher) to
+  // 0.45 of the internal rate. The floor keeps the chain's impulse response (about
+  // 41 L fs / (2 pi fc) internal samples to its 1e-18 tail) under ~5e4 L samples: with
+  // 0.1 / tau_max alone, a long record (rlg) let the line search try fc ~ 1e-4 Hz, whose chain
+  // runs to 2^26 samples, and the fit never finished.
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
-    *lower = {0.1 / c.tau_s.back()};
+    *lower = {std::max(0.1 / c.tau_s.back(), 1e-3 / c.sample_period_s)};
     *upper = {0.45 * oversampling_ / c.sample_period_s};
   }
   void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
