@@ -8,21 +8,13 @@
 
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
+#include "tests/support/diagnosis_control.h"
 #include "sim/units.h"
 
 namespace allanlab::experiments {
 namespace {
 
-sim::SensorModel Control() {
-  sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
-  sim::WhiteRateNoise white;
-  white.arw_rad_per_sqrt_s = 1e-4;
-  sim::RandomWalkRate walk;
-  walk.rrw_rad_per_s_per_sqrt_s = 1e-6;
-  model.terms = {white, walk};
-  return model;
-}
+sim::SensorModel Control() { return testing::DiagnosisControlModel(); }
 
 // 20 controls on the exact OAVAR view (trials = 0 keeps the test to seconds), alpha = 0.05: the count of flagged records is at most Binomial(20, 0.05) (the
 // Bonferroni level is conservative), and P(X >= 5) = 0.0026 under it.

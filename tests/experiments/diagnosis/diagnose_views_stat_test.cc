@@ -11,6 +11,7 @@
 
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
+#include "tests/support/diagnosis_control.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -21,13 +22,7 @@ namespace {
 // views, whose share alpha * (MC points / all points) is below alpha = 0.05. Under
 // Binomial(40, 0.05), P(X >= 7) = 0.0036: the false-fail rate of the bound X <= 6.
 TEST(DiagnoseViewsStatTest, MonteCarloViewsFlagControlsAtMostAtTheStatedRate) {
-  sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
-  sim::WhiteRateNoise white;
-  white.arw_rad_per_sqrt_s = 1e-4;
-  sim::RandomWalkRate walk;
-  walk.rrw_rad_per_s_per_sqrt_s = 1e-6;
-  model.terms = {white, walk};
+  const sim::SensorModel model = testing::DiagnosisControlModel();
   DiagnoseOptions options;
   options.trials = 8;
   options.false_alarm = 0.05;
