@@ -111,7 +111,13 @@ AvarCovarianceModel::AvarCovarianceModel(const AvarCurve& curve, std::span<const
       // Core: C != 0 for |k| < 2(m1 + m2) for Q, N, K; flicker continues, joined to its tail at
       // 4(m1 + m2). Lags with a pair count run from -(t1 - 1) to t2 - 1.
       const std::int64_t core = std::min<std::int64_t>(4 * (m1 + m2), std::max(t1, t2));
-      const std::int64_t stride = std::max<std::int64_t>(1, (m1 + m2) / 64);
+      // Lags with pairs: -(t1 - 1) .. t2 - 1. The strided grid is centred on k = 0 and has at
+      // least ~128 points over that range: a grid started at -core skipped k = 0 when the range
+      // was shorter than the stride (m = N/2: a zero variance and a covariance that was not
+      // positive definite, so GLS failed on plain white noise).
+      const std::int64_t k_lo = std::max(-core, -(t1 - 1)), k_hi = std::min(core, t2 - 1);
+      const std::int64_t stride =
+          std::max<std::int64_t>(1, std::min<std::int64_t>((m1 + m2) / 64, (k_hi - k_lo) / 128));
       std::vector<std::vector<double>> acc(p, std::vector<double>(p, 0.0));
       std::int64_t offsets[9];
       double weights[9];
@@ -128,7 +134,7 @@ AvarCovarianceModel::AvarCovarianceModel(const AvarCurve& curve, std::span<const
       // those spikes or weights them by the stride (Q + N fits had N's sigma 4x too small). With
       // a stride, every product with C_Q is summed exactly over the spikes instead.
       const bool q_spikes = stride > 1 && q_position < p;
-      for (std::int64_t k = -core; k <= core; k += stride) {
+      for (std::int64_t k = k_lo + (-k_lo) % stride; k <= k_hi; k += stride) {
         const double count = PairCount(k, t1, t2) * static_cast<double>(stride);
         if (count == 0.0) continue;
         variograms.Cross(offsets, weights, k, scale, &all);

@@ -38,6 +38,35 @@ TEST(AvarCovariance, DiagonalMatchesExactVariance) {
   }
 }
 
+// The longest taus a record gives (m up to N/2, where the estimate has a single difference):
+// the strided core sum once started at -core and stepped over k = 0 when fewer lags than the
+// stride have pairs, giving a zero variance at m = N/2 and a covariance that was not positive
+// definite (GLS then failed on plain white noise).
+TEST(AvarCovariance, LongestTausKeepTheirVariance) {
+  const double tau0 = 0.01;
+  const std::int64_t n = 1 << 14;
+  AvarCurve curve;
+  curve.sample_period_s = tau0;
+  curve.num_samples = n;
+  curve.m = {1, 64, 2000, 5000, 6500, 8192};
+  for (std::int64_t m : curve.m) curve.tau_s.push_back(m * tau0), curve.avar.push_back(1.0);
+  const std::vector<Coefficient> terms = {Coefficient::kQ, Coefficient::kN, Coefficient::kB,
+                                          Coefficient::kK};
+  const AvarCovarianceModel model(curve, terms);
+  const std::array<double, 5> theta = {0.0, 1e-8, 0.0, 0.0, 0.0};  // white rate noise only
+  const Eigen::MatrixXd cov = model.Covariance(theta);
+  sim::SensorModel truth;
+  truth.sample_rate_hz = 1.0 / tau0;
+  truth.terms = {sim::WhiteRateNoise{std::sqrt(theta[1])}};
+  const auto r = truth.GaussianAutocovariance(n + 2 * curve.m.back());
+  for (std::size_t k = 0; k < curve.size(); ++k) {
+    const double exact =
+        ExactAvarMoments(r, curve.m[k], {n, sim::AvarEstimatorKind::kOverlapping}).variance;
+    EXPECT_NEAR(cov(k, k) / exact, 1.0, 2e-3) << "m=" << curve.m[k];
+  }
+  EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(cov).info(), Eigen::Success);
+}
+
 TEST(AvarCovariance, WhiteNoiseCrossCovarianceMatchesTheory) {
   // THEORY.md §2.1: white noise, N = 1000, Cov(OAVAR(4), OAVAR(8)) = 1.296e-4 (exact recipe).
   AvarCurve curve;
