@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "sim/sensor_model.h"
 #include "tests/support/command_test.h"
@@ -67,6 +68,43 @@ TEST_F(DiagnoseCommandTest, RefusesTooShortRecordsAndMissingInput) {
   std::string curve = "--curve ";
   curve += Path("short.csv");
   EXPECT_EQ(Run(curve), 2);  // no --record-length / --rate
+}
+
+// Robustness (issue 6): a stuck stretch is named (stderr and the JSON notes), not silently
+// blamed on an effect; a NaN is refused with its line, or dropped with --drop-nonfinite.
+TEST_F(DiagnoseCommandTest, NamesStuckStretchesAndRefusesNaN) {
+  WriteRecord("rec.csv", 8192);
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(dir_ / "rec.csv");
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  auto write = [&](const std::string& name, const std::vector<std::string>& rows) {
+    std::ofstream out(dir_ / name);
+    for (const auto& r : rows) out << r << "\n";
+  };
+  std::vector<std::string> stuck = lines;
+  for (int k = 3001; k <= 3500; ++k) stuck[k] = "0.00125";  // 500 samples, 5 s
+  write("stuck.csv", stuck);
+  std::string args = Path("stuck.csv");
+  args += " --units rad/s --rate 100 --trials 0 --json " + Path("s.json");
+  ASSERT_EQ(Run(args), 0) << Read("err.txt");
+  EXPECT_NE(Read("err.txt").find("500 identical samples in a row (5 s from sample 3000"), std::string::npos)
+      << Read("err.txt");
+  const auto j = nlohmann::json::parse(Read("s.json"));
+  bool noted = false;
+  for (const auto& n : j["notes"]) noted |= n.get<std::string>().find("identical samples") != std::string::npos;
+  EXPECT_TRUE(noted) << j["notes"];
+
+  std::vector<std::string> with_nan = lines;
+  with_nan[200] = "nan";
+  write("nan.csv", with_nan);
+  args = Path("nan.csv");
+  args += " --units rad/s --rate 100 --trials 0";
+  EXPECT_EQ(Run(args), 1);
+  EXPECT_NE(Read("err.txt").find("line(s) 201"), std::string::npos) << Read("err.txt");
+  EXPECT_EQ(Run(args + " --drop-nonfinite"), 0) << Read("err.txt");
+  EXPECT_NE(Read("err.txt").find("dropped 1 non-finite"), std::string::npos) << Read("err.txt");
 }
 
 }  // namespace

@@ -1,0 +1,48 @@
+// A stuck stretch of a record is found where it is, and named only when it is long enough to
+// matter (>= 100 samples and >= 0.1 % of the record).
+#include "app/constant_stretch.h"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace allanlab::app {
+namespace {
+
+std::vector<double> Ramp(int n) {
+  std::vector<double> v;
+  for (int k = 0; k < n; ++k) v.push_back(0.001 * k);
+  return v;
+}
+
+TEST(ConstantStretch, FindsTheLongestRunWherever) {
+  EXPECT_EQ(LongestConstantStretch({}).length, 0);
+  std::vector<double> v = Ramp(1000);
+  EXPECT_EQ(LongestConstantStretch(v).length, 1);
+  for (int k = 200; k < 260; ++k) v[k] = 5.0;
+  for (int k = 990; k < 1000; ++k) v[k] = -1.0;  // shorter, at the very end
+  ConstantStretch s = LongestConstantStretch(v);
+  EXPECT_EQ(s.first, 200);
+  EXPECT_EQ(s.length, 60);
+  EXPECT_EQ(s.value, 5.0);
+  for (int k = 900; k < 1000; ++k) v[k] = -1.0;  // the longest now ends the record
+  s = LongestConstantStretch(v);
+  EXPECT_EQ(s.first, 900);
+  EXPECT_EQ(s.length, 100);
+}
+
+TEST(ConstantStretch, NamedOnlyWhenLongEnough) {
+  std::vector<double> v = Ramp(200000);
+  for (int k = 1000; k < 1099; ++k) v[k] = 0.0;  // 99 samples: below the floor
+  EXPECT_FALSE(DescribeConstantStretch(v, 100.0));
+  for (int k = 1000; k < 1150; ++k) v[k] = 0.0;  // 150 samples but < 0.1 % of 200000
+  EXPECT_FALSE(DescribeConstantStretch(v, 100.0));
+  for (int k = 1000; k < 1400; ++k) v[k] = 0.0;  // 400 samples = 0.2 %: named, in seconds
+  const auto text = DescribeConstantStretch(v, 100.0);
+  ASSERT_TRUE(text);
+  EXPECT_NE(text->find("400 identical samples"), std::string::npos) << *text;
+  EXPECT_NE(text->find("4 s from sample 1000"), std::string::npos) << *text;
+}
+
+}  // namespace
+}  // namespace allanlab::app
