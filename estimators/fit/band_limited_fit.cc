@@ -6,6 +6,8 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 
+#include "estimators/fit/avar_covariance.h"
+
 namespace allanlab::estimators {
 namespace {
 
@@ -41,8 +43,16 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
   }
   // Detection compares covariance fits; a bootstrap (if asked) runs once, on the reported fit.
   const bool bootstrap = options.fit.uncertainty == FitUncertainty::kBootstrap;
+  // GLS: one covariance model for the plain fit and both band-limited candidates (same curve,
+  // same terms), instead of one each.
+  std::shared_ptr<const AvarCovarianceModel> covariance = options.fit.covariance;
+  if (!covariance && options.fit.method == FitMethod::kGls && curve.IsValid(nullptr) &&
+      curve.estimator == sim::AvarEstimatorKind::kOverlapping && curve.num_samples > 0) {
+    covariance = std::make_shared<const AvarCovarianceModel>(curve, options.fit.terms);
+  }
   FitOptions plain_options = options.fit;
   plain_options.uncertainty = FitUncertainty::kCovariance;
+  plain_options.covariance = covariance;
   FitSummary plain;
   if (!FitAvarModel(plain_options, curve, &plain)) {
     summary->fit = plain;
@@ -55,7 +65,9 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
   auto finish = [&](const std::string& decision) {
     if (bootstrap && !summary->band_limited) {
       FitSummary with;
-      if (!FitAvarModel(options.fit, curve, &with)) {
+      FitOptions with_options = options.fit;
+      with_options.covariance = covariance;
+      if (!FitAvarModel(with_options, curve, &with)) {
         summary->fit = with;
         summary->ok = false;
         return false;
@@ -83,6 +95,9 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
     p.terms = options.fit.terms;
     p.extra = {std::shared_ptr<const ParametricTerm>(
         MakeBandLimitTerm(kind, options.sampling, options.oversampling))};
+    p.covariance = covariance;
+    // Candidates without a starting cutoff are discarded below: skip their pilot and GLS stages.
+    p.stop_without_start = true;
     ParametricFitSummary s;
     const std::string name = kind == sim::LowPassKind::kFirstOrder ? "BW" : "BW2";
     if (!FitAvarModelWithTerms(p, curve, &s)) {

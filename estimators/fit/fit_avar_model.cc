@@ -225,6 +225,7 @@ class CurveCache {
   }
   // Built with every requested term; a subset's covariance passes zeros for the others.
   const AvarCovarianceModel& Covariance() {
+    if (options_.covariance) return *options_.covariance;
     if (!covariance_) covariance_ = std::make_unique<AvarCovarianceModel>(curve_, options_.terms);
     return *covariance_;
   }

@@ -297,7 +297,10 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
   if (!FitOnce(options, curve, summary)) return false;
   for (CoefficientEstimate& e : summary->base.coefficients) e.covariance_sigma_si = e.sigma_si;
   for (ParametricEstimate& e : summary->extra) e.covariance_sigma_si = e.sigma_si;
-  if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, summary);
+  bool stopped = false;
+  for (const ParametricEstimate& e : summary->extra) stopped = stopped || !e.fitted;
+  stopped = stopped && options.stop_without_start;
+  if (options.uncertainty == FitUncertainty::kBootstrap && !stopped) Bootstrap(options, curve, summary);
   return true;
 }
 
@@ -381,6 +384,11 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
     active.push_back(&term);
     active_index.push_back(t);
   }
+  if (options.stop_without_start && active.size() < options.extra.size()) {
+    base.ok = summary->ok = true;
+    base.message = "stopped: a parametric term has no starting point (screening)";
+    return true;
+  }
   const std::size_t n_params = linear.size() + u0.size();
   if (taus < n_params + 1) {
     std::ostringstream os;
@@ -450,7 +458,9 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
         any = any || (pilot[linear[j]] > 0.0 && linear[j] != static_cast<int>(Coefficient::kR));
       }
       if (any) {
-        const Eigen::MatrixXd omega = AvarCovarianceModel(curve, options.terms).Covariance(pilot);
+        const Eigen::MatrixXd omega =
+            options.covariance ? options.covariance->Covariance(pilot)
+                               : AvarCovarianceModel(curve, options.terms).Covariance(pilot);
         const Eigen::VectorXd d = omega.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
         r = d.asDiagonal() * omega * d.asDiagonal();
         // Standard deviations: the pilot's expectation times the exact relative standard
