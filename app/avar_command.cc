@@ -126,6 +126,7 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
     return Usage("--confidence must be in (0, 1), got " + ShortestDecimal(o.confidence));
   }
   a.confidence = o.confidence;
+  a.identification_max_averages = o.identification_max_averages;
   if (o.stream) {
     if (a.statistic != Statistic::kAllanOverlapping &&
         a.statistic != Statistic::kAllanNonOverlapping) {

@@ -45,6 +45,8 @@ struct AvarCommandOptions {
   bool drop_nonfinite = false;
   bool stream = false;
   std::int64_t stream_exact_max_m = std::int64_t{1} << 14;
+  // Not a command-line option: set by `fit` (estimators::AvarOptions::identification_max_averages).
+  std::int64_t identification_max_averages = 0;
 };
 
 Subcommand AddAvarCommand(CLI::App* parent);

@@ -15,6 +15,19 @@ void AppendNote(const std::string& note, std::string* message) {
   *message += note;
 }
 
+// Identification at one tau, on the middle options.identification_max_averages m-averages
+// when the record has more (avar_summary.h).
+NoiseId IdentifyAt(const AvarOptions& options, std::span<const double> rate,
+                   std::span<const double> phase, std::int64_t m) {
+  const std::int64_t cap = options.identification_max_averages;
+  const std::int64_t count = m > 0 ? static_cast<std::int64_t>(rate.size()) / m : 0;
+  if (cap <= 0 || count <= cap) return IdentifyNoise(rate, phase, m);
+  const auto first = static_cast<std::size_t>((count - cap) / 2 * m);
+  const auto length = static_cast<std::size_t>(cap * m);
+  return IdentifyNoise(rate.subspan(first, length),
+                       phase.size() == rate.size() + 1 ? phase.subspan(first, length + 1) : phase, m);
+}
+
 // Noise exponent of every point: fixed, or identified from the record. Where identification
 // cannot run (fewer than three m-averages, e.g. TOTVAR beyond n/3), the nearest shorter tau's
 // exponent stands in: noise type changes slowly with tau, and white FM (0) is the neutral start.
@@ -27,7 +40,7 @@ int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rat
       point.alpha = options.alpha;
       continue;
     }
-    const NoiseId id = IdentifyNoise(rate, phase, point.m);
+    const NoiseId id = IdentifyAt(options, rate, phase, point.m);
     point.alpha_identified = id.identified;
     if (id.identified) {
       previous = id.alpha;

@@ -47,6 +47,11 @@ bool AvarOptions::IsValid(std::string* why) const {
     *why = "min_terms must be >= 1, got " + std::to_string(min_terms);
     return false;
   }
+  if (identification_max_averages != 0 && identification_max_averages < 30) {
+    *why = "identification_max_averages must be 0 (all) or >= 30, got " +
+           std::to_string(identification_max_averages);
+    return false;
+  }
   if (alpha_fixed && (alpha < -2 || alpha > 2)) {
     *why = "fixed noise exponent alpha must be in [-2, 2], got " + std::to_string(alpha);
     return false;

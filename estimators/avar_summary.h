@@ -32,6 +32,13 @@ struct AvarOptions {
   // Noise exponent alpha for the EDF: identified per tau when unset (alpha_fixed = false).
   bool alpha_fixed = false;
   int alpha = 0;  // S_y(f) ~ f^alpha, in {-2, -1, 0, 1, 2} (rate: white = 0, flicker = -1, ...)
+  // Cost bound of the identification, for curves whose EDFs only need the noise type roughly
+  // (`allanlab fit`: its GLS weights come from the covariance model, the EDFs only seed the
+  // pilot fit). 0: every m-average of the record. Otherwise, at taus with more averages than
+  // this, alpha is identified from the middle this-many of them, a contiguous stretch (so the
+  // lag-1 ACF still pairs neighbouring averages); the ACF's standard error is then about
+  // 1/sqrt(count), e.g. 0.006 at 32768, far inside the alpha bands. At least 30 when set.
+  std::int64_t identification_max_averages = 0;
 
   bool IsValid(std::string* why) const;
 };
