@@ -72,9 +72,10 @@ double ExcessKurtosis(const std::optional<EffectInstance>& e, double tau0, doubl
       return -2.4 * q2 * q2 / v2;
     }
     case Effect::kAngleQuantization: {
-      // Angle error e_k uniform; rate differences carry (e_{k+1} - 2 e_k + e_{k-1}) / tau0^2,
-      // kappa4 = (1 + 16 + 1) (-1.2) (q^2/12)^2 / tau0^4.
-      const double q2 = std::pow(e->params.at("lsb_rad") / (tau0 * tau0), 2) / 12.0;
+      // Angle error e_k uniform; the rate carries (e_k - e_{k-1}) / tau0, its differences
+      // (e_{k+1} - 2 e_k + e_{k-1}) / tau0, so kappa4 = (1 + 16 + 1) (-1.2) (q^2/12)^2 / tau0^4
+      // (q2 below is the rate-scale variance q^2 / (12 tau0^2)).
+      const double q2 = std::pow(e->params.at("lsb_rad") / tau0, 2) / 12.0;
       return -1.2 * 18.0 * q2 * q2 / v2;
     }
     default:

@@ -2,14 +2,17 @@
 // Starting values of each candidate effect's parameters, read from the record (data-domain
 // estimates: a spike count, a change point, a periodogram peak, a value grid) or from where the
 // Allan curve departs from the baseline fit (a bump -> Gauss-Markov / telegraph time constant,
-// the short-tau inflection -> bandwidth). They are the refit's starting point, not a fit.
+// a band-limited GLS fit -> bandwidth). They are the refit's starting point, not a fit.
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "estimators/fit/avar_curve.h"
+#include "estimators/fit/parametric_term.h"
 #include "experiments/diagnosis/effect.h"
+#include "sim/sensor_model.h"
 
 namespace allanlab::experiments {
 
@@ -17,7 +20,14 @@ struct EstimateInputs {
   const estimators::AvarCurve* curve = nullptr;   // the record's OAVAR curve (required)
   std::span<const double> baseline_avar;          // the baseline model's E[OAVAR] on the curve
   std::span<const double> rate_rad_per_s;         // the record; empty in curve mode
+  const sim::SensorModel* baseline_model = nullptr;  // the fitted linear terms (bandwidth screen)
 };
+
+// The fit library's band-limit term (point-sampled, L = 8: the chain effect.h AddEffect builds)
+// with its cutoff kept at or above 1/100 of the output rate, where the term's own starting grid
+// begins: below it the filter chain runs to ~5e4 L samples per evaluation and a fit that wanders
+// there on a curve without a band-limit takes minutes (a 2e4-sample record: 490 s CPU).
+std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(double order);
 
 // nullopt with *why when the effect has no starting value (no bump, no spike, no grid, curve
 // mode for a data-domain effect).
