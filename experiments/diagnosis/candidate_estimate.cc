@@ -210,41 +210,72 @@ std::optional<double> ValueGrid(std::span<const double> y, std::string* why) {
   return lsb;
 }
 
+// Least squares of block means on [1, E_b(tw)], E_b the exact mean of e^{-k tau0 / tw} over block
+// b (the generator's sample times, sim/exponential_drift.h): returns the residual sum of squares
+// and the amplitude.
+double DriftFit(const std::vector<double>& means, std::size_t block, double tau0, double tw, double* amplitude) {
+  const std::size_t blocks = means.size();
+  const double rho = std::exp(-tau0 / tw);
+  const double within = -std::expm1(-tau0 * static_cast<double>(block) / tw) /
+                        (static_cast<double>(block) * -std::expm1(-tau0 / tw));
+  double s11 = 0, s1e = 0, see = 0, s1y = 0, sey = 0;
+  std::vector<double> e(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    e[b] = std::pow(rho, static_cast<double>(b * block)) * within;
+    s11 += 1; s1e += e[b]; see += e[b] * e[b]; s1y += means[b]; sey += e[b] * means[b];
+  }
+  const double det = s11 * see - s1e * s1e;
+  if (!(det > 0)) return std::numeric_limits<double>::infinity();
+  const double c0 = (see * s1y - s1e * sey) / det;
+  *amplitude = (s11 * sey - s1e * s1y) / det;
+  double rss = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const double r = means[b] - c0 - *amplitude * e[b];
+    rss += r * r;
+  }
+  return rss;
+}
+
 std::optional<EffectInstance> Drift(std::span<const double> y, double tau0, std::string* why) {
-  constexpr std::size_t kBlocks = 256;
+  constexpr std::size_t kBlocks = 1024;
   if (y.size() < kBlocks * 4) {
     *why = "record too short";
     return std::nullopt;
   }
   const auto means = BlockMeans(y, kBlocks);
-  const double block_s = static_cast<double>(y.size() / kBlocks) * tau0;
-  const double length_s = block_s * kBlocks;
-  double best_rss = std::numeric_limits<double>::infinity(), best_a = 0.0, best_tw = 0.0;
-  // Least squares of the block means on [1, e^{-t/tw}] for tw on a log grid (T/100 .. T).
+  const std::size_t block = y.size() / kBlocks;
+  const double length_s = static_cast<double>(block * kBlocks) * tau0;
+  // A log grid of tw (T/100 .. T), then golden-section search in ln tw between the best point's
+  // neighbours: a warm-up drift is often large against the noise, so a grid-step error in tw
+  // (20 %) leaves a gap of its own in every view.
+  auto tw_at = [&](double g) { return length_s / 100.0 * std::pow(100.0, g / 24.0); };
+  double best_rss = std::numeric_limits<double>::infinity(), best_a = 0.0, best_g = 0.0, a = 0.0;
   for (int g = 0; g <= 24; ++g) {
-    const double tw = length_s / 100.0 * std::pow(100.0, g / 24.0);
-    double s11 = 0, s1e = 0, see = 0, s1y = 0, sey = 0;
-    for (std::size_t b = 0; b < kBlocks; ++b) {
-      const double e = std::exp(-(b + 0.5) * block_s / tw);
-      s11 += 1; s1e += e; see += e * e; s1y += means[b]; sey += e * means[b];
-    }
-    const double det = s11 * see - s1e * s1e;
-    if (!(det > 0)) continue;
-    const double c0 = (see * s1y - s1e * sey) / det;
-    const double a = (s11 * sey - s1e * s1y) / det;
-    double rss = 0;
-    for (std::size_t b = 0; b < kBlocks; ++b) {
-      const double r = means[b] - c0 - a * std::exp(-(b + 0.5) * block_s / tw);
-      rss += r * r;
-    }
-    if (rss < best_rss) { best_rss = rss; best_a = a; best_tw = tw; }
+    const double rss = DriftFit(means, block, tau0, tw_at(g), &a);
+    if (rss < best_rss) { best_rss = rss; best_a = a; best_g = g; }
   }
   if (best_a == 0.0) {
     *why = "no exponential trend";
     return std::nullopt;
   }
+  double lo = std::max(0.0, best_g - 1.0), hi = std::min(24.0, best_g + 1.0);
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int it = 0; it < 40; ++it) {
+    const double g1 = hi - phi * (hi - lo), g2 = lo + phi * (hi - lo);
+    double a1 = 0.0, a2 = 0.0;
+    if (DriftFit(means, block, tau0, tw_at(g1), &a1) < DriftFit(means, block, tau0, tw_at(g2), &a2)) {
+      hi = g2;
+    } else {
+      lo = g1;
+    }
+  }
+  const double g = 0.5 * (lo + hi);
+  if (DriftFit(means, block, tau0, tw_at(g), &a) < best_rss) {
+    best_a = a;
+    best_g = g;
+  }
   return EffectInstance{Effect::kExponentialDrift,
-                        {{"amplitude_rad_per_s", best_a}, {"time_constant_s", best_tw}}};
+                        {{"amplitude_rad_per_s", best_a}, {"time_constant_s", tw_at(best_g)}}};
 }
 
 std::optional<EffectInstance> Step(std::span<const double> y, double tau0, std::string* why) {
@@ -254,23 +285,42 @@ std::optional<EffectInstance> Step(std::span<const double> y, double tau0, std::
     return std::nullopt;
   }
   const auto means = BlockMeans(y, kBlocks);
-  const double block_s = static_cast<double>(y.size() / kBlocks) * tau0;
+  const std::size_t block = y.size() / kBlocks;
   double total = 0.0;
   for (double m : means) total += m;
-  double left = 0.0, best = 0.0, size = 0.0;
+  double left = 0.0, best = 0.0;
   std::size_t split = 0;
   for (std::size_t k = 1; k < kBlocks; ++k) {
     left += means[k - 1];
     const double m1 = left / k, m2 = (total - left) / (kBlocks - k);
     const double stat = std::abs(m2 - m1) * std::sqrt(static_cast<double>(k) * (kBlocks - k) / kBlocks);
-    if (stat > best) { best = stat; size = m2 - m1; split = k; }
+    if (stat > best) { best = stat; split = k; }
   }
   if (split == 0) {
     *why = "no change point";
     return std::nullopt;
   }
+  // The same statistic at sample resolution within a block either side of the best block edge
+  // (a step mid-block would otherwise leave up to half a block of misplaced offset, and a size
+  // diluted by it), over the blocks' whole span.
+  const std::size_t n = block * kBlocks;
+  double sum_all = 0.0;
+  for (std::size_t k = 0; k < n; ++k) sum_all += y[k];
+  const std::size_t k_lo = (split - 1) * block, k_hi = std::min(n - 1, (split + 1) * block);
+  double prefix = 0.0;
+  for (std::size_t k = 0; k < k_lo; ++k) prefix += y[k];
+  double best_stat = 0.0, size = 0.0;
+  std::size_t best_k = split * block;
+  for (std::size_t k = k_lo; k <= k_hi; ++k) {
+    if (k > 0) {
+      const double m1 = prefix / static_cast<double>(k), m2 = (sum_all - prefix) / static_cast<double>(n - k);
+      const double stat = std::abs(m2 - m1) * std::sqrt(static_cast<double>(k) * static_cast<double>(n - k) / n);
+      if (stat > best_stat) { best_stat = stat; best_k = k; size = m2 - m1; }
+    }
+    prefix += y[k];
+  }
   return EffectInstance{Effect::kBiasStep,
-                        {{"size_rad_per_s", size}, {"time_s", static_cast<double>(split) * block_s}}};
+                        {{"size_rad_per_s", size}, {"time_s", static_cast<double>(best_k) * tau0}}};
 }
 
 std::optional<EffectInstance> Spikes(std::span<const double> y, double tau0, std::string* why) {

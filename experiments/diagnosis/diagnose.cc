@@ -538,6 +538,14 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
       if (!separated) s->also_consistent.push_back({std::string(EffectId(eq.other)), eq.separating_view});
     }
   }
+  // A first-order low-pass of white noise is a Gauss-Markov process with Tc = 1/(2 pi fc): a
+  // Gauss-Markov verdict whose refit leaves no white rate noise (N dropped or within 2 sigma of
+  // zero) is equally a band-limit, and no view of second moments or kurtosis (both Gaussian)
+  // separates them.
+  if (chosen.effects.size() == 1 && chosen.effects[0].effect == Effect::kGaussMarkov) {
+    const auto& n = chosen.fit.at(Coefficient::kN);
+    if (!n.fitted || n.value_si <= 2.0 * n.sigma_si) s->also_consistent.push_back({"bandwidth", ""});
+  }
   for (std::size_t i = 0; i < s->candidates.size(); ++i) {
     const CandidateResult& c = s->candidates[i];
     if (static_cast<int>(i) == best || !acceptable(c)) continue;
