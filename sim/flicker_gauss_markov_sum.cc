@@ -46,11 +46,11 @@ void FlickerGaussMarkovSum::AddTo(Engine& engine, double tau0_s, std::span<doubl
   for (double tc : CorrelationTimes()) AddAr1(engine, std::exp(-tau0_s / tc), std_dev, rate);
 }
 
-void FlickerGaussMarkovSum::FillAutocovariance(double tau0_s, std::span<double> r) const {
+void FlickerGaussMarkovSum::FillAutocovariance(double tau0_s, std::span<double> r, std::int64_t first_lag) const {
   std::fill(r.begin(), r.end(), 0.0);
   std::vector<double> one(r.size());
   for (double tc : CorrelationTimes()) {
-    FillAr1Autocovariance(std::exp(-tau0_s / tc), ProcessVariance(), one);
+    FillAr1Autocovariance(std::exp(-tau0_s / tc), ProcessVariance(), one, first_lag);
     for (std::size_t j = 0; j < r.size(); ++j) r[j] += one[j];
   }
 }

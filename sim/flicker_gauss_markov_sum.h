@@ -30,7 +30,8 @@ struct FlickerGaussMarkovSum {
   // Per-process stationary variance q = B^2 ln(r) / pi.
   double ProcessVariance() const;
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
-  void FillAutocovariance(double tau0_s, std::span<double> r) const;
+  // Lags first_lag .. first_lag + r.size() - 1.
+  void FillAutocovariance(double tau0_s, std::span<double> r, std::int64_t first_lag = 0) const;
   // Exact: the sum of the AR(1) Allan variances.
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // Sum of the continuous OU Allan variances.

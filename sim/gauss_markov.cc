@@ -28,10 +28,10 @@ double Ar1Avar(std::int64_t m, double phi, double variance) {
   return static_cast<double>(variance * sum / (2.0L * m * m));
 }
 
-void FillAr1Autocovariance(double phi, double variance, std::span<double> r) {
+void FillAr1Autocovariance(double phi, double variance, std::span<double> r, std::int64_t first_lag) {
   const double log_phi = std::log(phi);
   for (std::size_t j = 0; j < r.size(); ++j) {
-    r[j] = variance * std::expm1(static_cast<double>(j) * log_phi);
+    r[j] = variance * std::expm1(static_cast<double>(first_lag + static_cast<std::int64_t>(j)) * log_phi);
   }
 }
 
@@ -55,9 +55,9 @@ void GaussMarkov::AddTo(Engine& engine, double tau0_s, std::span<double> rate) c
   AddAr1(engine, std::exp(-tau0_s / correlation_time_s), sigma_rad_per_s, rate);
 }
 
-void GaussMarkov::FillAutocovariance(double tau0_s, std::span<double> r) const {
+void GaussMarkov::FillAutocovariance(double tau0_s, std::span<double> r, std::int64_t first_lag) const {
   FillAr1Autocovariance(std::exp(-tau0_s / correlation_time_s), sigma_rad_per_s * sigma_rad_per_s,
-                        r);
+                        r, first_lag);
 }
 
 double GaussMarkov::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape&) const {

@@ -24,9 +24,9 @@ void RandomTelegraph::AddTo(Engine& engine, double tau0_s, std::span<double> rat
   }
 }
 
-void RandomTelegraph::FillAutocovariance(double tau0_s, std::span<double> r) const {
+void RandomTelegraph::FillAutocovariance(double tau0_s, std::span<double> r, std::int64_t first_lag) const {
   FillAr1Autocovariance(std::exp(-2.0 * tau0_s / mean_dwell_s),
-                        amplitude_rad_per_s * amplitude_rad_per_s, r);
+                        amplitude_rad_per_s * amplitude_rad_per_s, r, first_lag);
 }
 
 double RandomTelegraph::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape&) const {

@@ -24,7 +24,8 @@ struct RandomTelegraph {
   // Two-state Markov chain at the output rate, flip probability p = (1 - e^{-2 tau0/T})/2 per
   // sample (so the sampled autocovariance is exactly a^2 e^{-2|t|/T}), random initial state.
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
-  void FillAutocovariance(double tau0_s, std::span<double> r) const;
+  // Lags first_lag .. first_lag + r.size() - 1.
+  void FillAutocovariance(double tau0_s, std::span<double> r, std::int64_t first_lag = 0) const;
   // Exact: AR(1) form with phi = e^{-2 tau0/T}, variance a^2.
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // Continuous limit: OU Allan variance with sigma = a, Tc = T/2.
