@@ -92,7 +92,8 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
         const double mean = envelope->mean[v][i];
         r.observed.push_back(log_scale ? std::exp(obs) : obs);
         r.expected.push_back(log_scale ? std::exp(mean) : mean);
-        r.z.push_back(ZFromEnvelope(obs, mean, envelope->sd[v][i], envelope->trials));
+        r.z.push_back(view == View::kHalves ? ZFromLogRatioEnvelope(obs, mean, envelope->sd[v][i], envelope->trials)
+                                            : ZFromEnvelope(obs, mean, envelope->sd[v][i], envelope->trials));
       }
     }
     out.push_back(std::move(r));

@@ -5,6 +5,8 @@
 #include <limits>
 
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/special_functions/trigamma.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
@@ -36,6 +38,27 @@ double ZFromEnvelope(double observed, double mean, double sd, int trials) {
   const double t = (observed - mean) / (sd * std::sqrt(1.0 + 1.0 / trials));
   const boost::math::students_t dist(trials - 1);
   return ZFromTails(boost::math::cdf(dist, t), boost::math::cdf(boost::math::complement(dist, t)));
+}
+
+double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials) {
+  if (!std::isfinite(observed) || !std::isfinite(mean) || !(sd > 0.0) || trials < 3) return kNaN;
+  const double s = sd * std::sqrt(1.0 + 1.0 / trials);
+  // Var ln F(nu, nu) = 2 psi'(nu / 2), decreasing in nu: bisection in ln nu.
+  double lo = std::log(0.05), hi = std::log(1e7);
+  if (2.0 * boost::math::trigamma(0.5 * std::exp(hi)) >= s * s) return ZFromEnvelope(observed, mean, sd, trials);
+  if (2.0 * boost::math::trigamma(0.5 * std::exp(lo)) <= s * s) lo = hi = std::log(0.05);
+  for (int it = 0; it < 60 && hi - lo > 1e-6; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (2.0 * boost::math::trigamma(0.5 * std::exp(mid)) > s * s) lo = mid; else hi = mid;
+  }
+  const double nu = std::exp(0.5 * (lo + hi));
+  const boost::math::fisher_f f(nu, nu);
+  const double x = std::exp(observed - mean);
+  const double z_f = ZFromTails(boost::math::cdf(f, x), boost::math::cdf(boost::math::complement(f, x)));
+  // The Student reading carries the uncertainty of an sd from few trials, the F reading the
+  // statistic's own tails: the smaller |z| of the two honours both.
+  const double z_t = ZFromEnvelope(observed, mean, sd, trials);
+  return std::abs(z_f) < std::abs(z_t) ? z_f : z_t;
 }
 
 double BonferroniThreshold(double alpha, int points) {

@@ -22,6 +22,13 @@ namespace allanlab::experiments {
 
 double ZFromChiSquare(double observed, double expected, double edf);
 double ZFromEnvelope(double observed, double mean, double sd, int trials);
+// The halves view, ln(OAVAR_first / OAVAR_second): each half's OAVAR is ~ E chi2_nu / nu, so the
+// log ratio is ln F(nu, nu) about its centre, whose tails are far heavier than a normal's at the
+// few EDF of the long taus (nu = 2: logistic, 9 x the normal tail at the Bonferroni level of a
+// record). nu is the one whose ln F variance 2 psi'(nu/2) matches the envelope's sd (inflated by
+// sqrt(1 + 1/trials) for the prediction of one more draw), and z comes from the F tails, or from
+// ZFromEnvelope (Student: the sd's own uncertainty at few trials) when that is smaller in |z|.
+double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials);
 // Phi^{-1}(1 - alpha / (2 points)).
 double BonferroniThreshold(double alpha, int points);
 
