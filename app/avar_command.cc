@@ -238,6 +238,9 @@ void WarnAboutRecord(const RecordInfo& info, const std::string& command = kComma
                      "; the estimator assumes uniform sampling",
                  command);
   }
+  if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+    PrintWarning(info.path + ": " + *stuck, command);
+  }
 }
 
 std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& command_line) {

@@ -5,22 +5,14 @@
 namespace allanlab::app {
 
 ConstantStretch LongestConstantStretch(std::span<const double> samples) {
-  ConstantStretch best;
-  std::int64_t start = 0;
-  const auto n = static_cast<std::int64_t>(samples.size());
-  for (std::int64_t k = 1; k <= n; ++k) {
-    if (k < n && samples[k] == samples[start]) continue;
-    if (k - start > best.length) best = {start, k - start, samples[start]};
-    start = k;
-  }
-  return best;
+  ConstantStretchTracker tracker;
+  for (double v : samples) tracker.Add(v);
+  return tracker.longest();
 }
 
-std::optional<std::string> DescribeConstantStretch(std::span<const double> samples, double sample_rate_hz) {
-  const ConstantStretch s = LongestConstantStretch(samples);
-  if (s.length < kMinConstantStretch || 1000 * s.length < static_cast<std::int64_t>(samples.size())) {
-    return std::nullopt;
-  }
+std::optional<std::string> DescribeConstantStretch(const ConstantStretch& s, std::int64_t samples,
+                                                   double sample_rate_hz) {
+  if (s.length < kMinConstantStretch || 1000 * s.length < samples) return std::nullopt;
   return std::to_string(s.length) + " identical samples in a row (" +
          ShortestDecimal(static_cast<double>(s.length) / sample_rate_hz) + " s from sample " +
          std::to_string(s.first) + ", value " + ShortestDecimal(s.value) +

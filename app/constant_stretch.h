@@ -2,7 +2,7 @@
 // The longest run of identical consecutive samples of a record: a stuck or saturated sensor, a
 // logger repeating its last value, or a quantizer much coarser than the noise. Allan-type
 // statistics see zero variance there and the diagnosis would blame some effect for it silently,
-// so the commands name it instead.
+// so the record reader tracks it (app/record_reader.h) and the commands name it.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -16,11 +16,31 @@ struct ConstantStretch {
   double value = 0.0;       // in the record's own units
 };
 
+// Streaming: one comparison per sample.
+class ConstantStretchTracker {
+ public:
+  void Add(double value) {
+    if (count_ > 0 && value == current_.value) {
+      ++current_.length;
+    } else {
+      current_ = {count_, 1, value};
+    }
+    ++count_;
+    if (current_.length > longest_.length) longest_ = current_;
+  }
+  const ConstantStretch& longest() const { return longest_; }
+
+ private:
+  std::int64_t count_ = 0;
+  ConstantStretch current_, longest_;
+};
+
 ConstantStretch LongestConstantStretch(std::span<const double> samples);
 
-// A one-line warning when the longest stretch is at least kMinConstantStretch samples and at
-// least 0.1 % of the record; nullopt otherwise. sample_rate_hz > 0 converts it to seconds.
+// A one-line description when the stretch is at least kMinConstantStretch samples and at least
+// 0.1 % of the record's `samples`; nullopt otherwise. sample_rate_hz > 0 converts it to seconds.
 inline constexpr std::int64_t kMinConstantStretch = 100;
-std::optional<std::string> DescribeConstantStretch(std::span<const double> samples, double sample_rate_hz);
+std::optional<std::string> DescribeConstantStretch(const ConstantStretch& stretch, std::int64_t samples,
+                                                   double sample_rate_hz);
 
 }  // namespace allanlab::app

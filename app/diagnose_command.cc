@@ -378,10 +378,11 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     if (const int code = ReadRateFromFile(o.record, kCommand, &rate, &info, &why); code != kExitOk) {
       return Failure{code, why};
     }
-    const std::optional<std::string> stuck = DescribeConstantStretch(rate, info.sample_rate_hz);
-    if (stuck) std::cerr << "allanlab " << kCommand << ": warning: " << o.record.path << ": " << *stuck << std::endl;
     if (!DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s)) return RuntimeFailure(o.record.path + ": " + s.message);
-    if (stuck) s.notes.push_back("record: " + *stuck);
+    // Warned about by the reader too (avar_command.cc); the report keeps it beside the verdict.
+    if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+      s.notes.push_back("record: " + *stuck);
+    }
     p.Add("input", info.path);
     p.Add("column", info.column);
     p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");

@@ -103,6 +103,8 @@ class Reader {
       return;
     }
     ++info_->samples;
+    stretch_.Add(value);
+    info_->longest_constant_stretch = stretch_.longest();
     if (nonfinite_.count() == 0) sink_(value);
   }
 
@@ -178,6 +180,8 @@ class Reader {
           for (double v : values) finite &= std::isfinite(v);
           if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
             info_->samples += static_cast<std::int64_t>(values.size());
+            for (double v : values) stretch_.Add(v);
+            info_->longest_constant_stretch = stretch_.longest();
             (*block_sink_)(values);
             return true;
           }
@@ -283,6 +287,7 @@ class Reader {
   RecordInfo* info_;
   NonFiniteLog nonfinite_;
   TimeSteps steps_;
+  ConstantStretchTracker stretch_;
 };
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "app/byte_source.h"
+#include "app/constant_stretch.h"
 #include "app/time_steps.h"
 
 namespace allanlab::app {
@@ -65,6 +66,7 @@ struct RecordInfo {
   double sample_rate_hz = 0.0;
   std::string rate_source;  // "--rate", "time column t_s" or "--rate (time column t_s agrees)"
   TimeSteps::Summary time;  // the time column's steps (samples == 0 without one)
+  ConstantStretch longest_constant_stretch;  // of the kept values, in file units
 };
 
 struct RecordError {

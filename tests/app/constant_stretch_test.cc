@@ -1,5 +1,5 @@
 // A stuck stretch of a record is found where it is, and named only when it is long enough to
-// matter (>= 100 samples and >= 0.1 % of the record).
+// matter (>= 100 samples and >= 0.1 % of the record). The record reader feeds the same tracker.
 #include "app/constant_stretch.h"
 
 #include <vector>
@@ -33,12 +33,13 @@ TEST(ConstantStretch, FindsTheLongestRunWherever) {
 
 TEST(ConstantStretch, NamedOnlyWhenLongEnough) {
   std::vector<double> v = Ramp(200000);
+  auto describe = [&] { return DescribeConstantStretch(LongestConstantStretch(v), 200000, 100.0); };
   for (int k = 1000; k < 1099; ++k) v[k] = 0.0;  // 99 samples: below the floor
-  EXPECT_FALSE(DescribeConstantStretch(v, 100.0));
+  EXPECT_FALSE(describe());
   for (int k = 1000; k < 1150; ++k) v[k] = 0.0;  // 150 samples but < 0.1 % of 200000
-  EXPECT_FALSE(DescribeConstantStretch(v, 100.0));
+  EXPECT_FALSE(describe());
   for (int k = 1000; k < 1400; ++k) v[k] = 0.0;  // 400 samples = 0.2 %: named, in seconds
-  const auto text = DescribeConstantStretch(v, 100.0);
+  const auto text = describe();
   ASSERT_TRUE(text);
   EXPECT_NE(text->find("400 identical samples"), std::string::npos) << *text;
   EXPECT_NE(text->find("4 s from sample 1000"), std::string::npos) << *text;
