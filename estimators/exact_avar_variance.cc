@@ -1,22 +1,33 @@
 #include "estimators/exact_avar_variance.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <vector>
 
 namespace allanlab::estimators {
+
+std::vector<long double> PhaseVariogram(std::span<const double> autocovariance, std::int64_t lags) {
+  std::vector<long double> variogram(static_cast<std::size_t>(std::max<std::int64_t>(lags, 1)), 0.0L);
+  long double increment = autocovariance[0];  // V(k+1) - V(k) = R(0) + 2 sum_{j=1}^{k} R(j)
+  for (std::int64_t k = 0; k + 1 < lags; ++k) {
+    if (k > 0) increment += 2.0L * autocovariance[k];
+    variogram[k + 1] = variogram[k] + increment;
+  }
+  return variogram;
+}
 
 AvarMoments ExactAvarMoments(std::span<const double> autocovariance, std::int64_t m,
                              const sim::RecordShape& shape) {
   const sim::AllanStarts starts = sim::AllanDifferenceStarts(m, shape);
   if (starts.count == 0) return {};
   const std::int64_t max_lag = (starts.count - 1) * starts.stride + 2 * m;
-  // Long double: for random walk V grows like k^3 and the fourth difference below cancels.
-  std::vector<long double> variogram(static_cast<std::size_t>(max_lag + 1), 0.0L);
-  long double increment = autocovariance[0];  // V(k+1) - V(k) = R(0) + 2 sum_{j=1}^{k} R(j)
-  for (std::int64_t k = 0; k < max_lag; ++k) {
-    if (k > 0) increment += 2.0L * autocovariance[k];
-    variogram[k + 1] = variogram[k] + increment;
-  }
+  return ExactAvarMomentsFromVariogram(PhaseVariogram(autocovariance, max_lag + 1), m, shape);
+}
+
+AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
+                                          const sim::RecordShape& shape) {
+  const sim::AllanStarts starts = sim::AllanDifferenceStarts(m, shape);
+  if (starts.count == 0) return {};
   auto v = [&](std::int64_t k) { return variogram[static_cast<std::size_t>(std::llabs(k))]; };
   const long double scale = -1.0L / (2.0L * m * m);
   auto cov_d = [&](std::int64_t k) {  // Cov(D_s, D_{s+k}), D the Allan difference

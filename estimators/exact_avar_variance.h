@@ -5,6 +5,7 @@
 // variogram V(k) = E[(Y_{t+k} - Y_t)^2] = k R(0) + 2 sum_{j=1}^{k-1} (k - j) R(j): O(N) per m.
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "sim/avar_theory.h"
 
@@ -20,5 +21,15 @@ struct AvarMoments {
 // Precondition: 1 <= m <= N/2.
 AvarMoments ExactAvarMoments(std::span<const double> autocovariance, std::int64_t m,
                              const sim::RecordShape& shape);
+
+// The phase variogram V(0..lags-1) from `autocovariance` (at least lags - 1 values), in long
+// double (for random walk V grows like k^3 and the fourth differences of it cancel).
+std::vector<long double> PhaseVariogram(std::span<const double> autocovariance, std::int64_t lags);
+
+// ExactAvarMoments from a variogram shared by several m (the same bits: V does not depend on m, so
+// one of the longest length serves every m instead of an O(N) rebuild per m).
+// Precondition: 1 <= m <= N/2 and variogram.size() > (count - 1) stride + 2m (N + 1 suffices).
+AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
+                                          const sim::RecordShape& shape);
 
 }  // namespace allanlab::estimators

@@ -18,9 +18,11 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
   if (max_m == 0) return moments;
   // One autocovariance serves every m: its length is what the longest lag of the largest m needs.
   const std::vector<double> r = model.GaussianAutocovariance(shape.num_samples + 2 * max_m);
+  // Every m's longest lag, (count - 1) stride + 2m, is at most N: one variogram serves them all.
+  const std::vector<long double> variogram = PhaseVariogram(r, shape.num_samples + 1);
   for (std::size_t i = 0; i < ms.size(); ++i) {
     if (sim::IsValidAveragingFactor(ms[i], shape, nullptr)) {
-      moments[i] = ExactAvarMoments(r, ms[i], shape);
+      moments[i] = ExactAvarMomentsFromVariogram(variogram, ms[i], shape);
     }
   }
   return moments;

@@ -9,6 +9,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/special_functions/digamma.hpp>
 
+#include "estimators/fit/additive_term_avar.h"
 #include "estimators/fit/avar_covariance.h"
 #include "estimators/fit/model_avar_residuals.h"
 #include "sim/band_limited_avar.h"
@@ -97,18 +98,38 @@ class ModelPieces {
       it = shapes_.emplace(key, s).first;
     }
     *shapes = it->second;
-    sim::SensorModel m = base;
-    for (std::size_t t = 0; t < extra_.size(); ++t) {
-      if (!extra_[t]->modifies_other_terms()) extra_[t]->ApplyTo(Params(u, t), &m);
-    }
     extra->setZero(taus);
-    if (!m.terms.empty()) {
-      const std::vector<double> e = ModelAvarOnCurve(m, curve_);
-      for (Eigen::Index k = 0; k < taus; ++k) (*extra)(k) = e[k];
+    if (!AdditiveExtra(u, key, base, extra)) {
+      sim::SensorModel m = base;
+      for (std::size_t t = 0; t < extra_.size(); ++t) {
+        if (!extra_[t]->modifies_other_terms()) extra_[t]->ApplyTo(Params(u, t), &m);
+      }
+      if (!m.terms.empty()) {
+        const std::vector<double> e = ModelAvarOnCurve(m, curve_);
+        for (Eigen::Index k = 0; k < taus; ++k) (*extra)(k) = e[k];
+      }
     }
   }
 
  private:
+  // The additive terms' parts summed in term order from zero (additive_term_avar.h: the same
+  // bits as one ModelAvarOnCurve of them all); false when a term is not a per-term part.
+  bool AdditiveExtra(const double* u, const std::vector<double>& band_key, const sim::SensorModel& base,
+                     Eigen::VectorXd* extra) {
+    const auto taus = static_cast<Eigen::Index>(curve_.size());
+    std::vector<std::vector<double>> parts;
+    for (std::size_t t = 0; t < extra_.size(); ++t) {
+      if (extra_[t]->modifies_other_terms()) continue;
+      const std::vector<double>* part = additive_.Part(t, *extra_[t], Params(u, t), base, band_key);
+      if (part == nullptr) return false;
+      parts.push_back(*part);
+    }
+    for (const std::vector<double>& part : parts) {
+      for (Eigen::Index k = 0; k < taus; ++k) (*extra)(k) += part[static_cast<std::size_t>(k)];
+    }
+    return true;
+  }
+
   const AvarCurve& curve_;
   std::vector<int> linear_;
   std::vector<double> scale_;
@@ -117,6 +138,7 @@ class ModelPieces {
   int nonlinear_ = 0;
   Eigen::MatrixXd unfiltered_;
   std::map<std::vector<double>, Eigen::MatrixXd> shapes_;
+  AdditiveTermAvar additive_{curve_};
 };
 
 bool Whiten(const Eigen::MatrixXd& omega, Eigen::MatrixXd* w) {

@@ -87,5 +87,24 @@ TEST(ExactEdf, MeanIsExpectedAvarAndInvalidFactorsAreZero) {
   EXPECT_NEAR(moments[1].mean, model.ExpectedAvar(4, shape), 1e-12 * moments[1].mean);
 }
 
+// ModelAvarMoments shares one phase variogram across m: every m's moments are the bits of the
+// per-m ExactAvarMoments (which builds its own), for both estimators and a long-memory term.
+TEST(ExactEdf, SharedVariogramGivesThePerMBits) {
+  for (const sim::NoiseTerm& term : {sim::NoiseTerm{sim::RandomWalkRate{0.01}}, sim::NoiseTerm{sim::WhiteRateNoise{0.3}}}) {
+    const sim::SensorModel model = SingleTermModel(term, 100.0);
+    for (AvarEstimatorKind kind : {AvarEstimatorKind::kOverlapping, AvarEstimatorKind::kNonOverlapping}) {
+      const sim::RecordShape shape{3001, kind};
+      const std::vector<std::int64_t> ms = {1, 2, 7, 100, 1000, 1500};
+      const std::vector<AvarMoments> shared = ModelAvarMoments(model, ms, shape);
+      const std::vector<double> r = model.GaussianAutocovariance(shape.num_samples + 2 * 1500);
+      for (std::size_t i = 0; i < ms.size(); ++i) {
+        const AvarMoments own = ExactAvarMoments(r, ms[i], shape);
+        EXPECT_EQ(shared[i].mean, own.mean) << sim::TermId(term) << " m=" << ms[i];
+        EXPECT_EQ(shared[i].variance, own.variance) << sim::TermId(term) << " m=" << ms[i];
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace allanlab::estimators
