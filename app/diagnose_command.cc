@@ -186,8 +186,12 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
     Json cj{{"effect", c.id()}, {"params", ParamsJson(c.effects)}};
     cj["gap_before"] = GapJson(s.before);
     cj["gap_after"] = GapJson(c.after);
-    cj["heldout_gap_before"] = s.before.has_heldout ? MetricsJson(s.before.heldout) : Json(nullptr);
+    cj["heldout_gap_before"] = c.after.has_heldout ? MetricsJson(c.heldout_before) : Json(nullptr);
     cj["heldout_gap_after"] = c.after.has_heldout ? MetricsJson(c.after.heldout) : Json(nullptr);
+    if (c.after.has_heldout) {
+      cj["heldout_scored_half"] = c.heldout_half == 0 ? "first" : "second";
+      cj["heldout_views"] = c.heldout_in_gap_views ? "gap_views" : "oavar";
+    }
     cj["score"] = c.score;
     cj["full_score"] = c.full_score;
     cj["monte_carlo_views"] = c.full_views;
@@ -247,9 +251,11 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
   if (markdown) os << "\n" << h << "candidates\n\n| effect | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes |\n|---|---|---|---|---|---|---|\n";
   else if (!s.candidates.empty()) os << "candidates (score = OAVAR chi2 improvement - 2k):\n";
   for (const CandidateResult& c : s.candidates) {
-    const std::string held = c.after.has_heldout && s.before.has_heldout
-                                 ? Format(s.before.heldout.chi2) + " -> " + Format(c.after.heldout.chi2)
-                                 : "-";
+    const std::string held = c.after.has_heldout ? Format(c.heldout_before.chi2) + " -> " +
+                                                       Format(c.after.heldout.chi2) + " (" +
+                                                       (c.heldout_half == 0 ? "first" : "second") + " half, " +
+                                                       (c.heldout_in_gap_views ? "views with a gap" : "OAVAR") + ")"
+                                                 : "-";
     if (markdown) {
       os << "| " << c.id() << " | " << Format(c.score) << " | " << Format(c.after.View(View::kOavar).chi2)
          << " | " << Format(c.after.All().chi2) << " | " << Format(c.after.All().max_abs_z) << " | " << held

@@ -262,6 +262,22 @@ int ParameterCount(const std::vector<EffectInstance>& effects) {
 
 bool ClosesGap(const ModelGap& gap, double threshold) { return gap.All().max_abs_z <= threshold; }
 
+// One half of the record, as a fit sees it and as a held-out score reads it.
+struct HalfRecord {
+  estimators::AvarCurve curve;
+  std::span<const double> rate;
+  estimators::FitSummary baseline;  // the asked terms fitted on this half alone
+  std::vector<double> edf;          // exact EDFs of `curve` under `baseline`
+  ViewLayout layout;
+  ViewValues observed;
+  bool have_views = false;
+};
+
+struct HeldoutBefore {
+  std::vector<ViewResiduals> residuals;
+  std::vector<View> gap_views;  // views with a point beyond the record's threshold
+};
+
 // Everything the candidates share.
 struct Context {
   const DiagnoseOptions* options = nullptr;
@@ -271,25 +287,32 @@ struct Context {
   ViewLayout layout;
   ViewValues observed;
   bool have_record = false;
-  // Held-out halves.
+  // Held-out halves: [0] the first, [1] the second.
   bool have_halves = false;
-  estimators::AvarCurve first, second;
-  std::span<const double> first_rate;
-  estimators::FitSummary first_baseline;
-  std::vector<double> first_edf;  // exact EDFs of `first` under first_baseline
+  HalfRecord halves[2];
   double half_length_s = 0.0;
+  // Each half against the other half's baseline (computed once, when a candidate needs it).
+  mutable std::optional<HeldoutBefore> heldout_before[2];
 };
+
+// A record's views against a model: OAVAR exact, the others from a Monte Carlo envelope when
+// `monte_carlo` (and trials >= 3).
+std::vector<ViewResiduals> RecordResiduals(const ViewLayout& layout, const ViewValues& observed,
+                                           const sim::SensorModel& model, bool monte_carlo, int trials,
+                                           std::uint64_t seed, std::string* note) {
+  const OavarTheory theory = ExactOavar(model, layout.oavar_m, layout.num_samples);
+  ViewEnvelope envelope;
+  const bool have_envelope = monte_carlo && trials >= 3 && SimulateEnvelope(model, layout, trials, seed, &envelope, note);
+  return Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr);
+}
 
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
                 std::uint64_t seed, std::string* note) {
   ModelGap gap;
-  const OavarTheory theory = ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
-  ViewEnvelope envelope;
-  const bool have_envelope = monte_carlo && ctx.have_record && ctx.options->trials >= 3 &&
-                             SimulateEnvelope(model, ctx.layout, ctx.options->trials, seed, &envelope, note);
   if (ctx.have_record) {
-    gap.views = Residuals(ctx.layout, ctx.observed, theory, have_envelope ? &envelope : nullptr);
+    gap.views = RecordResiduals(ctx.layout, ctx.observed, model, monte_carlo, ctx.options->trials, seed, note);
   } else {
+    const OavarTheory theory = ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
     ViewValues observed(kNumViews);
     for (double a : ctx.curve.avar) observed[0].push_back(std::log(a));
     gap.views = Residuals(ctx.layout, observed, theory, nullptr);
@@ -356,6 +379,99 @@ bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curv
   return true;
 }
 
+// One-off events: a model fitted on one half cannot predict where or whether they happen in the
+// other, so a held-out score locates them on the half it scores (their own 2 parameters) while
+// the noise terms come from the other half.
+bool IsOneOffEvent(Effect e) { return e == Effect::kBiasStep || e == Effect::kExponentialDrift; }
+
+// The half a candidate is scored on: the one that holds its one-off event (a warm-up drift acts
+// in the first half; a step in the half of its time), else the second (fit on the first).
+int ScoredHalf(const Context& ctx, const std::vector<EffectInstance>& effects) {
+  for (const EffectInstance& e : effects) {
+    if (e.effect == Effect::kExponentialDrift) return 0;
+    if (e.effect == Effect::kBiasStep) return e.params.at("time_s") < ctx.half_length_s ? 0 : 1;
+  }
+  return 1;
+}
+
+// The candidate's model for the held-out half `scored`: its stationary effects estimated, and the
+// terms refitted with them, on the other half; its one-off events estimated on `scored` (falling
+// back to the whole record's estimate moved to that half's clock).
+bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects, int scored,
+                  sim::SensorModel* model, std::string* why) {
+  const HalfRecord& fit_half = ctx.halves[1 - scored];
+  const HalfRecord& scored_half = ctx.halves[scored];
+  const double fs = 1.0 / ctx.curve.sample_period_s;
+  const sim::SensorModel probe = LinearModel(fit_half.baseline, fs);
+  std::vector<EffectInstance> stationary, events;
+  for (const EffectInstance& e : effects) {
+    const bool event = IsOneOffEvent(e.effect);
+    const HalfRecord& from = event ? scored_half : fit_half;
+    const auto base = probe.ExpectedAvar(from.curve.m, {from.curve.num_samples, from.curve.estimator});
+    const EstimateInputs in{&from.curve, base, from.rate, &probe};
+    std::string ignored;
+    auto est = EstimateEffect(e.effect, in, &ignored);
+    if (!est && event) est = ShiftEffect(e, scored == 1 ? ctx.half_length_s : 0.0);
+    if (!est && !event) est = e;
+    if (est) (event ? events : stationary).push_back(*est);
+  }
+  estimators::FitSummary fit = fit_half.baseline;
+  if (!stationary.empty()) {
+    sim::SensorModel ignored_model;
+    if (!BestRefit(*ctx.options, fit_half.curve, fit_half.edf, fit_half.baseline, &stationary, &fit, &ignored_model, why)) {
+      return false;
+    }
+  }
+  stationary.insert(stationary.end(), events.begin(), events.end());
+  return WithEffects(LinearModel(fit, fs), stationary, model, why);
+}
+
+// The views of `views` pooled.
+GapMetrics MetricsOf(const std::vector<ViewResiduals>& residuals, const std::vector<View>& views) {
+  std::vector<ViewResiduals> kept;
+  for (const ViewResiduals& r : residuals) {
+    if (std::find(views.begin(), views.end(), r.view) != views.end()) kept.push_back(r);
+  }
+  return Metrics(kept);
+}
+
+// The held-out half against the other half's baseline, every view, and the views in which it
+// departs from that baseline beyond `threshold` (computed once per half).
+const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold) {
+  if (!ctx.heldout_before[h]) {
+    const HalfRecord& scored = ctx.halves[h];
+    HeldoutBefore b;
+    std::string ignored;
+    b.residuals = RecordResiduals(scored.layout, scored.observed,
+                                  LinearModel(ctx.halves[1 - h].baseline, 1.0 / ctx.curve.sample_period_s), true,
+                                  ctx.options->trials, ctx.options->seed + 500 + h, &ignored);
+    for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
+      if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
+    }
+    ctx.heldout_before[h] = std::move(b);
+  }
+  return *ctx.heldout_before[h];
+}
+
+// The held-out half against the candidate's held-out model and against the other half's
+// baseline, in the views where that half departs from the baseline (`threshold`): the score
+// looks where the effect shows in the data it did not fit (spikes in the kurtosis, a step in
+// the halves or the long-tau OAVAR) rather than diluting it among views it leaves alone. When no
+// view of the half departs, the OAVAR score of TryCandidate stands.
+void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std::uint64_t seed) {
+  const int h = c->heldout_half;
+  const HalfRecord& scored = ctx.halves[h];
+  if (!c->after.has_heldout || !scored.have_views || ctx.options->trials < 3) return;
+  const HeldoutBefore& before = HeldoutBaseline(ctx, h, threshold);
+  if (before.gap_views.empty()) return;
+  std::string ignored;
+  c->heldout_before = MetricsOf(before.residuals, before.gap_views);
+  c->after.heldout = MetricsOf(RecordResiduals(scored.layout, scored.observed, c->heldout_model, true,
+                                               ctx.options->trials, seed, &ignored),
+                               before.gap_views);
+  c->heldout_in_gap_views = true;
+}
+
 std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisSummary& s,
                                             const std::vector<EffectInstance>& effects,
                                             std::string* why) {
@@ -365,31 +481,15 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
   c.after = Assess(ctx, c.model, false, 0, why);
   const int k = ParameterCount(effects);
   c.score = s.before.View(View::kOavar).chi2 - c.after.View(View::kOavar).chi2 - 2.0 * k;
-  c.heldout_before = s.before.heldout;
   if (ctx.have_halves) {
-    // Held-out: the effect estimated and the terms refitted on the first half alone, then
-    // the second half scored against that model (time-located effects shifted by T/2).
-    std::vector<EffectInstance> first_effects, shifted;
-    for (const EffectInstance& e : effects) {
-      const sim::SensorModel probe = LinearModel(ctx.first_baseline, 1.0 / ctx.curve.sample_period_s);
-      const auto base = probe.ExpectedAvar(ctx.first.m, {ctx.first.num_samples, ctx.first.estimator});
-      EstimateInputs in{&ctx.first, base, ctx.first_rate, &probe};
-      std::string ignored;
-      const auto est = EstimateEffect(e.effect, in, &ignored);
-      first_effects.push_back(est ? *est : e);
-    }
-    estimators::FitSummary first_fit;
-    sim::SensorModel first_model;
+    c.heldout_half = ScoredHalf(ctx, effects);
     std::string ignored;
-    if (BestRefit(*ctx.options, ctx.first, ctx.first_edf, ctx.first_baseline, &first_effects, &first_fit, &first_model, &ignored)) {
-      for (const EffectInstance& e : first_effects) {
-        if (auto sh = ShiftEffect(e, ctx.half_length_s)) shifted.push_back(*sh);
-      }
-      sim::SensorModel second_model;
-      if (WithEffects(LinearModel(first_fit, 1.0 / ctx.curve.sample_period_s), shifted, &second_model, &ignored)) {
-        c.after.heldout = CurveMetrics(second_model, ctx.second);
-        c.after.has_heldout = true;
-      }
+    if (HeldoutModel(ctx, effects, c.heldout_half, &c.heldout_model, &ignored)) {
+      const HalfRecord& fit = ctx.halves[1 - c.heldout_half];
+      const HalfRecord& scored = ctx.halves[c.heldout_half];
+      c.heldout_before = CurveMetrics(LinearModel(fit.baseline, 1.0 / ctx.curve.sample_period_s), scored.curve);
+      c.after.heldout = CurveMetrics(c.heldout_model, scored.curve);
+      c.after.has_heldout = true;
     }
   }
   return c;
@@ -432,6 +532,7 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
     full.heldout = c->after.heldout;
     full.has_heldout = c->after.has_heldout;
     c->after = std::move(full);
+    HeldoutViews(ctx, s->threshold, c, o.seed + 100000 + salt);
     c->full_views = true;
     c->full_score = all_before.chi2 - c->after.All().chi2 - 2.0 * ParameterCount(c->effects);
   };
@@ -453,8 +554,8 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
 
   auto acceptable = [&](const CandidateResult& c) {
     // Held-out: no worse than the AIC penalty (an effect outside the Allan view cannot improve it).
-    const bool heldout_ok = !c.after.has_heldout || !s->before.has_heldout ||
-                            c.after.heldout.chi2 < s->before.heldout.chi2 + 2.0 * ParameterCount(c.effects);
+    const bool heldout_ok = !c.after.has_heldout ||
+                            c.after.heldout.chi2 < c.heldout_before.chi2 + 2.0 * ParameterCount(c.effects);
     return (c.full_views ? c.full_score : c.score) > 0.0 && c.closes_gap && heldout_ok && (c.full_views || !ctx.have_record || o.trials < 3);
   };
   auto pick = [&]() {
@@ -681,15 +782,21 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     s.message = why;
     return false;
   }
-  // Held-out halves: a baseline fitted on the first half, scored on the second.
+  // Held-out halves: each half's own baseline, curve and views (a candidate is fitted on one
+  // and scored on the other).
   const std::size_t half = rate.size() / 2;
-  ctx.first_rate = rate.first(half);
-  if (RecordCurve(rate.first(half), tau0, &ctx.first, &why) &&
-      RecordCurve(rate.subspan(half, half), tau0, &ctx.second, &why) &&
-      FitLinear(options, ctx.first, &ctx.first_baseline, nullptr)) {
-    ctx.have_halves = true;
+  ctx.have_halves = true;
+  for (int h = 0; h < 2 && ctx.have_halves; ++h) {
+    HalfRecord& r = ctx.halves[h];
+    r.rate = rate.subspan(h * half, half);
+    ctx.have_halves = RecordCurve(r.rate, tau0, &r.curve, &why) && FitLinear(options, r.curve, &r.baseline, nullptr);
+    if (!ctx.have_halves) break;
+    r.edf = ExactOavar(LinearModel(r.baseline, 1.0 / tau0), r.curve.m, r.curve.num_samples).edf;
+    r.layout = MakeViewLayout(tau0, static_cast<std::int64_t>(half), r.curve.m);
+    r.have_views = ComputeViews(r.layout, r.rate, &r.observed, &why);
+  }
+  if (ctx.have_halves) {
     ctx.half_length_s = static_cast<double>(half) * tau0;
-    ctx.first_edf = ExactOavar(LinearModel(ctx.first_baseline, 1.0 / tau0), ctx.first.m, ctx.first.num_samples).edf;
   } else {
     s.notes.push_back("no held-out score: the halves are too short or their fit failed");
   }
@@ -698,7 +805,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   s.before = Assess(ctx, s.baseline_model, true, options.seed, &note);
   if (!note.empty()) s.notes.push_back("envelope: " + note);
   if (ctx.have_halves) {
-    s.before.heldout = CurveMetrics(LinearModel(ctx.first_baseline, 1.0 / tau0), ctx.second);
+    s.before.heldout = CurveMetrics(LinearModel(ctx.halves[0].baseline, 1.0 / tau0), ctx.halves[1].curve);
     s.before.has_heldout = true;
   }
   Finish(ctx, &s);

@@ -16,7 +16,9 @@
 //    are refitted on the curve corrected by E[linear] / E[linear + effect] (three passes). Ranked by the
 //    penalised improvement score = chi2_before - chi2_after - 2 k (k the effect's parameters,
 //    AIC with -2 ln L ~ sum z^2), exact OAVAR view; the best `envelope_candidates` also get the
-//    Monte Carlo views. Held-out: the same refit on the first half, scored on the second half.
+//    Monte Carlo views. Held-out: the same refit on one half, scored on the other (the half
+//    holding a one-off event such as a step, which is located there; else the second half), on
+//    OAVAR and, for the candidates with Monte Carlo views, on every view of that half.
 //    Pairs of the best three are tried when no single effect closes the gap.
 //    Allan-equivalent effects (telegraph / Gauss-Markov) that both pass are decided by the view
 //    that separates them (kurtosis: lower chi2 wins); the other is listed as also consistent.
@@ -62,7 +64,16 @@ struct CandidateResult {
   estimators::FitSummary fit;           // the linear terms refitted with the effect
   sim::SensorModel model;
   ModelGap after;
+  // Held-out: the candidate fitted on one half and scored on the other (after.heldout), against
+  // the other half's baseline scored the same way (heldout_before). The scored half is the one
+  // holding a one-off event (bias_step, exponential_drift: located on it, their noise terms from
+  // the other half), else the second. Scored on OAVAR; once full_views, on the views in which
+  // the scored half departs from the other half's baseline beyond the record's threshold (a
+  // spike shows in the kurtosis, not in the Allan variance), when there are any.
   GapMetrics heldout_before;
+  int heldout_half = 1;            // 0: first half scored, 1: second
+  sim::SensorModel heldout_model;  // the model scored on that half
+  bool heldout_in_gap_views = false;
   double score = 0.0;            // OAVAR chi2 improvement - 2 k
   double full_score = 0.0;       // all assessed views: chi2 improvement - 2 k
   bool full_views = false;       // Monte Carlo views assessed
