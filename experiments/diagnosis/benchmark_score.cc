@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <boost/math/distributions/chi_squared.hpp>
+
 namespace allanlab::experiments {
 namespace {
 
@@ -83,7 +85,11 @@ BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& 
       if (g.tau_min_s <= lo * kStep && g.tau_max_s >= hi / kStep) r.contain = 1;
     }
   }
-  if (r.right && o.has_heldout && o.heldout_after_chi2 > 0.0) r.shrink = o.heldout_before_chi2 / o.heldout_after_chi2;
+  if (r.right && o.has_heldout && o.heldout_after_chi2 > 0.0) {
+    r.shrink = o.heldout_before_chi2 / o.heldout_after_chi2;
+    r.heldout_at_model_level =
+        o.heldout_points > 0 && o.heldout_after_chi2 <= boost::math::quantile(boost::math::chi_squared(o.heldout_points), 0.95);
+  }
   return r;
 }
 
@@ -101,6 +107,7 @@ BenchmarkSummary SummarizeBenchmark(const std::vector<BenchmarkRow>& rows) {
   int controls = 0, flagged = 0, none = 0, clear = 0, clear_right = 0;
   int overlap_n = 0, overlap_k = 0, contain_k = 0;
   std::vector<double> shrinks;
+  int five_or_level = 0;
   const std::vector<double> edges = {0.0, 1.0, 2.0, 5.0, 10.0, 30.0, 1e300};
   std::vector<int> bin_n(edges.size() - 1), bin_det(edges.size() - 1), bin_right(edges.size() - 1);
   std::vector<int> by_n(s.truths.size()), by_k(s.truths.size());
@@ -135,7 +142,10 @@ BenchmarkSummary SummarizeBenchmark(const std::vector<BenchmarkRow>& rows) {
       overlap_k += r.overlap;
       contain_k += r.contain;
     }
-    if (r.shrink > 0.0) shrinks.push_back(r.shrink);
+    if (r.shrink > 0.0) {
+      shrinks.push_back(r.shrink);
+      five_or_level += r.shrink >= 5.0 || r.heldout_at_model_level ? 1 : 0;
+    }
   }
   s.false_alarm = MakeProportion(flagged, controls);
   s.control_none = MakeProportion(none, controls);
@@ -152,6 +162,7 @@ BenchmarkSummary SummarizeBenchmark(const std::vector<BenchmarkRow>& rows) {
   int five = 0;
   for (double x : shrinks) five += x >= 5.0 ? 1 : 0;
   s.shrink_5x = MakeProportion(five, s.shrink_count);
+  s.shrink_5x_or_model_level = MakeProportion(five_or_level, s.shrink_count);
   if (!shrinks.empty()) {
     std::sort(shrinks.begin(), shrinks.end());
     const std::size_t n = shrinks.size();

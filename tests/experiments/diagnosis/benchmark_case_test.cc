@@ -119,6 +119,15 @@ TEST(BenchmarkScoreTest, RightEffectLocalizationAndShrink) {
   EXPECT_EQ(r.overlap, 1);
   EXPECT_EQ(r.contain, 1);
   EXPECT_DOUBLE_EQ(r.shrink, 10.0);
+  // 40 on 10 points is far above chi2_10's 95 % quantile (18.31); 18 on 10 points is within it.
+  EXPECT_FALSE(r.heldout_at_model_level);
+  o.heldout_points = 10;
+  o.heldout_before_chi2 = 60.0;
+  o.heldout_after_chi2 = 18.0;
+  r = ScoreBenchmarkCase(GaussMarkovCase(), o);
+  EXPECT_TRUE(r.heldout_at_model_level);
+  o.heldout_after_chi2 = 18.5;
+  EXPECT_FALSE(ScoreBenchmarkCase(GaussMarkovCase(), o).heldout_at_model_level);
   o.regions = {{"psd", 20.0, 50.0}};
   o.verdict = "harmonic";
   o.also_consistent.clear();
