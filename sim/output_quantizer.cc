@@ -32,6 +32,50 @@ double AngleQuantizer::ApproximateAvar(double tau_s) const {
   return lsb_rad * lsb_rad / (4.0 * tau_s * tau_s);
 }
 
+std::vector<double> AngleQuantizer::ErrorAutocovariance(std::span<const double> d,
+                                                        double mean_increment_rad) const {
+  const double lsb2 = lsb_rad * lsb_rad;
+  const double pi = std::numbers::pi, pi2 = pi * pi;
+  std::vector<double> out(d.size(), 0.0);
+  for (std::size_t j = 0; j < d.size(); ++j) {
+    const double dj = std::max(0.0, d[j]) / lsb2;
+    const double shift = static_cast<double>(j) * mean_increment_rad / lsb_rad;  // mu(j) in LSB
+    if (dj == 0.0) {
+      // A still or purely drifting angle: the deterministic sawtooth series in closed form,
+      // sum cos(2 pi k f) / (2 pi^2 k^2) = (f^2 - f + 1/6) / 2, f = frac(mu / q).
+      const double f = shift - std::floor(shift);
+      out[j] = lsb2 * 0.5 * (f * f - f + 1.0 / 6.0);
+      continue;
+    }
+    const double rate = 2.0 * pi2 * dj;
+    if (rate > 40.0) continue;  // exp(-40) ~ 4e-18: decorrelated
+    double sum = 0.0;
+    for (int k = 1; k <= 100000; ++k) {
+      const double kk = static_cast<double>(k) * k;
+      const double envelope = std::exp(-rate * kk) / kk;
+      sum += envelope * std::cos(2.0 * pi * static_cast<double>(k) * shift);
+      if (envelope < 1e-17) break;
+    }
+    out[j] = lsb2 / (2.0 * pi2) * sum;
+  }
+  return out;
+}
+
+double AngleQuantizer::AvarFromError(std::int64_t m, double tau0_s, std::span<const double> e) {
+  auto at = [&](std::int64_t j) { return j < static_cast<std::int64_t>(e.size()) ? e[j] : 0.0; };
+  const double tau = static_cast<double>(m) * tau0_s;
+  return (3.0 * at(0) - 4.0 * at(m) + at(2 * m)) / (tau * tau);
+}
+
+std::vector<double> AngleQuantizer::RateErrorAutocovariance(double tau0_s, std::span<const double> e) {
+  std::vector<double> out(e.size() > 1 ? e.size() - 1 : 0, 0.0);
+  for (std::size_t j = 0; j < out.size(); ++j) {
+    const double before = j == 0 ? e[1] : e[j - 1];
+    out[j] = (2.0 * e[j] - before - e[j + 1]) / (tau0_s * tau0_s);
+  }
+  return out;
+}
+
 bool RateQuantizer::IsValid(std::string* why) const {
   return CheckPositive(lsb_rad_per_s, "rate quantizer LSB", why);
 }

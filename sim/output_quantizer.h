@@ -2,7 +2,8 @@
 // Digitisation effects beyond the IEEE 952 model, applied to the sensor's output:
 //  * AngleQuantizer: a quantizer on the integrated angle with carry, as delta-angle outputs do
 //    (the residual is kept, so no angle is lost); it adds IEEE quantization noise with
-//    Q = lsb / sqrt(12) when the angle moves over many LSBs (THEORY.md §1a).
+//    Q = lsb / sqrt(12) when the angle moves over many LSBs (THEORY.md §1a), and correlated error
+//    when it moves less than ~1 LSB per sample (ErrorAutocovariance: exact for a Gaussian signal).
 //  * RateQuantizer: each rate sample rounded to an LSB; it adds white noise of variance lsb^2/12
 //    when the rate noise spans several LSBs, and correlated error that distorts the curve when it
 //    does not (a band-limited or slowly wandering signal crosses few levels between samples).
@@ -24,6 +25,22 @@ struct AngleQuantizer {
   void Apply(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
   // Approximate added AVAR: 3 (q^2/12) / tau^2 = q^2 / (4 tau^2).
   double ApproximateAvar(double tau_s) const;
+  // Autocovariance R_e(j), j = 0..n-1 (rad^2), of the angle error e_k = Qz(theta_k) - theta_k
+  // for a Gaussian angle whose increments over j samples have variance D(j) =
+  // `increment_variance_rad2[j]` (D(0) = 0) and mean j * `mean_increment_rad` (the bias):
+  //   R_e(j) = sum_{k >= 1} q^2 / (2 pi^2 k^2) cos(2 pi k j mu / q) exp(-2 pi^2 k^2 D(j) / q^2),
+  // the sawtooth series of RateQuantizer::ErrorAutocovariance. Exact here without an option: Apply
+  // draws the initial residual uniformly, so the grid offset is uniform and e is uncorrelated
+  // with the signal. The rate error (e_k - e_{k-1}) / tau0 then adds
+  //   AVAR(m) = (3 R_e(0) - 4 R_e(m) + R_e(2m)) / (m tau0)^2          (AvarFromError),
+  // which is ApproximateAvar once D(1) >> q^2 (R_e(j >= 1) ~ 0).
+  std::vector<double> ErrorAutocovariance(std::span<const double> increment_variance_rad2,
+                                          double mean_increment_rad) const;
+  // R_e beyond the span is taken as 0 (decorrelated). Precondition: m >= 1, R_e non-empty.
+  static double AvarFromError(std::int64_t m, double tau0_s, std::span<const double> error_rad2);
+  // The rate error's autocovariance (2 R_e(j) - R_e(j-1) - R_e(j+1)) / tau0^2 at lags 0..n-2
+  // (rate^2), R_e(-1) = R_e(1).
+  static std::vector<double> RateErrorAutocovariance(double tau0_s, std::span<const double> error_rad2);
 };
 
 struct RateQuantizer {

@@ -296,21 +296,50 @@ std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
                                            : std::visit(DirectTheory{tau0, ms, shape}, term);
     for (std::size_t k = 0; k < ms.size(); ++k) result[k] += part[k];
   }
+  std::int64_t max_m = 0;
+  for (std::int64_t m : ms) max_m = std::max(max_m, m);
   std::vector<double> error;  // the rate quantizer's error autocovariance
-  if (rate_quantizer) {
-    std::int64_t max_m = 0;
-    for (std::int64_t m : ms) max_m = std::max(max_m, m);
-    error = rate_quantizer->ErrorAutocovariance(SignalAutocovariance(2 * max_m));
-  }
+  if (rate_quantizer) error = rate_quantizer->ErrorAutocovariance(SignalAutocovariance(2 * max_m));
+  std::vector<double> angle_error;  // the angle quantizer's (angle domain)
+  if (angle_quantizer) angle_error = AngleErrorAutocovariance(2 * max_m + 1);
   for (std::size_t k = 0; k < ms.size(); ++k) {
-    if (angle_quantizer) result[k] += angle_quantizer->ApproximateAvar(static_cast<double>(ms[k]) * tau0);
+    if (angle_quantizer) result[k] += AngleQuantizer::AvarFromError(ms[k], tau0, angle_error);
     if (rate_quantizer) result[k] += AvarFromAutocovariance(ms[k], error);
   }
   return result;
 }
 
+std::vector<double> SensorModel::AngleErrorAutocovariance(std::int64_t lags) const {
+  const double tau0 = 1.0 / sample_rate_hz;
+  const double lsb2 = angle_quantizer->lsb_rad * angle_quantizer->lsb_rad;
+  for (std::int64_t length = std::min<std::int64_t>(lags, 256);; length = std::min(lags, 4 * length)) {
+    const std::vector<double> r = SignalAutocovariance(length);
+    // D(j) = Var(theta_{k+j} - theta_k) = tau0^2 sum_{a,b<j} R(a - b), by D(j+1) = D(j) +
+    // tau0^2 (R(0) + 2 sum_{l=1..j} R(l)).
+    std::vector<double> d(static_cast<std::size_t>(length), 0.0);
+    double tail = 0.0;  // sum_{l=1..j} R(l)
+    for (std::size_t j = 0; j + 1 < d.size(); ++j) {
+      if (j > 0) tail += r[j];
+      d[j + 1] = d[j] + tau0 * tau0 * (r[0] + 2.0 * tail);
+    }
+    // Stop once the last quarter has decorrelated (2 pi^2 D / q^2 > 40, the series' cut-off).
+    bool decorrelated = true;
+    for (std::size_t j = d.size() * 3 / 4; j < d.size() && decorrelated; ++j) {
+      decorrelated = d[j] > 40.0 / (2.0 * M_PI * M_PI) * lsb2;
+    }
+    if (length == lags || decorrelated) {
+      return angle_quantizer->ErrorAutocovariance(d, bias_rad_per_s * tau0);
+    }
+  }
+}
+
 std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const {
   std::vector<double> total = SignalAutocovariance(lags);
+  if (angle_quantizer) {
+    const std::vector<double> e = AngleErrorAutocovariance(lags + 1);
+    const std::vector<double> rate_error = AngleQuantizer::RateErrorAutocovariance(1.0 / sample_rate_hz, e);
+    for (std::size_t j = 0; j < std::min(total.size(), rate_error.size()); ++j) total[j] += rate_error[j];
+  }
   if (rate_quantizer) {
     const std::vector<double> error = rate_quantizer->ErrorAutocovariance(total);
     for (std::size_t j = 0; j < total.size(); ++j) total[j] += error[j];

@@ -35,21 +35,22 @@ struct SensorModel {
   std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n) const;
 
   // Exact E[AVAR_hat(m)] of Generate()'s records (rad/s)^2, band-limit and finite record
-  // included. The rate quantizer's share comes from its error autocovariance on the Gaussian
-  // part's (output_quantizer.h): exact with random_offset, the busy-noise limit otherwise. The
-  // angle quantizer's is the usual approximation. ExpectedAvarIsExact() says which.
+  // included. The quantizers' shares come from their error autocovariances on the Gaussian
+  // part's (output_quantizer.h): the angle quantizer's exact (its initial residual is uniform),
+  // the rate quantizer's exact with random_offset, the busy-noise limit otherwise.
+  // ExpectedAvarIsExact() says which.
   double ExpectedAvar(std::int64_t m, const RecordShape& shape) const;
   // The same for a list of averaging factors (shares the per-term set-up work).
   std::vector<double> ExpectedAvar(std::span<const std::int64_t> ms, const RecordShape& shape) const;
   bool ExpectedAvarIsExact() const {
-    return !angle_quantizer && (!rate_quantizer || rate_quantizer->random_offset);
+    return !rate_quantizer || rate_quantizer->random_offset;
   }
 
   // Generalised autocovariance of the Gaussian (linear) part of the output at lags 0..lags-1,
   // band-limit included, for exact estimator variances (THEORY.md §2.1). Flicker enters with its
-  // stationary-increment form (no start-up transient); deterministic terms, harmonics, outliers
-  // and the angle quantizer are left out. The rate quantizer's error enters with its exact
-  // second moments (so estimator variances treat it as Gaussian: an approximation).
+  // stationary-increment form (no start-up transient); deterministic terms, harmonics and outliers
+  // are left out. The quantizers' errors enter with their exact second moments (so estimator
+  // variances treat them as Gaussian: an approximation).
   std::vector<double> GaussianAutocovariance(std::int64_t lags) const;
 
   // Continuous IEEE 952 sum of the terms' asymptotes at tau (no band-limit, no quantizers).
@@ -61,6 +62,10 @@ struct SensorModel {
  private:
   // GaussianAutocovariance before the rate quantizer.
   std::vector<double> SignalAutocovariance(std::int64_t lags) const;
+  // The angle quantizer's error autocovariance R_e(j) (rad^2) for j < min(lags, L), L the first
+  // power-of-4 length past which the angle has moved far beyond an LSB (R_e = 0 there): the
+  // signal's autocovariance is only computed as far as the error stays correlated.
+  std::vector<double> AngleErrorAutocovariance(std::int64_t lags) const;
 };
 
 }  // namespace allanlab::sim
