@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <variant>
 
 #include "estimators/fit/parametric_fit.h"
 #include "estimators/fit/parametric_term.h"
 #include "sim/fft.h"
 #include "sim/gauss_markov.h"
+#include "sim/quantization_noise.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -208,6 +210,23 @@ std::optional<double> ValueGrid(std::span<const double> y, std::string* why) {
     return std::nullopt;
   }
   return lsb;
+}
+
+// Without a value grid (noise added after the quantizer, a record rescaled or filtered after it)
+// the angle LSB from the baseline's Q: the quantizer adds 3 Q^2 / tau^2 with Q = lsb / sqrt(12)
+// when the angle crosses many LSBs (sim/output_quantizer.h), which the Q term takes whole. (When
+// the angle moves less than an LSB per sample its error is correlated and Q reads low; the
+// refit starts from there.)
+std::optional<double> LsbFromBaselineQ(const sim::SensorModel* baseline, std::string* why) {
+  if (baseline != nullptr) {
+    for (const sim::NoiseTerm& t : baseline->terms) {
+      if (const auto* q = std::get_if<sim::QuantizationNoise>(&t); q != nullptr && q->q_rad > 0.0) {
+        return q->q_rad * std::sqrt(12.0);
+      }
+    }
+  }
+  *why += "; the baseline has no quantization noise either";
+  return std::nullopt;
 }
 
 // Least squares of block means on [1, E_b(tw)], E_b the exact mean of e^{-k tau0 / tw} over block
@@ -417,9 +436,10 @@ std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs
   switch (effect) {
     case Effect::kHarmonic: return Harmonic(y, tau0, why);
     case Effect::kAngleQuantization: {
-      const auto lsb = ValueGrid(y, why);
+      if (const auto lsb = ValueGrid(y, why)) return EffectInstance{effect, {{"lsb_rad", *lsb * tau0}}};
+      const auto lsb = LsbFromBaselineQ(in.baseline_model, why);
       if (!lsb) return std::nullopt;
-      return EffectInstance{effect, {{"lsb_rad", *lsb * tau0}}};
+      return EffectInstance{effect, {{"lsb_rad", *lsb}}};
     }
     case Effect::kRateQuantization: {
       const auto lsb = ValueGrid(y, why);

@@ -1,6 +1,7 @@
 #pragma once
 // Starting values of each candidate effect's parameters, read from the record (data-domain
-// estimates: a spike count, a change point, a periodogram peak, a value grid) or from where the
+// estimates: a spike count, a change point, a periodogram peak, a value grid, else for the angle
+// quantizer the baseline's Q = lsb / sqrt(12)) or from where the
 // Allan curve departs from the baseline fit (a bump -> Gauss-Markov / telegraph time constant,
 // a band-limited GLS fit -> bandwidth). They are the refit's starting point, not a fit.
 #include <memory>
@@ -20,7 +21,7 @@ struct EstimateInputs {
   const estimators::AvarCurve* curve = nullptr;   // the record's OAVAR curve (required)
   std::span<const double> baseline_avar;          // the baseline model's E[OAVAR] on the curve
   std::span<const double> rate_rad_per_s;         // the record; empty in curve mode
-  const sim::SensorModel* baseline_model = nullptr;  // the fitted linear terms (bandwidth screen)
+  const sim::SensorModel* baseline_model = nullptr;  // the fitted linear terms (bandwidth screen, Q)
 };
 
 // The fit library's band-limit term (point-sampled, L = 8: the chain effect.h AddEffect builds)
