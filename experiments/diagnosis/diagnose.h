@@ -18,12 +18,15 @@
 //    AIC with -2 ln L ~ sum z^2), exact OAVAR view; the best `envelope_candidates` also get the
 //    Monte Carlo views. Held-out: the same refit on one half, scored on the other (the half
 //    holding a one-off event such as a step, which is located there; else the second half), on
-//    OAVAR and, for the candidates with Monte Carlo views, on every view of that half.
+//    OAVAR and, for the candidates with Monte Carlo views, on the views in which that half
+//    departs from the other half's baseline.
 //    Pairs of the best three are tried when no single effect closes the gap.
 //    Allan-equivalent effects (telegraph / Gauss-Markov) that both pass are decided by the view
 //    that separates them (kurtosis: lower chi2 wins); the other is listed as also consistent.
 // 5. Verdict: "none" (no significant gap), the effect that closes the gap (every view within
-//    the threshold) with a positive score and a held-out improvement, or "unexplained".
+//    the threshold) with a positive score and a held-out improvement, or "unexplained". Of
+//    candidates within 2 of the best penalised score (which the record cannot tell apart), the
+//    one with the largest held-out shrink.
 #include <cstdint>
 #include <span>
 #include <string>
