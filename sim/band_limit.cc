@@ -127,4 +127,25 @@ std::vector<double> BandLimitChain::HeldOutputAutocovariance(const std::vector<d
   return r;
 }
 
+std::shared_ptr<const BandLimitChain> SharedBandLimitChain(const BandLimit& limit, double output_rate_hz) {
+  struct Entry {
+    BandLimit limit;
+    double rate_hz;
+    std::shared_ptr<const BandLimitChain> chain;
+  };
+  constexpr std::size_t kEntries = 8;  // a fit's central differences visit a handful of cutoffs
+  thread_local std::vector<Entry> cache;
+  for (const Entry& e : cache) {
+    if (e.limit.kind == limit.kind && e.limit.cutoff_hz == limit.cutoff_hz &&
+        e.limit.oversampling == limit.oversampling && e.limit.sampling == limit.sampling &&
+        e.rate_hz == output_rate_hz) {
+      return e.chain;
+    }
+  }
+  auto chain = std::make_shared<const BandLimitChain>(limit, output_rate_hz);
+  if (cache.size() >= kEntries) cache.erase(cache.begin());
+  cache.push_back({limit, output_rate_hz, chain});
+  return chain;
+}
+
 }  // namespace allanlab::sim

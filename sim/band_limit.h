@@ -5,6 +5,7 @@
 // L internal samples of each output period (THEORY.md §1g).
 #include <complex>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -85,5 +86,10 @@ class BandLimitChain {
 
 // Low-pass design at the internal rate (unit DC gain).
 Biquad DesignLowPass(LowPassKind kind, double cutoff_hz, double internal_rate_hz);
+
+// BandLimitChain(limit, output_rate_hz) memoised per thread (the last few distinct arguments):
+// building one is O(len(q)^2) (its held autocorrelation), and fits, theory and every simulated
+// record of an envelope ask for the same chain again and again. Same object, so the same bits.
+std::shared_ptr<const BandLimitChain> SharedBandLimitChain(const BandLimit& limit, double output_rate_hz);
 
 }  // namespace allanlab::sim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <type_traits>
 
 #include <boost/math/special_functions/digamma.hpp>
@@ -20,6 +21,30 @@ std::vector<double> KinkKernel(const std::vector<double>& rq) {
     }
     phi[static_cast<std::size_t>(x)] = static_cast<double>(s - x);
   }
+  return phi;
+}
+
+// KinkKernel of the chain's held autocorrelation, memoised per thread for the last few chains
+// (it is O(len(q)^2), and a fit evaluates every term at the same cutoff several times).
+std::shared_ptr<const std::vector<double>> SharedKinkKernel(const BandLimitChain& chain) {
+  struct Entry {
+    BandLimit limit;
+    double internal_period_s;
+    std::shared_ptr<const std::vector<double>> phi;
+  };
+  constexpr std::size_t kEntries = 8;
+  thread_local std::vector<Entry> cache;
+  const BandLimit& limit = chain.limit();
+  for (const Entry& e : cache) {
+    if (e.limit.kind == limit.kind && e.limit.cutoff_hz == limit.cutoff_hz &&
+        e.limit.oversampling == limit.oversampling && e.limit.sampling == limit.sampling &&
+        e.internal_period_s == chain.internal_period_s()) {
+      return e.phi;
+    }
+  }
+  auto phi = std::make_shared<const std::vector<double>>(KinkKernel(chain.held_autocorrelation()));
+  if (cache.size() >= kEntries) cache.erase(cache.begin());
+  cache.push_back({limit, chain.internal_period_s(), phi});
   return phi;
 }
 
@@ -115,7 +140,8 @@ struct Change {
       out->assign(ms.size(), 0.0);
       return true;
     } else if constexpr (HasAutocovariance<T>) {
-      const std::vector<double> phi = KinkKernel(chain.held_autocorrelation());
+      const std::shared_ptr<const std::vector<double>> kernel = SharedKinkKernel(chain);
+      const std::vector<double>& phi = *kernel;
       const long double at_zero = KinkSum(t, tau0_s, phi, 0);
       for (std::int64_t m : ms) {
         const long double md = static_cast<long double>(m);
@@ -146,7 +172,8 @@ std::vector<double> FastExpectedAvar(const SensorModel& model, std::span<const s
                                      const RecordShape& shape) {
   if (!model.band_limit.enabled()) return model.ExpectedAvar(ms, shape);
   const double tau0 = 1.0 / model.sample_rate_hz;
-  const BandLimitChain chain(model.band_limit, model.sample_rate_hz);
+  const std::shared_ptr<const BandLimitChain> shared_chain = SharedBandLimitChain(model.band_limit, model.sample_rate_hz);
+  const BandLimitChain& chain = *shared_chain;
   // The quantizers' share: the model without terms.
   SensorModel rest = model;
   rest.terms.clear();

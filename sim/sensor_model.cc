@@ -7,6 +7,7 @@
 
 #include <boost/random/uniform_real_distribution.hpp>
 
+#include "sim/band_limited_avar.h"
 #include "sim/kasdin_finite_record.h"
 
 namespace allanlab::sim {
@@ -37,7 +38,24 @@ struct ChainTheory {
     return out;
   }
 
+  // White rate noise and the held stationary terms: the term's own exact AVAR plus the
+  // band-limit's change (band_limited_avar.h), O(len(q)) per m. The direct quadratic form over
+  // the 2m lags of the chain's output autocovariance cost O(m len(q)) per m: minutes per
+  // diagnosis of a 1e6-sample record with a low cutoff. Same value to ~1e-12 relative (tests/sim/
+  // band_limited_avar_test.cc checks the change against that direct form), and the same bits as
+  // FastExpectedAvar, which the fits use.
+  template <typename T>
+  std::vector<double> OwnPlusChange(const T& t) const {
+    std::vector<double> change;
+    if (!BandLimitAvarChange(NoiseTerm{t}, chain, tau0_s, ms, &change)) return {};
+    std::vector<double> out;
+    out.reserve(ms.size());
+    for (std::size_t k = 0; k < ms.size(); ++k) out.push_back(t.ExpectedAvar(ms[k], tau0_s, shape) + change[k]);
+    return out;
+  }
+
   std::vector<double> operator()(const WhiteRateNoise& t) const {
+    if (auto fast = OwnPlusChange(t); !fast.empty() || ms.empty()) return fast;
     const double internal_var = t.arw_rad_per_sqrt_s * t.arw_rad_per_sqrt_s /
                                 chain.internal_period_s();
     return ForEachM([&](std::int64_t m) {
@@ -83,6 +101,7 @@ struct ChainTheory {
       return ForEachM([&](std::int64_t m) { return t.ExpectedAvar(m, tau0_s, shape); });
     } else {
       static_assert(HasAutocovariance<T>, "held stochastic terms need FillAutocovariance");
+      if (auto fast = OwnPlusChange(t); !fast.empty() || ms.empty()) return fast;
       return ForEachM([&](std::int64_t m) {
         std::vector<double> r_in(static_cast<std::size_t>(2 * m) + chain.held_response().size());
         t.FillAutocovariance(tau0_s, r_in);
@@ -151,8 +170,8 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
                                           std::int64_t n) const {
   const double tau0 = 1.0 / sample_rate_hz;
   auto engine_for = [&](std::size_t i) { return MakeEngine(seed, trial, i); };
-  std::optional<BandLimitChain> chain;
-  if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  std::shared_ptr<const BandLimitChain> chain;
+  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
   const std::int64_t burn_in = chain ? chain->burn_in_samples() : 0;
   const std::int64_t total = n + burn_in;
   // The record starts as the FFT work space of the first Kasdin flicker term (when there is one),
@@ -289,8 +308,8 @@ std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
                                               const RecordShape& shape) const {
   const double tau0 = 1.0 / sample_rate_hz;
   std::vector<double> result(ms.size(), 0.0);
-  std::optional<BandLimitChain> chain;
-  if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  std::shared_ptr<const BandLimitChain> chain;
+  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
   for (const NoiseTerm& term : terms) {
     const std::vector<double> part = chain ? std::visit(ChainTheory{*chain, tau0, ms, shape}, term)
                                            : std::visit(DirectTheory{tau0, ms, shape}, term);
@@ -350,8 +369,8 @@ std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const
 std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
   const double tau0 = 1.0 / sample_rate_hz;
   std::vector<double> total(static_cast<std::size_t>(lags), 0.0);
-  std::optional<BandLimitChain> chain;
-  if (band_limit.enabled()) chain.emplace(band_limit, sample_rate_hz);
+  std::shared_ptr<const BandLimitChain> chain;
+  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
   for (const NoiseTerm& term : terms) {
     std::visit(
         [&](const auto& t) {

@@ -80,7 +80,9 @@ class ModelPieces {
       if (base.band_limit.enabled()) {
         // Filtered = own exact shape + the band-limit's change (sim/band_limited_avar.h), so a new
         // cutoff costs O(len(q)) per tau and term.
-        const sim::BandLimitChain chain(base.band_limit, base.sample_rate_hz);
+        const std::shared_ptr<const sim::BandLimitChain> shared_chain =
+            sim::SharedBandLimitChain(base.band_limit, base.sample_rate_hz);
+        const sim::BandLimitChain& chain = *shared_chain;
         std::vector<double> change;
         for (std::size_t j = 0; j < linear_.size(); ++j) {
           const sim::NoiseTerm term = TermFor(static_cast<Coefficient>(linear_[j]), 1.0);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "sim/avar_theory.h"
 #include "sim/gauss_markov.h"
 
 namespace allanlab::sim {
@@ -27,6 +28,26 @@ TEST(Ar1AvarTest, MatchesTheDefinitionAcrossTheClosedFormThreshold) {
     for (double q : {1e-6, 1e-4, 3e-3, 0.05, 0.5, 0.9}) {
       const double expected = Direct(m, 1.0 - q);
       EXPECT_NEAR(Ar1Avar(m, 1.0 - q, 2.5) / (2.5 * expected), 1.0, 1e-9) << "m " << m << " q " << q;
+    }
+  }
+}
+
+// The lag sum the small-m(1 - phi) series replaced, in long double.
+double LagSum(std::int64_t m, double phi) {
+  const double log_phi = std::log(phi);
+  long double sum = 0.0L;
+  for (std::int64_t j = 1; j < 2 * m; ++j) sum += 2.0L * AllanLagWeight(m, j) * std::expm1(static_cast<double>(j) * log_phi);
+  return static_cast<double>(sum / (2.0L * m * m));
+}
+
+// Below the closed form's threshold (m q < 0.01) the series is the lag sum to round-off, from
+// m = 1 to half a 1e6-sample record and up to the threshold.
+TEST(Ar1AvarTest, SeriesIsTheLagSumBelowTheThreshold) {
+  for (std::int64_t m : {1, 2, 3, 7, 64, 1000, 31623, 500000}) {
+    for (double mq : {1e-9, 1e-7, 1e-4, 3e-3, 0.0099}) {
+      const double q = mq / static_cast<double>(m);  // phi = 1 - q stays below 1 in double
+      const double expected = LagSum(m, 1.0 - q);
+      EXPECT_NEAR(Ar1Avar(m, 1.0 - q, 1.0) / expected, 1.0, 1e-12) << "m " << m << " m q " << mq;
     }
   }
 }
