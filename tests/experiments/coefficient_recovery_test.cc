@@ -3,6 +3,7 @@
 #include "experiments/coefficient_recovery.h"
 
 #include <cmath>
+#include <unistd.h>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -207,7 +208,9 @@ TEST(CoefficientRecovery, ReportWritesCsvMarkdownAndPlotsWithProvenance) {
   const RunSummary run = RunSweepInline(spec, experiment.Driver());
   const std::vector<PointStats> stats = Aggregate(run);
   ReportContext context;
-  context.output_dir = (std::filesystem::temp_directory_path() / "allanlab_coefficient_recovery_test").string();
+  std::filesystem::path output_dir = std::filesystem::temp_directory_path() / "allanlab_coefficient_recovery_test_";
+  output_dir += std::to_string(::getpid());  // two suites at once must not share it
+  context.output_dir = output_dir.string();
   std::filesystem::remove_all(context.output_dir);
   context.git_sha = "abc1234";
   context.build_type = "Release";

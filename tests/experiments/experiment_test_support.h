@@ -2,6 +2,7 @@
 // Helpers for the experiment tests: run a driver's trials directly and aggregate them the way
 // experiments/aggregate.h specifies (mean, sample std, standard error over finite values).
 #include <cmath>
+#include <unistd.h>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -61,7 +62,10 @@ inline experiments::PointStats Stats(const DriverRun& run, int point) {
 }
 
 inline std::string FreshDirectory(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+  // With the process id: two checkouts' suites running at once must not share a folder.
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+  dir += "_";
+  dir += std::to_string(::getpid());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -3,6 +3,7 @@
 #include "experiments/record_length.h"
 
 #include <cmath>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -99,7 +100,9 @@ TEST(RecordLength, ReportWritesCsvMarkdownAndPlotsWithProvenance) {
   RecordLengthExperiment experiment;
   const RunSummary run = RunSweepInline(spec, experiment.Driver());
   ReportContext context;
-  context.output_dir = (std::filesystem::temp_directory_path() / "allanlab_record_length_test").string();
+  std::filesystem::path output_dir = std::filesystem::temp_directory_path() / "allanlab_record_length_test_";
+  output_dir += std::to_string(::getpid());  // two suites at once must not share it
+  context.output_dir = output_dir.string();
   std::filesystem::remove_all(context.output_dir);
   context.git_sha = "def5678";
   context.build_type = "Release";

@@ -1,6 +1,7 @@
 // `mpirun -np 2 allanlab sweep` writes the same table as one process (trials split over the
 // ranks by batch, rows gathered on rank 0 in (point, trial) order). Skipped in builds without MPI.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -31,7 +32,8 @@ TEST(SweepMpi, TwoRanksGiveTheTableOfOneProcess) {
 #ifndef ALLANLAB_MPIEXEC
   GTEST_SKIP() << "built without MPI";
 #else
-  const fs::path dir = fs::temp_directory_path() / "allanlab_sweep_mpi";
+  fs::path dir = fs::temp_directory_path() / "allanlab_sweep_mpi_";
+  dir += std::to_string(::getpid());
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "spec.yaml")

@@ -3,6 +3,7 @@
 // (removed afterwards), the command's stdout and stderr captured to out.txt and err.txt there.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -28,14 +29,18 @@ inline std::string WithoutCommentLines(const std::string& text) {
 
 class CommandTest : public ::testing::Test {
  protected:
-  // `prefix` names the scratch directory (<tmp>/<prefix><test name>); `command` is put before
+  // `prefix` names the scratch directory (<tmp>/<prefix><test name>_<pid>); `command` is put before
   // every Run's arguments (e.g. "diagnose"), empty for none.
   explicit CommandTest(std::string prefix, std::string command = "")
       : prefix_(std::move(prefix)), command_(std::move(command)) {}
 
   void SetUp() override {
+    // The process id keeps two suites running at once on one machine (two build trees) out of
+    // each other's scratch directories: one's SetUp had removed the other's running benchmark.
     dir_ = std::filesystem::temp_directory_path() / prefix_;
     dir_ += ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ += "_";
+    dir_ += std::to_string(::getpid());
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
