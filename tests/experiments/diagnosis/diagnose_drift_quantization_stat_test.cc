@@ -5,39 +5,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
 #include "tests/support/diagnosis_control.h"
+#include "tests/support/diagnosis_record.h"
 
 namespace allanlab::experiments {
 namespace {
 
-constexpr std::int64_t kSamples = 36000;  // 6 min at 100 Hz
-
-DiagnosisSummary Diagnose(const sim::SensorModel& model, std::uint64_t seed) {
-  const std::vector<double> record = model.Generate(seed, 0, kSamples);
-  DiagnoseOptions options;
-  options.trials = 12;
-  DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, record, 1.0 / model.sample_rate_hz, &s)) << s.message;
-  return s;
-}
-
-std::string Verdicts(const DiagnosisSummary& s) {
-  std::ostringstream out;
-  out << s.verdict << " candidates:";
-  for (const auto& c : s.candidates) {
-    out << " " << c.id() << " score " << c.score << " full " << c.full_score << " max|z| "
-        << c.after.All().max_abs_z << (c.closes_gap ? " closes" : "");
-    for (const auto& [k, v] : c.effects[0].params) out << " " << k << "=" << v;
-    out << ";";
-  }
-  return out.str();
-}
+using testing::DescribeVerdict;
+using testing::DiagnoseShortRecord;
 
 // The control model's angle moves 1e-5 rad (sd) per sample; an LSB of 3.3x that keeps the
 // quantization error correlated over a few samples, so the white q^2 / (4 tau^2) misses the
@@ -48,9 +28,9 @@ TEST(DiagnoseDriftQuantizationStatTest, CoarseAngleQuantizerIsNamed) {
   sim::SensorModel model = testing::DiagnosisControlModel();
   const double lsb = 1e-5 / 0.3;
   model.angle_quantizer = sim::AngleQuantizer{lsb};
-  const DiagnosisSummary s = Diagnose(model, 41);
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 41);
   ASSERT_TRUE(s.significant);
-  ASSERT_EQ(s.verdict, "angle_quantization") << Verdicts(s);
+  ASSERT_EQ(s.verdict, "angle_quantization") << DescribeVerdict(s);
   EXPECT_NEAR(s.candidates[s.verdict_candidate].effects[0].params.at("lsb_rad"), lsb, 1e-9 * lsb);
 }
 
@@ -67,9 +47,9 @@ TEST(DiagnoseDriftQuantizationStatTest, WarmUpDriftOverAFloorIsNamed) {
   drift.amplitude_rad_per_s = -0.01;
   drift.time_constant_s = 50.0;
   model.terms.push_back(drift);
-  const DiagnosisSummary s = Diagnose(model, 43);
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 43);
   ASSERT_TRUE(s.significant);
-  ASSERT_EQ(s.verdict, "exponential_drift") << Verdicts(s);
+  ASSERT_EQ(s.verdict, "exponential_drift") << DescribeVerdict(s);
   // The block-mean fit of the drift: a few 1e-3 relative at this signal-to-noise; 5 % is loose.
   const auto& p = s.candidates[s.verdict_candidate].effects[0].params;
   EXPECT_NEAR(p.at("amplitude_rad_per_s"), -0.01, 5e-4);

@@ -5,41 +5,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
 #include "tests/support/diagnosis_control.h"
+#include "tests/support/diagnosis_record.h"
 
 namespace allanlab::experiments {
 namespace {
 
-constexpr std::int64_t kSamples = 36000;  // 6 min at 100 Hz
-
-DiagnosisSummary Diagnose(const sim::SensorModel& model, std::uint64_t seed) {
-  const std::vector<double> record = model.Generate(seed, 0, kSamples);
-  DiagnoseOptions options;
-  options.trials = 12;
-  DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, record, 1.0 / model.sample_rate_hz, &s)) << s.message;
-  return s;
-}
-
-std::string Verdicts(const DiagnosisSummary& s) {
-  std::ostringstream out;
-  out << s.verdict << " (also:";
-  for (const auto& a : s.also_consistent) out << " " << a.effect;
-  out << ") candidates:";
-  for (const auto& c : s.candidates) {
-    out << " " << c.id() << " score " << c.score << " full " << c.full_score << " max|z| "
-        << c.after.All().max_abs_z << (c.closes_gap ? " closes" : "");
-    for (const auto& [k, v] : c.effects[0].params) out << " " << k << "=" << v;
-    out << ";";
-  }
-  return out.str();
-}
+using testing::DescribeVerdict;
+using testing::DiagnoseShortRecord;
 
 // A first-order low-pass at 4 Hz on the control model (100 Hz, point-sampled from L = 8, the
 // chain of effect.h): the white level of the taus below ~1/(2 pi fc) = 0.04 s drops by up to 25x,
@@ -52,7 +30,7 @@ TEST(DiagnoseEffectsStatTest, BandLimitIsNamedWithItsCutoff) {
   model.band_limit.cutoff_hz = 4.0;
   model.band_limit.oversampling = 8;
   model.band_limit.sampling = sim::OutputSampling::kPoint;
-  const DiagnosisSummary s = Diagnose(model, 31);
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 31);
   ASSERT_TRUE(s.significant);
   // A first-order low-pass of the white noise is a Gauss-Markov process of Tc = 1/(2 pi fc) with
   // no white floor left: either reading is right, the other named as also consistent.
@@ -60,11 +38,11 @@ TEST(DiagnoseEffectsStatTest, BandLimitIsNamedWithItsCutoff) {
   if (s.verdict == "gauss_markov") {
     bool listed = false;
     for (const auto& a : s.also_consistent) listed |= a.effect == "bandwidth";
-    EXPECT_TRUE(listed) << Verdicts(s);
+    EXPECT_TRUE(listed) << DescribeVerdict(s);
     EXPECT_NEAR(1.0 / (2.0 * M_PI * c.effects[0].params.at("correlation_time_s")), 4.0, 0.8);
     return;
   }
-  ASSERT_EQ(s.verdict, "bandwidth") << Verdicts(s);
+  ASSERT_EQ(s.verdict, "bandwidth") << DescribeVerdict(s);
   EXPECT_EQ(c.effects[0].params.at("order"), 1.0);
   EXPECT_NEAR(c.effects[0].params.at("cutoff_hz"), 4.0, 0.8);
 }
@@ -78,11 +56,11 @@ TEST(DiagnoseEffectsStatTest, BiasStepIsNamedAndPlaced) {
   sim::SensorModel model = testing::DiagnosisControlModel();
   sim::BiasStep step;
   step.size_rad_per_s = 1e-3;
-  step.time_s = 0.4 * kSamples / model.sample_rate_hz;
+  step.time_s = 0.4 * testing::kDiagnosisTestSamples / model.sample_rate_hz;
   model.terms.push_back(step);
-  const DiagnosisSummary s = Diagnose(model, 32);
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 32);
   ASSERT_TRUE(s.significant);
-  ASSERT_EQ(s.verdict, "bias_step") << Verdicts(s);
+  ASSERT_EQ(s.verdict, "bias_step") << DescribeVerdict(s);
   const auto& p = s.candidates[s.verdict_candidate].effects[0].params;
   EXPECT_NEAR(p.at("time_s"), step.time_s, 1.0);
   EXPECT_NEAR(p.at("size_rad_per_s"), 1e-3, 2e-4);

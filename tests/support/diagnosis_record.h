@@ -1,0 +1,42 @@
+#pragma once
+// The short-record diagnosis the effect tests share: a record of the model (fixed seed, 3.6e4
+// samples: 6 min at 100 Hz, so each test takes seconds) diagnosed with 12 Monte Carlo trials, and
+// a one-line account of the verdict and candidates for failure messages.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "experiments/diagnosis/diagnose.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::testing {
+
+inline constexpr std::int64_t kDiagnosisTestSamples = 36000;
+
+inline experiments::DiagnosisSummary DiagnoseShortRecord(const sim::SensorModel& model, std::uint64_t seed) {
+  const std::vector<double> record = model.Generate(seed, 0, kDiagnosisTestSamples);
+  experiments::DiagnoseOptions options;
+  options.trials = 12;
+  experiments::DiagnosisSummary s;
+  EXPECT_TRUE(experiments::DiagnoseRecord(options, record, 1.0 / model.sample_rate_hz, &s)) << s.message;
+  return s;
+}
+
+inline std::string DescribeVerdict(const experiments::DiagnosisSummary& s) {
+  std::ostringstream out;
+  out << s.verdict << " (also:";
+  for (const auto& a : s.also_consistent) out << " " << a.effect;
+  out << ") candidates:";
+  for (const auto& c : s.candidates) {
+    out << " " << c.id() << " score " << c.score << " full " << c.full_score << " max|z| "
+        << c.after.All().max_abs_z << (c.closes_gap ? " closes" : "");
+    for (const auto& [k, v] : c.effects[0].params) out << " " << k << "=" << v;
+    out << ";";
+  }
+  return out.str();
+}
+
+}  // namespace allanlab::testing
