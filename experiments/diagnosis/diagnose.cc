@@ -383,10 +383,11 @@ GapMetrics CurveMetrics(const sim::SensorModel& model, const estimators::AvarCur
 // joint GLS fit (FitParametric), again without the linear terms it leaves within 2 sigma of zero
 // (rlg + a 6.7e-5 rad/s step: K 1.9 +- 1.7 deg/h/sqrt(h), 3900 x the truth, kept the halves view
 // at |z| 8 after the step), the ratio refit (FitWithEffects, from the joint fit's effect
-// parameters when it ran), and `start` with the effects added unchanged. The last keeps the nested model from fitting worse than the
-// model without the effect (the GLS iterations of the joint fit can settle elsewhere: OAVAR chi2
-// 54 -> 92 for a 1e-5 rad/s step on a 1e6-sample record) and keeps an effect outside the Allan
-// view (spikes, quantizers) at its data-domain estimate when the curve cannot place it.
+// parameters when it ran), and `start` with the effects added unchanged. The last keeps the
+// nested model from fitting worse than the model without the effect (the GLS iterations of the
+// joint fit can settle elsewhere: OAVAR chi2 54 -> 92 for a 1e-5 rad/s step on a 1e6-sample
+// record) and keeps an effect outside the Allan view (spikes, quantizers) at its data-domain
+// estimate when the curve cannot place it.
 // `edf`: the exact EDFs of the curve under the start model (computed once per curve: the exact
 // moments are the costly part, and the EDFs barely move between the options).
 bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
