@@ -89,6 +89,10 @@ TEST(BandLimitedAvarTest, RandomWalkMatchesTheDirectSum) {
 TEST(BandLimitedAvarTest, GaussMarkovAndTelegraphMatchTheDirectSum) {
   ExpectHeldMatches(GaussMarkov{units::DegPerHour(5.0), 0.02}, 1e-11);
   ExpectHeldMatches(RandomTelegraph{units::DegPerHour(3.0), 0.5}, 1e-11);
+  // Correlation far longer than the record (phi -> 1: the closed-form window sum of long lags
+  // must not cancel) and far shorter than a sample.
+  ExpectHeldMatches(GaussMarkov{units::DegPerHour(5.0), 1e4}, 1e-11);
+  ExpectHeldMatches(RandomTelegraph{units::DegPerHour(3.0), 1e-4}, 1e-11);
 }
 
 TEST(BandLimitedAvarTest, StationaryFlickerMatchesTheDirectSum) {
