@@ -37,27 +37,13 @@ TEST(AngleQuantizerError, ExactTheoryMatchesMonteCarloWhereTheWhiteApproximation
   model.bias_rad_per_s = 0.1 * kLsb * kFs;
   model.angle_quantizer = AngleQuantizer{kLsb};
   ASSERT_TRUE(model.ExpectedAvarIsExact());
-  constexpr std::int64_t kN = 1 << 14;
-  constexpr int kTrials = 200;
-  const std::vector<std::int64_t> ms = testing_support::OctaveFactorsUpTo(kN / 8);
-  const auto kind = AvarEstimatorKind::kOverlapping;
-  const auto sample = testing_support::SimulateAvar(model, 23, kTrials, kN, ms, kind);
-  const auto expected = model.ExpectedAvar(ms, {kN, kind});
-  // The error is not Gaussian: the tolerance uses the Monte Carlo spread (z = 5).
-  std::vector<double> sd;
-  for (double v : sample.variance) sd.push_back(std::sqrt(v));
-  EXPECT_TRUE(testing_support::MeanWithinTolerance(sample, expected, sd, ms));
-
-  // The white approximation must fail somewhere, or this test could not tell the theories apart.
   SensorModel unquantized = model;
   unquantized.angle_quantizer.reset();
-  const auto signal = unquantized.ExpectedAvar(ms, {kN, kind});
-  double worst_z = 0.0;
-  for (std::size_t i = 0; i < ms.size(); ++i) {
-    const double white = signal[i] + model.angle_quantizer->ApproximateAvar(static_cast<double>(ms[i]) / kFs);
-    worst_z = std::max(worst_z, std::abs(sample.mean[i] - white) / (sd[i] / std::sqrt(kTrials)));
-  }
-  EXPECT_GT(worst_z, 8.0) << "the white approximation is indistinguishable here";
+  const auto check = testing_support::CheckQuantizerTheory(model, unquantized, 23, [&](std::int64_t m) {
+    return model.angle_quantizer->ApproximateAvar(static_cast<double>(m) / kFs);
+  });
+  EXPECT_TRUE(check.exact);
+  EXPECT_GT(check.white_worst_z, 8.0) << "the white approximation is indistinguishable here";
 }
 
 }  // namespace

@@ -41,28 +41,12 @@ TEST(RateQuantizerError, ZeroLagIsUniformAndBusyNoiseIsWhite) {
 TEST(RateQuantizerError, ExactTheoryMatchesMonteCarloWhereTheWhiteApproximationFails) {
   const SensorModel model = CoarselyQuantizedBandLimited();
   ASSERT_TRUE(model.ExpectedAvarIsExact());
-  constexpr std::int64_t kN = 1 << 14;
-  constexpr int kTrials = 200;
-  const std::vector<std::int64_t> ms = testing_support::OctaveFactorsUpTo(kN / 8);
-  const auto kind = AvarEstimatorKind::kOverlapping;
-  const auto sample = testing_support::SimulateAvar(model, 17, kTrials, kN, ms, kind);
-  const auto expected = model.ExpectedAvar(ms, {kN, kind});
-  // The error is not Gaussian: the tolerance uses the Monte Carlo spread (z = 5).
-  std::vector<double> sd;
-  for (double v : sample.variance) sd.push_back(std::sqrt(v));
-  EXPECT_TRUE(testing_support::MeanWithinTolerance(sample, expected, sd, ms));
-
-  // The same check against signal + white lsb^2/12 must fail somewhere, or this test could not
-  // tell the two theories apart.
   SensorModel unquantized = model;
   unquantized.rate_quantizer.reset();
-  const auto signal = unquantized.ExpectedAvar(ms, {kN, kind});
-  double worst_z = 0.0;
-  for (std::size_t i = 0; i < ms.size(); ++i) {
-    const double white = signal[i] + model.rate_quantizer->ApproximateAvar(ms[i]);
-    worst_z = std::max(worst_z, std::abs(sample.mean[i] - white) / (sd[i] / std::sqrt(kTrials)));
-  }
-  EXPECT_GT(worst_z, 8.0) << "the white approximation is indistinguishable here";
+  const auto check = testing_support::CheckQuantizerTheory(
+      model, unquantized, 17, [&](std::int64_t m) { return model.rate_quantizer->ApproximateAvar(m); });
+  EXPECT_TRUE(check.exact);
+  EXPECT_GT(check.white_worst_z, 8.0) << "the white approximation is indistinguishable here";
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "tests/support/monte_carlo.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -76,6 +77,25 @@ sim::SensorModel SingleTermModel(const sim::NoiseTerm& term, double sample_rate_
   model.sample_rate_hz = sample_rate_hz;
   model.terms = {term};
   return model;
+}
+
+QuantizerTheoryCheck CheckQuantizerTheory(const sim::SensorModel& model, const sim::SensorModel& unquantized,
+                                          std::uint64_t seed, const std::function<double(std::int64_t m)>& white_avar) {
+  constexpr std::int64_t kN = 1 << 14;
+  constexpr int kTrials = 200;
+  const std::vector<std::int64_t> ms = OctaveFactorsUpTo(kN / 8);
+  const auto kind = sim::AvarEstimatorKind::kOverlapping;
+  const AvarSample sample = SimulateAvar(model, seed, kTrials, kN, ms, kind);
+  std::vector<double> sd;
+  for (double v : sample.variance) sd.push_back(std::sqrt(v));
+  QuantizerTheoryCheck check;
+  check.exact = MeanWithinTolerance(sample, model.ExpectedAvar(ms, {kN, kind}), sd, ms);
+  const auto signal = unquantized.ExpectedAvar(ms, {kN, kind});
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    const double white = signal[i] + white_avar(ms[i]);
+    check.white_worst_z = std::max(check.white_worst_z, std::abs(sample.mean[i] - white) / (sd[i] / std::sqrt(kTrials)));
+  }
+  return check;
 }
 
 }  // namespace allanlab::testing_support

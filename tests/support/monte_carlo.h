@@ -3,6 +3,7 @@
 // the estimator's exact variance (THEORY.md §2.1), never from guesses: the mean of `trials`
 // independent AVAR estimates must lie within z * SD / sqrt(trials) of the exact expectation.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,6 +38,19 @@ std::vector<double> ExactAvarStdDev(const sim::SensorModel& model, std::int64_t 
                                                std::span<const double> expected,
                                                std::span<const double> sd_single,
                                                std::span<const std::int64_t> ms, double z = kZ);
+
+// An output quantizer's exact theory against Monte Carlo: 200 records of 2^14 samples of `model`
+// under `seed`, octave m up to N/8. `exact` compares the means with model.ExpectedAvar, the
+// tolerance from the simulated spread (the quantization error is not Gaussian; z = 5);
+// `white_worst_z` is the largest |z| of the same means against the unquantized model's AVAR plus
+// `white_avar(m)`, the quantizer's white approximation: a test of the exact theory must also see
+// the approximation fail, or it could not tell the two apart.
+struct QuantizerTheoryCheck {
+  ::testing::AssertionResult exact = ::testing::AssertionSuccess();
+  double white_worst_z = 0.0;
+};
+QuantizerTheoryCheck CheckQuantizerTheory(const sim::SensorModel& model, const sim::SensorModel& unquantized,
+                                          std::uint64_t seed, const std::function<double(std::int64_t m)>& white_avar);
 
 // Octave averaging factors 1, 2, 4, ... <= n / 8.
 std::vector<std::int64_t> OctaveFactorsUpTo(std::int64_t n_over);
