@@ -19,10 +19,8 @@
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
-#include "estimators/fit/band_limited_fit.h"
 #include "estimators/fit/bandwidth_estimate.h"
-#include "estimators/fit/fit_avar_model.h"
-#include "estimators/fit/parametric_fit.h"
+#include "estimators/fit/fit_model.h"
 
 namespace allanlab::app {
 namespace {
@@ -59,7 +57,7 @@ bool ParseTerms(const std::string& text, sim::OutputSampling bw_sampling, int bw
     } else if (auto t = estimators::MakeParametricTerm(id); t && id.size() <= 3) {
       extra->push_back(std::move(t));
     } else {
-      *why = "unknown term '" + id + "' (expected a comma list of Q, N, B, K, R, H, GM, BW, BW2)";
+      *why = "unknown term '" + id + "' (expected a comma list of Q, N, B, K, R, GM, H, RTS, BW, BW2)";
       return false;
     }
   }
@@ -293,23 +291,22 @@ AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
 
 std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& command_line) {
   std::string why;
-  estimators::FitOptions fit;
+  estimators::ModelFitOptions fit;
   if (!ParseMethod(o.method, &fit.method)) {
     return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
   }
   fit.terms.clear();
-  estimators::BandLimitedFitOptions auto_fit;
-  if (o.band_limit == "auto") auto_fit.policy = estimators::BandLimitPolicy::kAuto;
-  else if (o.band_limit == "off") auto_fit.policy = estimators::BandLimitPolicy::kOff;
+  if (o.band_limit == "auto") fit.band_limit = estimators::BandLimitPolicy::kAuto;
+  else if (o.band_limit == "off") fit.band_limit = estimators::BandLimitPolicy::kOff;
   else return Failure{kExitUsageError, "--band-limit: unknown '" + o.band_limit + "' (expected auto or off)"};
-  if (o.bw_sampling == "average") auto_fit.sampling = sim::OutputSampling::kAverage;
-  else if (o.bw_sampling == "point") auto_fit.sampling = sim::OutputSampling::kPoint;
+  if (o.bw_sampling == "average") fit.bw_sampling = sim::OutputSampling::kAverage;
+  else if (o.bw_sampling == "point") fit.bw_sampling = sim::OutputSampling::kPoint;
   else return Failure{kExitUsageError, "--bw-sampling: unknown '" + o.bw_sampling + "' (expected average or point)"};
   if (o.bw_oversampling < 1 || o.bw_oversampling > 256) {
     return Failure{kExitUsageError, "--bw-oversampling: must be an integer in [1, 256], got " +
                                         std::to_string(o.bw_oversampling)};
   }
-  auto_fit.oversampling = o.bw_oversampling;
+  fit.bw_oversampling = o.bw_oversampling;
   if (!std::isfinite(o.min_tau_s) || o.min_tau_s < 0.0) {
     return Failure{kExitUsageError, "--min-tau: must be a finite number >= 0 s"};
   }
@@ -320,12 +317,11 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   if (o.min_tau_s >= max_tau) {
     return Failure{kExitUsageError, "--min-tau must be below --max-tau"};
   }
-  estimators::ParametricFitOptions parametric;
-  if (!ParseTerms(o.terms, auto_fit.sampling, auto_fit.oversampling, &fit.terms, &parametric.extra, &why)) {
+  if (!ParseTerms(o.terms, fit.bw_sampling, fit.bw_oversampling, &fit.terms, &fit.extra, &why)) {
     return Failure{kExitUsageError, "--terms: " + why};
   }
-  if (!parametric.extra.empty() && fit.method == FitMethod::kSlope) {
-    return Failure{kExitUsageError, "--terms: H, GM and BW need a fit method (gls, wls or logwls), not slope"};
+  if (!fit.extra.empty() && fit.method == FitMethod::kSlope) {
+    return Failure{kExitUsageError, "--terms: H, GM, RTS and BW need a fit method (gls, wls or logwls), not slope"};
   }
   fit.select_terms = o.select_terms;
   if (o.uncertainty == "bootstrap") {
@@ -338,8 +334,6 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   if (fit.uncertainty == estimators::FitUncertainty::kBootstrap && !fit.bootstrap.IsValid(&why)) {
     return Failure{kExitUsageError, "--bootstrap-trials: " + why};
   }
-  parametric.uncertainty = fit.uncertainty;
-  parametric.bootstrap = fit.bootstrap;
 
   std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.curve.path}};
   if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
@@ -376,35 +370,13 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
        << " s) lie in the --min-tau/--max-tau range: nothing to fit";
     return Failure{kExitRuntimeError, os.str()};
   }
-  estimators::FitSummary summary;
-  estimators::ParametricFitSummary parametric_summary;
-  std::optional<sim::SensorModel> fitted_model;
-  if (parametric.extra.empty()) {
-    auto_fit.fit = fit;
-    estimators::BandLimitedFitSummary s;
-    if (!estimators::FitWithBandLimit(auto_fit, curve, &s)) {
-      return Failure{kExitRuntimeError, o.curve.path + ": " + s.fit.message};
-    }
-    summary = s.fit;
-    if (s.band_limited) {
-      parametric_summary.base = s.fit;
-      parametric_summary.extra = s.extra;
-      parametric_summary.ok = true;
-      fitted_model = estimators::FittedModel(s.parametric, curve, parametric_summary);
-    }
-  } else {
-    // No term selection with parametric terms (parametric_fit.h): every requested term is kept.
-    parametric.method = fit.method;
-    parametric.terms = fit.terms;
-    if (!estimators::FitAvarModelWithTerms(parametric, curve, &parametric_summary)) {
-      return Failure{kExitRuntimeError, o.curve.path + ": " + parametric_summary.base.message};
-    }
-    summary = parametric_summary.base;
-    summary.tau_min_s = curve.tau_s.front();
-    summary.tau_max_s = curve.tau_s.back();
-    summary.band_limit = "as asked in --terms";
-    fitted_model = estimators::FittedModel(parametric, curve, parametric_summary);
+  estimators::ModelFitSummary fitted;
+  if (!estimators::FitModel(fit, curve, &fitted)) {
+    return Failure{kExitRuntimeError, o.curve.path + ": " + fitted.fit.message};
   }
+  const estimators::FitSummary& summary = fitted.fit;
+  std::optional<sim::SensorModel> fitted_model;
+  if (!fitted.extra_terms.empty()) fitted_model = estimators::FittedModel(curve, fitted);
   const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
 
   Provenance& p = report.provenance;
@@ -425,9 +397,9 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
                            (o.max_tau_s > 0.0 ? ShortestDecimal(o.max_tau_s) + " s" : std::string("end")));
   }
 
-  WriteTable(std::cout, o, summary, parametric_summary.extra, bandwidth);
+  WriteTable(std::cout, o, summary, fitted.extra, bandwidth);
   std::cout.flush();
-  if (json.is_open()) json.stream() << FitJson(o, summary, parametric_summary.extra, bandwidth, p).dump(2) << "\n";
+  if (json.is_open()) json.stream() << FitJson(o, summary, fitted.extra, bandwidth, p).dump(2) << "\n";
   if (kalibr.is_open()) {
     KalibrGyroNoise noise;
     const auto& n = summary.at(Coefficient::kN);

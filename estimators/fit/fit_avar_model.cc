@@ -12,6 +12,7 @@
 
 #include "estimators/fit/avar_covariance.h"
 #include "estimators/fit/avar_residuals.h"
+#include "estimators/fit/ceres_solver_options.h"
 #include "sim/sensor_model.h"
 
 namespace allanlab::estimators {
@@ -47,13 +48,7 @@ bool SolveBounded(const Problem& p, ceres::Problem* problem, std::array<double, 
       problem->SetParameterLowerBound(&(*theta)[i], 0, 0.0);
     }
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = 500;
-  solver.function_tolerance = 1e-15;
-  solver.gradient_tolerance = 1e-16;
-  solver.parameter_tolerance = 1e-13;
-  solver.logging_type = ceres::SILENT;
+  const ceres::Solver::Options solver = FitSolverOptions(SolveKind::kLinearTerms, 500);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, problem, &summary);
   if (!summary.IsSolutionUsable()) {

@@ -11,6 +11,7 @@
 
 #include "estimators/fit/additive_term_avar.h"
 #include "estimators/fit/avar_covariance.h"
+#include "estimators/fit/ceres_solver_options.h"
 #include "estimators/fit/model_avar_residuals.h"
 #include "sim/band_limited_avar.h"
 
@@ -175,13 +176,7 @@ Stage SolveStage(ModelAvarResiduals* cost, std::vector<double>* theta, std::vect
     problem.SetParameterLowerBound(u->data(), static_cast<int>(i), u_lo[i]);
     problem.SetParameterUpperBound(u->data(), static_cast<int>(i), u_hi[i]);
   }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = max_iterations;
-  so.function_tolerance = 1e-12;
-  so.gradient_tolerance = 1e-14;
-  so.parameter_tolerance = 1e-10;
-  so.logging_type = ceres::SILENT;
+  const ceres::Solver::Options so = FitSolverOptions(SolveKind::kParametric, max_iterations);
   ceres::Solver::Summary s;
   ceres::Solve(so, &problem, &s);
   Stage out;
