@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <new>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "app/provenance.h"
 #include "app/rate_units.h"
 #include "app/record_reader.h"
+#include "app/stated_units.h"
 #include "estimators/allan_family.h"
 #include "estimators/avar.h"
 #include "estimators/confidence.h"
@@ -43,9 +45,6 @@ bool PositiveFinite(double v) { return std::isfinite(v) && v > 0.0; }
 struct Plan {
   RecordReaderOptions read;
   InputKind input = InputKind::kRate;
-  std::string input_units;
-  double to_si = 1.0;                            // angle input: [unit] -> rad
-  RateUnit rate_unit = RateUnit::kDegPerSecond;  // rate input
   RateUnit output_unit = RateUnit::kDegPerHour;
   estimators::AvarOptions avar;
 };
@@ -82,25 +81,17 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
   }
   if (o.type == "rate") {
     plan->input = InputKind::kRate;
-    plan->input_units = o.units.empty() ? "deg/s" : o.units;
-    if (!ParseRateUnit(plan->input_units, &plan->rate_unit, &why)) return Usage("--units: " + why);
   } else if (o.type == "angle") {
     plan->input = InputKind::kAngle;
-    plan->input_units = o.units.empty() ? "deg" : o.units;
-    if (plan->input_units == "deg") {
-      plan->to_si = units::kRadPerDeg;
-    } else if (plan->input_units == "rad") {
-      plan->to_si = 1.0;
-    } else if (plan->input_units == "arcsec") {
-      plan->to_si = units::kRadPerArcsec;
-    } else {
-      return Usage("--units: unknown angle unit '" + plan->input_units +
-                   "' for --type angle (expected deg, rad or arcsec)");
-    }
     // One more angle than rates: 3 rates need 4 angles.
     plan->read.min_samples = 4;
   } else {
     return Usage("--type: unknown '" + o.type + "' (expected rate or angle)");
+  }
+  plan->read.kind = plan->input;
+  // The record's own statement of its units is read with the file (app/stated_units.h).
+  if (!o.units.empty() && !CanonicalUnit(o.units, plan->input, &plan->read.units, &why)) {
+    return Usage("--units: " + why);
   }
   if (!ParseRateUnit(o.out_units, &plan->output_unit, &why)) return Usage("--out-units: " + why);
 
@@ -146,6 +137,35 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
   return std::nullopt;
 }
 
+// Samples in the record's units (RecordInfo::units, canonical) to SI: rad/s, or rad for angle
+// input, with the sim/units.h arithmetic.
+class InputScale {
+ public:
+  InputScale(InputKind kind, const std::string& unit) : kind_(kind) {
+    if (kind == InputKind::kAngle) {
+      angle_to_si_ = unit == "deg" ? units::kRadPerDeg : unit == "arcsec" ? units::kRadPerArcsec : 1.0;
+    } else {
+      std::string ignored;
+      ParseRateUnit(unit, &rate_, &ignored);  // canonical: always parses
+    }
+  }
+  double operator()(double v) const {
+    return kind_ == InputKind::kAngle ? v * angle_to_si_ : ToRadPerSecond(rate_, v);
+  }
+  void Apply(std::span<double> values) const {
+    if (kind_ == InputKind::kAngle) {
+      for (double& v : values) v *= angle_to_si_;
+    } else {
+      ToRadPerSecond(rate_, values);
+    }
+  }
+
+ private:
+  InputKind kind_;
+  RateUnit rate_ = RateUnit::kRadPerSecond;
+  double angle_to_si_ = 1.0;
+};
+
 // Reads the record in SI units (rad/s or rad) and computes the curve in memory.
 std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   std::vector<double> values;
@@ -153,11 +173,8 @@ std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   if (!ReadRecordValues(plan.read, &values, &report->record, &error)) {
     return Failure{error.exit_code, error.message};
   }
-  if (plan.input == InputKind::kAngle) {
-    for (double& v : values) v *= plan.to_si;
-  } else {
-    ToRadPerSecond(plan.rate_unit, values);
-  }
+  InputScale(plan.input, report->record.units).Apply(values);
+  report->input_units = report->record.units;
   estimators::AvarOptions options = plan.avar;
   options.sample_period_s = 1.0 / report->record.sample_rate_hz;
   // The record is not needed afterwards: its storage becomes the integrated record.
@@ -177,20 +194,24 @@ std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_
   double previous = 0.0;
   const bool angle = plan.input == InputKind::kAngle;
   RecordError error;
+  // The units are known once the header is read, before the first value (record_reader.h).
+  std::optional<InputScale> scale_to_si;
   const bool ok = ReadRecord(
       plan.read,
       [&](double v) {
+        if (!scale_to_si) scale_to_si.emplace(plan.input, report->record.units);
         if (!angle) {
-          stream.Add(ToRadPerSecond(plan.rate_unit, v));
+          stream.Add((*scale_to_si)(v));
           return;
         }
-        const double a = v * plan.to_si;
+        const double a = (*scale_to_si)(v);
         if (have_previous) stream.Add(a - previous);
         previous = a;
         have_previous = true;
       },
       &report->record, &error);
   if (!ok) return Failure{error.exit_code, error.message};
+  report->input_units = report->record.units;
   const double tau0 = 1.0 / report->record.sample_rate_hz;
   const double scale = angle ? 1.0 / (tau0 * tau0) : 1.0;
   estimators::AvarSummary& s = report->summary;
@@ -263,7 +284,6 @@ std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& comm
 
   // 3. The record and its curve.
   AvarReport report;
-  report.input_units = plan.input_units;
   report.output_unit = plan.output_unit;
   report.taus_text = o.taus;
   const std::optional<Failure> failure = o.stream
@@ -280,7 +300,8 @@ std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& comm
                       std::string(CompressionName(info.compression)));
   p.Add("column", info.column);
   p.Add("type", o.type);
-  p.Add("units", plan.input_units + " in, " + std::string(RateUnitName(plan.output_unit)) + " out");
+  p.Add("units", info.units + " in (" + info.units_source + "), " +
+                     std::string(RateUnitName(plan.output_unit)) + " out");
   p.Add("samples", std::to_string(info.samples) + " read, " +
                        std::to_string(report.summary.num_samples) + " rate samples used");
   p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
@@ -314,24 +335,27 @@ std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& comm
 
 void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
   cmd->add_option("FILE", options->path,
-                  "the record: CSV/TSV/whitespace text with '#' comments and an optional header, "
-                  "or raw little-endian float32/float64 (--format); plain, .gz or .xz (detected "
-                  "from the content)")
+                  "the record ('-' for standard input): CSV/TSV/whitespace text with '#' comments "
+                  "and an optional header, or raw little-endian float32/float64 (--format); "
+                  "plain, .gz or .xz (detected from the content)")
       ->required();
   cmd->add_option("--column", options->column,
                   "text column by header name or 0-based index (default: the first column that "
-                  "is not the time column t, t_s, time, time_s, timestamp, t_ms, time_ns, %time ...)")
+                  "is not the time column t, t_s, time, time_s, timestamp, t_ms, time_ns, %time "
+                  "...; without a header, a first column that increases is the time in seconds)")
       ->type_name("NAME|INDEX");
   cmd->add_option("--units", options->units,
-                  "input units: deg/s (default), deg/h or rad/s for rate; deg (default), rad or "
-                  "arcsec for angle")
+                  "input units: deg/s, deg/h or rad/s for rate; deg, rad or arcsec for angle. "
+                  "Needed unless the file states them (a unit in the column name such as "
+                  "Gyro_X_dps or rate_rad_per_s, a '# units: rad/s' line, or the .json sidecar of "
+                  "a raw record); when both do, they must agree")
       ->type_name("UNIT");
   cmd->add_option("--out-units", options->out_units,
                   "units of the printed deviation: deg/h (default), deg/s or rad/s")
       ->type_name("deg/h|deg/s|rad/s");
   cmd->add_option("--rate", options->rate_hz,
-                  "sample rate in Hz; needed without a time column; with one it must agree to "
-                  "1e-3 relative")
+                  "sample rate in Hz; needed without a time column or a raw record's sidecar; "
+                  "with one it must agree to 1e-3 relative")
       ->type_name("HZ");
   cmd->add_option("--time-units", options->time_units,
                   "unit of the time column (default: from its name: t_ms, time_us, time_ns, "
@@ -398,7 +422,6 @@ int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& c
   Plan plan;
   std::optional<Failure> failure = MakePlan(options, &plan);
   if (!failure) {
-    report->input_units = plan.input_units;
     report->output_unit = plan.output_unit;
     report->taus_text = options.taus;
     failure = ComputeInMemory(plan, report);
@@ -423,9 +446,7 @@ int ReadRateFromFile(const AvarCommandOptions& options, const std::string& comma
     *error = read_error.message;
     return read_error.exit_code;
   }
-  for (double& v : *rate) {
-    v = plan.input == InputKind::kAngle ? v * plan.to_si : ToRadPerSecond(plan.rate_unit, v);
-  }
+  InputScale(plan.input, info->units).Apply(*rate);
   if (plan.input == InputKind::kAngle) *rate = estimators::AngleToRate(*rate, 1.0 / info->sample_rate_hz);
   WarnAboutRecord(*info, command);
   return kExitOk;

@@ -6,8 +6,9 @@
 // --stream, one pass in bounded memory: estimators/streaming_avar.h (octave taus, overlapping or
 // non-overlapping AVAR, simple or no interval), for records larger than memory.
 //
-// Units: input in --units (rate: deg/s, deg/h, rad/s; angle: deg, rad, arcsec), converted to SI
-// on reading; output in --out-units (default deg/h). Tau in seconds.
+// Units: input as the file states them or --units (rate: deg/s, deg/h, rad/s; angle: deg, rad,
+// arcsec; app/stated_units.h: both must agree, one must say), converted to SI on reading; output
+// in --out-units (default deg/h). Tau in seconds.
 //
 // Exit codes (app/subcommand.h): 2 for a wrong command line or value (unknown unit, estimator,
 // tau grid, CI method or format, a confidence outside (0, 1), a --rate not finite and > 0 or
@@ -31,7 +32,7 @@ namespace allanlab::app {
 struct AvarCommandOptions {
   std::string path;
   std::string column;
-  std::string units;  // empty: deg/s for rate, deg for angle
+  std::string units;  // empty: as the file states them (an error when it does not)
   std::string out_units = "deg/h";
   std::optional<double> rate_hz;
   std::string time_units;  // --time-units s|ms|us|ns; empty: from the time column's name

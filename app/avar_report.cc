@@ -77,7 +77,7 @@ std::string RecordLine(const AvarReport& r) {
   const RecordInfo& i = r.record;
   return i.path + ", " + i.column + ", " + std::to_string(r.summary.num_samples) + " " +
          TypeName(r.summary.options.input) + " samples at " + Number(i.sample_rate_hz) + " Hz (" +
-         i.rate_source + "), input in " + r.input_units;
+         i.rate_source + "), input in " + r.input_units + " (" + i.units_source + ")";
 }
 
 std::vector<std::string> Notes(const AvarReport& r) {
@@ -243,6 +243,7 @@ nlohmann::ordered_json AvarJson(const AvarReport& r) {
   input["time_column"] = i.time_column;
   input["type"] = TypeName(r.summary.options.input);
   input["units"] = r.input_units;
+  input["units_source"] = i.units_source;
   input["samples_read"] = i.samples;
   input["rate_samples"] = r.summary.num_samples;
   input["dropped_nonfinite"] = i.dropped_nonfinite;

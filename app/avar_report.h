@@ -20,7 +20,7 @@ struct AvarReport {
   // Values in (rad/s)^2, or rad^2 for Statistic::kTime; intervals for the variance.
   estimators::AvarSummary summary;
   RecordInfo record;
-  std::string input_units;  // as the user gave them, e.g. "deg/s" or "deg" (angle input)
+  std::string input_units;  // as read (record.units_source says where), e.g. "deg/s" or "deg"
   RateUnit output_unit = RateUnit::kDegPerHour;
   std::string taus_text;  // --taus as given
   bool streamed = false;

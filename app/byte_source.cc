@@ -46,6 +46,18 @@ class RawFile {
       return true;
     }
   }
+  // Reads until at least `n` bytes are buffered or the input ends (only at the start: the
+  // buffer holds 64 KiB).
+  bool FillAtLeast(std::size_t n, std::string* why) {
+    while (size() < n && !eof_) {
+      const ssize_t got = ::read(fd_, buffer_.data() + end_, buffer_.size() - end_);
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0) return Fail(why, "cannot read " + path_ + ": " + std::strerror(errno));
+      end_ += static_cast<std::size_t>(got);
+      eof_ = got == 0;
+    }
+    return true;
+  }
   const unsigned char* data() const {
     return reinterpret_cast<const unsigned char*>(buffer_.data()) + begin_;
   }
@@ -209,16 +221,21 @@ std::string_view CompressionName(Compression compression) {
 
 bool OpenByteSource(const std::string& path, std::unique_ptr<ByteSource>* source,
                     std::string* why) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return Fail(why, "cannot open " + path + ": " + std::strerror(errno));
+  // "-": standard input, duplicated so that closing the source leaves fd 0 alone.
+  const bool stdin_path = path == "-";
+  const int fd = stdin_path ? ::fcntl(0, F_DUPFD_CLOEXEC, 0) : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    return Fail(why, "cannot open " + std::string(stdin_path ? "stdin" : path) + ": " +
+                         std::strerror(errno));
+  }
   struct stat st;
   if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
     ::close(fd);
     return Fail(why, "cannot open " + path + ": it is a directory");
   }
-  auto file = std::make_unique<RawFile>(fd, path);
-  if (!file->Fill(why)) return false;
-  // One read of 64 KiB holds the 6-byte magic unless the file is shorter than that.
+  auto file = std::make_unique<RawFile>(fd, stdin_path ? "stdin" : path);
+  // A pipe may deliver fewer bytes per read than the 6-byte magic: read until it is whole.
+  if (!file->FillAtLeast(6, why)) return false;
   static constexpr unsigned char kGzipMagic[] = {0x1f, 0x8b};
   static constexpr unsigned char kXzMagic[] = {0xfd, '7', 'z', 'X', 'Z', 0x00};
   const auto starts_with = [&](const unsigned char* magic, std::size_t n) {

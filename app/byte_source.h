@@ -27,7 +27,7 @@ class ByteSource {
   virtual Compression compression() const = 0;
 };
 
-// Opens `path` ("-" is not special). Fails with "cannot open PATH: <reason>" when the file is
+// Opens `path`; "-" is standard input (read once, as a stream; messages call it "stdin"). Fails with "cannot open PATH: <reason>" when the file is
 // missing, unreadable or a directory.
 bool OpenByteSource(const std::string& path, std::unique_ptr<ByteSource>* source, std::string* why);
 

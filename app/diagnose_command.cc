@@ -391,6 +391,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     }
     p.Add("input", info.path);
     p.Add("column", info.column);
+    p.Add("units", info.units + " (" + info.units_source + ")");
     p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
     p.Add("samples", std::to_string(rate.size()));
     if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));

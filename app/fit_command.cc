@@ -383,6 +383,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   p = MakeProvenance(kCommand, command_line);
   p.Add("input", report.record.path);
   p.Add("column", report.record.column);
+  p.Add("units", report.input_units + " (" + report.record.units_source + ")");
   p.Add("sample_rate", ShortestDecimal(report.record.sample_rate_hz) + " Hz (" + report.record.rate_source + ")");
   p.Add("samples", std::to_string(report.summary.num_samples));
   p.Add("taus", o.curve.taus);

@@ -13,6 +13,8 @@
 
 #include "app/provenance.h"
 #include "app/raw_sample_decoder.h"
+#include "app/raw_sidecar.h"
+#include "app/stated_units.h"
 #include "app/subcommand.h"
 #include "app/text_record_parser.h"
 
@@ -64,12 +66,31 @@ class Reader {
 
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
-    info_->path = o_.path;
+    info_->path = o_.path == "-" ? "stdin" : o_.path;
     info_->format = o_.format;
     std::string why;
-    if (o_.format != RecordFormat::kText && !o_.rate_hz) {
-      return Usage(error, "raw " + std::string(RecordFormatName(o_.format)) +
-                              " samples carry no time: give the sample rate with --rate HZ");
+    if (o_.format != RecordFormat::kText) {
+      if (o_.path != "-" && !ReadRawSidecar(o_.path, &sidecar_, &why)) {
+        return Runtime(error, In() + why);
+      }
+      if (!CheckSidecar(error)) return false;
+      if (!o_.rate_hz && !(sidecar_ && sidecar_->sample_rate_hz)) {
+        return Usage(error, In() + "raw " + std::string(RecordFormatName(o_.format)) +
+                                " samples carry no time" +
+                                (o_.path == "-" ? std::string()
+                                                : " and no sidecar " + o_.path +
+                                                      ".json gives their rate") +
+                                ": give the sample rate with --rate HZ");
+      }
+      std::vector<StatedUnit> stated;
+      if (sidecar_ && sidecar_->units) {
+        std::string unit;
+        if (!CanonicalUnit(*sidecar_->units, o_.kind, &unit, &why)) {
+          return Runtime(error, In() + "the sidecar " + sidecar_->path + ": " + why);
+        }
+        stated.push_back({unit, "the sidecar " + sidecar_->path});
+      }
+      if (!ResolveStatedUnits(std::move(stated), "the samples", error)) return false;
     }
     std::unique_ptr<ByteSource> source;
     if (!OpenByteSource(o_.path, &source, &why)) return Runtime(error, why);
@@ -81,6 +102,58 @@ class Reader {
   }
 
  private:
+  // The sidecar's type and rate against the command line (its count is checked after reading).
+  bool CheckSidecar(RecordError* error) {
+    if (!sidecar_) return true;
+    const std::string name = "the sidecar " + sidecar_->path;
+    const std::string_view expected = o_.format == RecordFormat::kFloat32 ? "<f4" : "<f8";
+    if (sidecar_->dtype && *sidecar_->dtype != expected) {
+      return Usage(error, In() + name + " says dtype " + *sidecar_->dtype + ", not " +
+                              std::string(expected) + " as --format " +
+                              std::string(RecordFormatName(o_.format)) + " reads: fix --format");
+    }
+    const std::optional<double>& side = sidecar_->sample_rate_hz;
+    if (side && o_.rate_hz && std::abs(*o_.rate_hz - *side) > kRateTolerance * *side) {
+      return Usage(error, In() + "--rate " + ShortestDecimal(*o_.rate_hz) +
+                              " Hz disagrees with " + name + " (" + ShortestDecimal(*side) +
+                              " Hz); drop --rate or fix it");
+    }
+    return true;
+  }
+
+  // The file's statements of the units (`stated`) and --units reduced to one, into *info_.
+  bool ResolveStatedUnits(std::vector<StatedUnit> stated, const std::string& what,
+                          RecordError* error) {
+    if (!o_.units.empty()) stated.push_back({o_.units, "--units"});
+    StatedUnit resolved;
+    std::string why;
+    if (!ResolveUnits(stated, o_.kind, what, &resolved, &why)) return Usage(error, In() + why);
+    info_->units = resolved.unit;
+    info_->units_source = resolved.source;
+    return true;
+  }
+
+  // What a text record says about its units, once its header and leading comments are known.
+  bool ResolveTextUnits(const TextRecordParser& parser, RecordError* error) {
+    std::vector<StatedUnit> stated;
+    std::string why;
+    if (parser.has_header()) {
+      std::optional<StatedUnit> from_name;
+      if (!UnitFromColumnName(parser.value_column(), o_.kind, &from_name, &why)) {
+        return Runtime(error, In() + why);
+      }
+      if (from_name) stated.push_back(*from_name);
+    }
+    if (const std::string line = parser.LeadingComment("units"); !line.empty()) {
+      std::string unit;
+      if (!CanonicalUnit(line, o_.kind, &unit, &why)) {
+        return Runtime(error, In() + "the '# units:' line: " + why);
+      }
+      stated.push_back({unit, "the '# units: " + line + "' line"});
+    }
+    return ResolveStatedUnits(std::move(stated), "column " + parser.value_column(), error);
+  }
+
   bool Usage(RecordError* error, const std::string& message) {
     *error = {kExitUsageError, message};
     return false;
@@ -89,7 +162,7 @@ class Reader {
     *error = {kExitRuntimeError, message};
     return false;
   }
-  std::string In() const { return o_.path + ": "; }
+  std::string In() const { return (o_.path == "-" ? std::string("stdin") : o_.path) + ": "; }
 
   // A non-finite row is dropped or logged; a finite one is passed on (until the first logged
   // non-finite value: the record will fail, so the sink need not see more).
@@ -111,6 +184,7 @@ class Reader {
   bool ReadText(ByteSource* source, RecordError* error) {
     std::string stop;  // why the sink stopped the parser
     bool stop_is_usage = false;
+    RecordError units_error;
     TextRecordParser* parser_ptr = nullptr;
     TextRecordParser parser(o_.column, [&](const TextRow& row) {
       if (info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0) {
@@ -118,10 +192,13 @@ class Reader {
         if (!row.has_time && !o_.rate_hz) {
           stop_is_usage = true;
           stop = "no time column (" + TimeColumnList() + ") in the " +
-                 (parser_ptr->has_header() ? "header" : "file (it has no header row)") +
+                 (parser_ptr->has_header()
+                      ? "header"
+                      : "file (it has no header row, and its first column does not increase)") +
                  ": give the sample rate with --rate HZ";
           return false;
         }
+        if (!ResolveTextUnits(*parser_ptr, &units_error)) return false;
       }
       if (row.has_time && o_.drop_nonfinite &&
           (!std::isfinite(row.time) || !std::isfinite(row.value))) {
@@ -134,7 +211,14 @@ class Reader {
           time_unit_s_ = o_.time_unit_s.value_or(name->seconds_per_unit);
           unit_is_guess_ = !o_.time_unit_s && !name->unit_in_name;
         }
-        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) return false;
+        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) {
+          if (parser_ptr->time_column_guessed()) {
+            stop += " (the file has no header and its first column increased over its first " +
+                    std::to_string(TextRecordParser::kTimeProbeRows) +
+                    " rows, so it was read as time; --column 0 reads it as data)";
+          }
+          return false;
+        }
       }
       Accept(row.value, row.line);
       return true;
@@ -147,6 +231,10 @@ class Reader {
       if (!source->Read(chunk, &got, &why)) return Runtime(error, why);
       const bool ok = got == 0 ? parser.Finish() : parser.Feed({chunk.data(), got});
       if (!ok) {
+        if (!units_error.message.empty()) {
+          *error = units_error;
+          return false;
+        }
         if (parser.error().empty()) {
           return stop_is_usage ? Usage(error, In() + stop) : Runtime(error, In() + stop);
         }
@@ -159,6 +247,7 @@ class Reader {
     info_->lines = parser.lines();
     info_->column = parser.value_column();
     info_->time_column = parser.time_column();
+    info_->time_column_guessed = parser.time_column_guessed();
     if (time_unit_s_ > 0.0) info_->time_unit_s = time_unit_s_;
     if (parser.data_rows() == 0) {
       return Runtime(error, In() + "no data rows (" + std::to_string(parser.lines()) +
@@ -222,6 +311,17 @@ class Reader {
         info_->sample_rate_hz = from_time;
         info_->rate_source = "time column " + info_->time_column + TimeUnitNote();
         if (o_.rate_hz) {
+          if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time &&
+              info_->time_column_guessed) {
+            // Only a guess (a counter, or time in another unit): the rate given wins.
+            info_->sample_rate_hz = *o_.rate_hz;
+            info_->rate_source = "--rate (the headerless first column, read as time, gives " +
+                                 ShortestDecimal(from_time) + " Hz: not used)";
+            info_->time = TimeSteps::Summary();
+            info_->time_column.clear();
+            info_->time_column_guessed = false;
+            return ConcludeCounts(error);
+          }
           if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time) {
             return Usage(error, In() + "--rate " + ShortestDecimal(*o_.rate_hz) +
                                     " Hz disagrees with the time column " + info_->time_column +
@@ -232,6 +332,27 @@ class Reader {
           info_->sample_rate_hz = *o_.rate_hz;
           info_->rate_source = "--rate (time column " + info_->time_column + " agrees)";
         }
+      }
+    }
+    if (info_->sample_rate_hz == 0.0 && !o_.rate_hz && sidecar_ && sidecar_->sample_rate_hz) {
+      info_->sample_rate_hz = *sidecar_->sample_rate_hz;
+      info_->rate_source = "the sidecar " + sidecar_->path;
+    } else if (info_->sample_rate_hz == 0.0 && o_.rate_hz && sidecar_ && sidecar_->sample_rate_hz) {
+      info_->sample_rate_hz = *o_.rate_hz;
+      info_->rate_source = "--rate (the sidecar " + sidecar_->path + " agrees)";
+    }
+    return ConcludeCounts(error);
+  }
+
+  // The sample counts: the sidecar's and the minimum.
+  bool ConcludeCounts(RecordError* error) {
+    if (sidecar_ && sidecar_->num_samples) {
+      const std::int64_t read = info_->samples + info_->dropped_nonfinite;
+      if (read != *sidecar_->num_samples) {
+        return Runtime(error, In() + std::to_string(read) + " samples, but the sidecar " +
+                                  sidecar_->path + " says " +
+                                  std::to_string(*sidecar_->num_samples) +
+                                  ": a truncated file or another record's sidecar");
       }
     }
     if (info_->sample_rate_hz == 0.0) {
@@ -285,6 +406,7 @@ class Reader {
   double time_unit_s_ = 0.0;  // set at the first row with a time
   bool unit_is_guess_ = false;
   RecordInfo* info_;
+  std::optional<RawSidecar> sidecar_;
   NonFiniteLog nonfinite_;
   TimeSteps steps_;
   ConstantStretchTracker stretch_;

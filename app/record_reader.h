@@ -11,12 +11,22 @@
 // kRateTolerance (relative), and --rate is used. Steps off the nominal period are counted and the
 // worst gap kept (RecordInfo::time), for the caller to report.
 //
+// Units (app/stated_units.h): what the file states (the value column's name, a `# units:` line
+// before the first data row, a raw record's sidecar JSON, app/raw_sidecar.h) and --units must
+// agree, and one of them must say it; RecordInfo::units is set before the sink sees a value. A raw
+// record's sidecar also gives the sample rate (--rate must then agree) and the sample count and
+// type, which the file must match.
+//
+// PATH "-" is standard input (text or raw, plain, gzip or xz; no sidecar).
+//
 // Failures (RecordError): exit code 2 (kExitUsageError) when the command line does not fit the
 // file (--column names no column or an index out of range, no time column and no --rate, --rate
-// disagrees with the time column); 1 (kExitRuntimeError) for everything about the file itself
-// (missing/unreadable, corrupt or truncated compression, not text, no data rows, a value that is
-// not a number, non-finite values without drop_nonfinite, time not increasing, fewer than
-// min_samples samples). Messages are one line and start with the file's path.
+// disagrees with the time column or the sidecar, --format with the sidecar's type, units stated
+// nowhere or --units contradicting the file); 1 (kExitRuntimeError) for everything about the file
+// itself (missing/unreadable, corrupt or truncated compression, not text, no data rows, a value
+// that is not a number, non-finite values without drop_nonfinite, time not increasing, fewer than
+// min_samples samples, a count or units the sidecar contradicts, a unit allanlab does not read).
+// Messages are one line and start with the file's path ("stdin" for "-").
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -27,6 +37,7 @@
 #include "app/byte_source.h"
 #include "app/constant_stretch.h"
 #include "app/time_steps.h"
+#include "estimators/avar_summary.h"
 
 namespace allanlab::app {
 
@@ -50,6 +61,8 @@ struct RecordReaderOptions {
   std::optional<double> time_unit_s;
   bool drop_nonfinite = false;    // skip rows whose value (or time) is NaN/inf, and count them
   std::int64_t min_samples = 3;   // fewer kept samples is an error
+  estimators::InputKind kind = estimators::InputKind::kRate;  // what the samples are
+  std::string units;  // --units, canonical (app/stated_units.h); empty when not given
 };
 
 struct RecordInfo {
@@ -59,12 +72,16 @@ struct RecordInfo {
   bool has_header = false;
   std::string column;        // "Gyro_X", "column 2" (text without header) or "float64 samples"
   std::string time_column;   // empty when the rate did not come from a time column
+  bool time_column_guessed = false;  // a headerless first column read as time (it increases)
+  std::string units;         // canonical: "deg/s", "rad/s", "deg/h"; "deg", "rad", "arcsec"
+  std::string units_source;  // "column rate_rad_per_s", "the '# units:' line", "--units", ...
   double time_unit_s = 1.0;  // seconds per unit of the time column
   std::int64_t lines = 0;    // text: physical lines read
   std::int64_t samples = 0;  // values passed to the sink
   std::int64_t dropped_nonfinite = 0;  // rows skipped by drop_nonfinite
   double sample_rate_hz = 0.0;
-  std::string rate_source;  // "--rate", "time column t_s" or "--rate (time column t_s agrees)"
+  // "--rate", "time column t_s", "--rate (time column t_s agrees)" or "sidecar r.f64.json"
+  std::string rate_source;
   TimeSteps::Summary time;  // the time column's steps (samples == 0 without one)
   ConstantStretch longest_constant_stretch;  // of the kept values, in file units
 };

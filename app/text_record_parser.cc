@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 #include <system_error>
+#include <utility>
 
 namespace allanlab::app {
 namespace {
@@ -144,6 +145,10 @@ bool TextRecordParser::Finish() {
       return false;
     }
   }
+  if (probing_ && !DecideHeaderlessTime()) {
+    failed_ = true;
+    return false;
+  }
   return true;
 }
 
@@ -273,6 +278,7 @@ bool TextRecordParser::ParseLine(std::string_view line) {
                 " has a NUL byte: not a text record (raw samples? use --format f32|f64)");
   }
   if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
+    if (data_rows_ == 0 && probe_.empty()) KeepLeadingComment(line.substr(hash + 1));
     line = line.substr(0, hash);
   }
   if (Trim(line).empty()) return true;
@@ -296,27 +302,88 @@ bool TextRecordParser::ParseLine(std::string_view line) {
     for (std::string_view f : fields_) header |= !ParseNumberField(f, &ignored);
     if (!ChooseColumns(fields_, header)) return false;
     if (header) return true;
+    // Without a header the first column may be time: hold rows until that is decided.
+    probing_ = fields_.size() >= 2 && (column_spec_.empty() || value_index_ != 0);
   } else {
     Split(line, &fields_);
   }
+  if (probing_) {
+    probe_.emplace_back(line_, std::string(line));
+    if (static_cast<int>(probe_.size()) < kTimeProbeRows) return true;
+    return DecideHeaderlessTime();
+  }
+  return ParseDataRow(line_);
+}
 
+bool TextRecordParser::DecideHeaderlessTime() {
+  probing_ = false;
+  bool increasing = probe_.size() >= 2;
+  double previous = -std::numeric_limits<double>::infinity();
+  for (const auto& [line, text] : probe_) {
+    Split(text, &fields_);
+    double t = 0.0;
+    if (fields_.empty() || !ParseNumberField(fields_[0], &t) || !std::isfinite(t) ||
+        !(t > previous)) {
+      increasing = false;
+      break;
+    }
+    previous = t;
+  }
+  if (increasing) {
+    static constexpr TimeColumnName kHeaderlessTime{kHeaderlessTimeName, 1.0, false};
+    time_index_ = 0;
+    time_column_ = std::string(kHeaderlessTimeName);
+    time_name_ = &kHeaderlessTime;
+    time_guessed_ = true;
+    if (column_spec_.empty()) {
+      value_index_ = 1;
+      value_column_ = "column 1";
+    }
+  }
+  std::vector<std::pair<std::int64_t, std::string>> rows = std::move(probe_);
+  probe_.clear();
+  for (const auto& [line, text] : rows) {
+    Split(text, &fields_);
+    if (!ParseDataRow(line)) return false;
+  }
+  return true;
+}
+
+void TextRecordParser::KeepLeadingComment(std::string_view comment) {
+  // A preamble of many thousand lines is not metadata; keep the memory bounded.
+  static constexpr std::size_t kMaxLeadingComments = 256;
+  const std::size_t colon = comment.find(':');
+  if (colon == std::string_view::npos || leading_comments_.size() >= kMaxLeadingComments) return;
+  const std::string_view key = Trim(comment.substr(0, colon));
+  if (key.empty()) return;
+  leading_comments_.emplace_back(std::string(key), std::string(Trim(comment.substr(colon + 1))));
+}
+
+std::string TextRecordParser::LeadingComment(std::string_view key) const {
+  for (auto it = leading_comments_.rbegin(); it != leading_comments_.rend(); ++it) {
+    if (EqualsIgnoreCase(it->first, key)) return it->second;
+  }
+  return "";
+}
+
+bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
   const int needed = std::max(value_index_, time_index_) + 1;
   if (static_cast<int>(fields_.size()) < needed) {
-    return Fail("line " + std::to_string(line_) + " has " + std::to_string(fields_.size()) +
+    return Fail("line " + std::to_string(line_no) + " has " + std::to_string(fields_.size()) +
                 " field(s); column " + Shown(value_column_) +
                 (time_index_ >= 0 ? " and time column " + time_column_ : std::string()) + " need " +
                 std::to_string(needed));
   }
   TextRow row;
-  row.line = line_;
+  row.line = line_no;
   if (!ParseNumberField(fields_[value_index_], &row.value)) {
-    return Fail("line " + std::to_string(line_) + ": column " + Shown(value_column_) + ": '" +
+    return Fail("line " + std::to_string(line_no) + ": column " + Shown(value_column_) + ": '" +
                 Shown(Trim(fields_[value_index_])) + "' is not a number");
   }
   if (time_index_ >= 0) {
     row.has_time = true;
     if (!ParseTimeField(fields_[time_index_], &row.time)) {
-      return Fail("line " + std::to_string(line_) + ": time column " + time_column_ + ": '" +
+      return Fail("line " + std::to_string(line_no) + ": time column " + time_column_ + ": '" +
                   Shown(Trim(fields_[time_index_])) + "' is not a number");
     }
   }

@@ -14,11 +14,17 @@
 //  - numbers are C-locale decimal or hex floats, a leading '+' allowed; "nan", "inf",
 //    "infinity" (any case, signed), "NA" and an empty field are read as NaN (missing values,
 //    which the caller may drop), a number beyond the double range as +-inf;
-//  - a NUL byte or a line longer than kMaxLineBytes means the file is not text.
+//  - a NUL byte or a line longer than kMaxLineBytes means the file is not text;
+//  - `# key: value` comment lines before the first data row are kept (LeadingComment): that is
+//    how `allanlab simulate` states the units and the sample rate of what follows;
+//  - without a header, a first column whose values strictly increase over the first
+//    kTimeProbeRows data rows is the time column (the two-column `time value` layout of Stable32
+//    and SigmaTheta), in seconds, unless --column chose it as the data.
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace allanlab::app {
@@ -57,6 +63,11 @@ class TextRecordParser {
   using RowSink = std::function<bool(const TextRow&)>;
 
   static constexpr std::size_t kMaxLineBytes = 1 << 20;
+  // Rows of a headerless file read before deciding whether its first column is time: 32 noisy
+  // values rise in order by chance with probability 1/32! (~4e-36).
+  static constexpr int kTimeProbeRows = 32;
+  // The name a headerless time column is given (in messages and RecordInfo::time_column).
+  static constexpr std::string_view kHeaderlessTimeName = "column 0";
 
   // `column`: the --column text, a header name or a 0-based index (all digits); empty picks the
   // first column that is not the time column. Names are matched exactly, else case-insensitively
@@ -82,11 +93,19 @@ class TextRecordParser {
   // The time column's header name, empty when there is none, and its entry in kTimeColumnNames.
   const std::string& time_column() const { return time_column_; }
   const TimeColumnName* time_column_name() const { return time_name_; }
+  // True when the time column is a headerless first column found by its increasing values.
+  bool time_column_guessed() const { return time_guessed_; }
   std::int64_t lines() const { return line_; }  // physical lines read so far
   std::int64_t data_rows() const { return data_rows_; }
+  // The value of the last `# key: value` comment line before the first data row whose key matches
+  // `key` case-insensitively (keys are trimmed); empty when there is none.
+  std::string LeadingComment(std::string_view key) const;
 
  private:
   bool ParseLine(std::string_view line);
+  bool ParseDataRow(std::int64_t line);
+  bool DecideHeaderlessTime();
+  void KeepLeadingComment(std::string_view comment);
   bool ChooseColumns(const std::vector<std::string_view>& first_fields, bool header);
   bool Fail(std::string message);
   bool ParseTimeField(std::string_view field, double* time);
@@ -112,6 +131,11 @@ class TextRecordParser {
   std::int64_t line_ = 0;
   std::int64_t data_rows_ = 0;
   std::vector<std::string_view> fields_;  // reused per line
+  // Headerless time probe: the first rows (line number, text) held until the decision.
+  bool probing_ = false;
+  bool time_guessed_ = false;
+  std::vector<std::pair<std::int64_t, std::string>> probe_;
+  std::vector<std::pair<std::string, std::string>> leading_comments_;
 };
 
 // Reads one field as a number by the rules above. Returns false when the text is not a number

@@ -70,7 +70,8 @@ TEST(AvarStreamMemoryTest, PeakMemoryDoesNotGrowWithTheRecord) {
   const fs::path small = dir / "1e6.f32", large = dir / "1e7.f32";
   WriteF32(small, 1000000);
   WriteF32(large, 10000000);
-  const std::vector<std::string> stream = {"--format", "f32", "--rate", "100", "--stream"};
+  const std::vector<std::string> stream = {"--format", "f32", "--rate", "100", "--units", "deg/s",
+                                           "--stream"};
   auto with = [](std::vector<std::string> v, const fs::path& file) {
     v.insert(v.begin(), {"avar", file.string()});
     return v;
@@ -78,7 +79,7 @@ TEST(AvarStreamMemoryTest, PeakMemoryDoesNotGrowWithTheRecord) {
   const long stream_small = PeakKiB(with(stream, small));
   const long stream_large = PeakKiB(with(stream, large));
   const long memory_large =
-      PeakKiB(with({"--format", "f32", "--rate", "100", "--ci", "none"}, large));
+      PeakKiB(with({"--format", "f32", "--rate", "100", "--units", "deg/s", "--ci", "none"}, large));
   fs::remove_all(dir);
   ASSERT_GT(stream_small, 0);
   ASSERT_GT(stream_large, 0);

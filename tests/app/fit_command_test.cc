@@ -70,7 +70,7 @@ TEST_F(FitCommandTest, RefusesBadInput) {
   EXPECT_NE(Read("err.txt").find("--uncertainty"), std::string::npos);
   EXPECT_EQ(Run("fit " + Path("short.csv") + " --uncertainty bootstrap --bootstrap-trials 1"), 2);
   EXPECT_NE(Read("err.txt").find("--bootstrap-trials"), std::string::npos);
-  EXPECT_EQ(Run("fit " + Path("short.csv") + " --json " + Path("j.json")), 1);
+  EXPECT_EQ(Run("fit " + Path("short.csv") + " --units deg/s --json " + Path("j.json")), 1);
   EXPECT_FALSE(fs::exists(dir_ / "j.json"));  // no partial output
 }
 
@@ -107,6 +107,39 @@ TEST_F(FitCommandTest, BootstrapUncertaintyIsLabelledAndDeterministic) {
     EXPECT_GT(c["sigma"].get<double>(), 0.0) << key;
     EXPECT_EQ(c["sigma"], two["coefficients"][key]["sigma"]) << key;
   }
+}
+
+// The same simulated record written in rad/s and in deg/s fits to the same coefficients with no
+// --units: the file states its unit. The old reader took rad/s as deg/s (N 57x too large).
+TEST_F(FitCommandTest, ReadsTheUnitsTheRecordStates) {
+  std::ofstream(dir_ / "gyro.yaml") << "name: nb\nsample_rate: 100 Hz\nterms:\n"
+                                       "  - {type: arw, N: 0.2 deg/sqrt(h)}\n"
+                                       "  - {type: bias_instability, B: 3 deg/h}\n";
+  const std::string simulate =
+      "simulate --sensor " + Path("gyro.yaml") + " --duration 600 --seed 5 ";
+  ASSERT_EQ(Run(simulate + "--units deg/s -o " + Path("deg.csv")), 0) << Read("err.txt");
+  ASSERT_EQ(Run(simulate + "--units rad/s -o " + Path("rad.csv")), 0) << Read("err.txt");
+  ASSERT_EQ(Run(simulate + "--units rad/s --format f64 -o " + Path("rad.f64")), 0)
+      << Read("err.txt");
+  const std::string options = " --terms N,B --no-select --band-limit off --json ";
+  ASSERT_EQ(Run("fit " + Path("deg.csv") + options + Path("deg.json")), 0) << Read("err.txt");
+  ASSERT_EQ(Run("fit " + Path("rad.csv") + options + Path("rad.json")), 0) << Read("err.txt");
+  ASSERT_EQ(Run("fit " + Path("rad.f64") + " --format f64" + options + Path("f64.json")), 0)
+      << Read("err.txt");
+  const auto deg = nlohmann::json::parse(Read("deg.json"));
+  for (const std::string other : {"rad.json", "f64.json"}) {
+    const auto j = nlohmann::json::parse(Read(other));
+    for (const char* key : {"N", "B"}) {
+      const double expected = deg["coefficients"][key]["value"].get<double>();
+      EXPECT_NEAR(j["coefficients"][key]["value"].get<double>(), expected, 1e-6 * expected)
+          << other << " " << key;
+    }
+  }
+  EXPECT_NEAR(deg["coefficients"]["N"]["value"].get<double>(), 0.2, 0.02);
+  EXPECT_EQ(Run("fit " + Path("rad.csv") + " --units deg/s"), 2);
+  EXPECT_NE(Read("err.txt").find("--units (deg/s) contradicts column rate_rad_per_s (rad/s)"),
+            std::string::npos)
+      << Read("err.txt");
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ class RecordReaderTest : public ::testing::Test {
   static RecordReaderOptions Options(const std::string& path) {
     RecordReaderOptions o;
     o.path = path;
+    o.units = "rad/s";  // the files here do not state their units (see StatedUnits tests)
     return o;
   }
 
@@ -253,10 +254,10 @@ TEST_F(RecordReaderTest, BadInputs) {
        "no time column (t, t_s, time, time_s, timestamp, or with a unit: t_ms, time_us, "
        "timestamp_ns, %time ...) in the header: give the sample rate "
        "with --rate HZ"},
-      {"nohead.csv", "0,1\n1,2\n2,3\n", "", false, kExitUsageError,
+      {"nohead.csv", "1,1\n0,2\n2,3\n", "", false, kExitUsageError,
        "no time column (t, t_s, time, time_s, timestamp, or with a unit: t_ms, time_us, "
-       "timestamp_ns, %time ...) in the file (it has no header row): "
-       "give the sample rate with --rate HZ"},
+       "timestamp_ns, %time ...) in the file (it has no header row, and its first column does "
+       "not increase): give the sample rate with --rate HZ"},
       {"column.csv", "t,x\n0,1\n", "y", false, kExitUsageError,
        "--column y: no such column (t = 0, x = 1)"},
       {"binary.csv", std::string("\x01\x00\x7f\x03\n", 5), "", true, kExitRuntimeError,
@@ -307,7 +308,8 @@ TEST_F(RecordReaderTest, RawWithoutRateOrWithAPartialSampleFails) {
   o.format = RecordFormat::kFloat32;
   Result r = Read(o);
   EXPECT_EQ(r.error.exit_code, kExitUsageError);
-  EXPECT_EQ(r.error.message, "raw f32 samples carry no time: give the sample rate with --rate HZ");
+  EXPECT_EQ(r.error.message, o.path + ": raw f32 samples carry no time and no sidecar " + o.path +
+                                 ".json gives their rate: give the sample rate with --rate HZ");
   o.rate_hz = 10;
   r = Read(o);
   EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
@@ -367,6 +369,159 @@ TEST_F(RecordReaderTest, BareTimeColumnInNanosecondsIsRejectedUnlessTheUnitIsGiv
   const Result told = Read(o);
   ASSERT_TRUE(told.ok) << told.error.message;
   EXPECT_EQ(told.info.sample_rate_hz, 400.0);
+}
+
+// The units: what the file states meets --units; nothing stated and nothing given is refused.
+TEST_F(RecordReaderTest, UnitsComeFromTheFileAndMustAgreeWithUnitsOption) {
+  const std::string simulated = Write("sim.csv",
+                                      "# allanlab simulate 0.1.0\n# units: rad/s\n"
+                                      "time_s,rate_rad_per_s\n0,0.001\n0.01,0.002\n0.02,0.003\n");
+  RecordReaderOptions o = Options(simulated);
+  o.units.clear();
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.units, "rad/s");
+  EXPECT_EQ(r.info.units_source, "column rate_rad_per_s");
+  o.units = "deg/s";
+  r = Read(o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, simulated + ": --units (deg/s) contradicts column rate_rad_per_s "
+                                         "(rad/s): drop --units or correct it");
+
+  // The '# units:' line alone, and against the column name.
+  o = Options(Write("line.csv", "# units: deg/h\nt,w\n0,1\n1,2\n2,3\n"));
+  o.units.clear();
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.units, "deg/h");
+  EXPECT_EQ(r.info.units_source, "the '# units: deg/h' line");
+  o = Options(Write("both.csv", "# units: deg/s\nt,w_rad_s\n0,1\n1,2\n2,3\n"));
+  o.units.clear();
+  r = Read(o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.message, o.path + ": the '# units: deg/s' line (deg/s) contradicts column "
+                                      "w_rad_s (rad/s)");
+  // A '# units:' line that is not a rate unit is an error about the file.
+  o = Options(Write("accel.csv", "# units: g\nt,a\n0,1\n1,2\n2,3\n"));
+  r = Read(o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_EQ(r.error.message, o.path + ": the '# units:' line: unknown rate unit 'g' (expected "
+                                      "deg/s, deg/h or rad/s)");
+
+  // Stated nowhere: refused, with how to state them.
+  o = Options(Write("bare.csv", "t_s,Gyro_X\n0,1\n0.01,2\n0.02,3\n"));
+  o.units.clear();
+  r = Read(o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, o.path + ": the units of column Gyro_X are not stated in the file (a "
+                                      "unit in the column name such as _dps or _rad_s, or a "
+                                      "'# units:' line): give --units deg/s, deg/h or rad/s");
+}
+
+TEST_F(RecordReaderTest, RawRecordsReadTheirSidecar) {
+  std::string f64;
+  for (int k = 0; k < 1000; ++k) {
+    const double v = 0.5 * k;
+    f64.append(reinterpret_cast<const char*>(&v), 8);  // little-endian host (x86, arm64)
+  }
+  const std::string path = Write("r.f64", f64);
+  Write("r.f64.json", R"({"provenance": {}, "data": {"dtype": "<f8", "num_samples": 1000,
+                          "sample_rate_hz": 250, "units": "deg/s"}})");
+  RecordReaderOptions o = Options(path);
+  o.format = RecordFormat::kFloat64;
+  o.units.clear();
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.sample_rate_hz, 250);
+  EXPECT_EQ(r.info.rate_source, "the sidecar " + path + ".json");
+  EXPECT_EQ(r.info.units, "deg/s");
+  EXPECT_EQ(r.info.units_source, "the sidecar " + path + ".json");
+  // The compressed record finds the same sidecar.
+  o.path = Compress(path, "xz");
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.units_source, "the sidecar " + path + ".json");
+  o.path = path;
+
+  o.units = "rad/s";
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, path + ": --units (rad/s) contradicts the sidecar " + path +
+                                 ".json (deg/s): drop --units or correct it");
+  o.units.clear();
+  o.rate_hz = 100;
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, path + ": --rate 100 Hz disagrees with the sidecar " + path +
+                                 ".json (250 Hz); drop --rate or fix it");
+  o.rate_hz.reset();
+  o.format = RecordFormat::kFloat32;
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, path + ": the sidecar " + path +
+                                 ".json says dtype <f8, not <f4 as --format f32 reads: fix "
+                                 "--format");
+  // A record cut short no longer matches its sidecar's count.
+  o.format = RecordFormat::kFloat64;
+  Write("r.f64", f64.substr(0, 800));
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_EQ(r.error.message, path + ": 100 samples, but the sidecar " + path +
+                                 ".json says 1000: a truncated file or another record's sidecar");
+  Write("r.f64.json", "{not json");
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_EQ(r.error.message, path + ": the sidecar " + path + ".json is not a JSON object");
+}
+
+// The Stable32 / SigmaTheta layout: no header, `time value` columns.
+TEST_F(RecordReaderTest, HeaderlessIncreasingFirstColumnIsTime) {
+  std::string text;
+  for (int k = 0; k < 200; ++k) {
+    // A gap of one missing sample at k = 100.
+    const double t = 0.005 * (k < 100 ? k : k + 1);
+    text += std::to_string(t) + " " + std::to_string(std::sin(0.3 * k)) + "\n";
+  }
+  RecordReaderOptions o = Options(Write("two.txt", text));
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.time_column, "column 0");
+  EXPECT_TRUE(r.info.time_column_guessed);
+  EXPECT_EQ(r.info.column, "column 1");
+  EXPECT_EQ(r.info.sample_rate_hz, 200);
+  EXPECT_EQ(r.info.time.irregular_steps, 1);
+  ASSERT_EQ(r.values.size(), 200u);
+  EXPECT_EQ(r.values[3], std::stod(std::to_string(std::sin(0.9))));
+  // --column 1 (the old way to read this layout) reads the same, and an agreeing --rate is fine.
+  o.column = "1";
+  o.rate_hz = 200;
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.rate_source, "--rate (time column column 0 agrees)");
+  // A --rate that disagrees wins over a guess (the column may be a sample counter).
+  o.rate_hz = 1000;
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.info.sample_rate_hz, 1000);
+  EXPECT_TRUE(r.info.time_column.empty());
+  EXPECT_EQ(r.info.rate_source,
+            "--rate (the headerless first column, read as time, gives 200 Hz: not used)");
+  // --column 0 reads the first column as data.
+  o.column = "0";
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_TRUE(r.info.time_column.empty());
+  EXPECT_EQ(r.values[1], 0.005);
+  // A first column that does not rise is data, as before.
+  o = Options(Write("noisy.txt", "0.3 1\n0.1 2\n0.2 3\n"));
+  o.rate_hz = 1;
+  r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_TRUE(r.info.time_column.empty());
+  EXPECT_EQ(r.values, (std::vector<double>{0.3, 0.1, 0.2}));
 }
 
 }  // namespace

@@ -98,12 +98,38 @@ TEST(TextRecordParserTest, TabsThatAlignSpaceSeparatedColumnsAreWhitespace) {
 }
 
 TEST(TextRecordParserTest, NoHeaderTakesTheFirstColumnAndHasNoTime) {
-  const Parsed p = Parse("1.0,10\n2.0,20\n");
+  const Parsed p = Parse("2.0,10\n1.0,20\n");
   ASSERT_TRUE(p.ok) << p.error;
   EXPECT_FALSE(p.header);
   EXPECT_EQ(p.column, "column 0");
   EXPECT_EQ(p.time_column, "");
   EXPECT_FALSE(p.rows[0].has_time);
+}
+
+// Stable32 / SigmaTheta `time value`: a headerless first column that rises is time. The decision
+// waits for kTimeProbeRows rows, so the rows come out the same whatever the chunking.
+TEST(TextRecordParserTest, NoHeaderIncreasingFirstColumnIsTime) {
+  std::string text;
+  for (int k = 0; k < 100; ++k) text += std::to_string(k) + "\t" + std::to_string(k % 3) + "\n";
+  const Parsed p = Parse(text);
+  ASSERT_TRUE(p.ok) << p.error;
+  EXPECT_EQ(p.time_column, "column 0");
+  EXPECT_EQ(p.column, "column 1");
+  ASSERT_EQ(p.rows.size(), 100u);
+  EXPECT_TRUE(p.rows[40].has_time);
+  EXPECT_EQ(p.rows[40].time, 40);
+  EXPECT_EQ(p.rows[40].value, 1);
+  EXPECT_EQ(p.rows[40].line, 41);
+  // Fewer rows than the probe: decided at the end.
+  const Parsed few = Parse("0.5 7\n0.75 8\n");
+  ASSERT_TRUE(few.ok) << few.error;
+  EXPECT_EQ(few.time_column, "column 0");
+  EXPECT_EQ(Values(few), (std::vector<double>{7, 8}));
+  // --column 0 keeps the first column as data.
+  const Parsed data = Parse(text, "0");
+  ASSERT_TRUE(data.ok) << data.error;
+  EXPECT_EQ(data.time_column, "");
+  EXPECT_EQ(data.rows[40].value, 40);
 }
 
 TEST(TextRecordParserTest, CrLfBomQuotesAndCaseInsensitiveNames) {
