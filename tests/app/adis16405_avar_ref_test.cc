@@ -109,6 +109,7 @@ TEST(Adis16405AvarRefTest, OverlappingGyroXMatchesExactValueAndPublishedReferenc
   RecordReaderOptions read;
   read.path = record.string();
   read.column = "Gyro_X";
+  read.units = "deg/s";  // the file names no unit (data/real/adis16405: deg/s)
   std::vector<double> values;
   RecordInfo info;
   RecordError error;
