@@ -19,6 +19,7 @@
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
+#include "app/record_support.h"
 #include "estimators/fit/bandwidth_estimate.h"
 #include "estimators/fit/fit_model.h"
 
@@ -356,6 +357,11 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   if (const int code = ComputeCurveFromFile(curve_options, kCommand, &report, &why); code != kExitOk) {
     return Failure{code, why};
   }
+  int parameters = static_cast<int>(fit.terms.size());
+  for (const auto& t : fit.extra) parameters += static_cast<int>(t->parameters().size());
+  if (!CheckRecordSupportsFit(report.summary.num_samples, report.record.sample_rate_hz, parameters, &why)) {
+    return Failure{kExitRuntimeError, report.record.path + ": " + why};
+  }
   const estimators::AvarCurve full_curve = CurveOf(report);
   if (full_curve.size() < 2) {
     return Failure{kExitRuntimeError, o.curve.path + ": the record gives " +
@@ -378,6 +384,17 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   std::optional<sim::SensorModel> fitted_model;
   if (!fitted.extra_terms.empty()) fitted_model = estimators::FittedModel(curve, fitted);
   const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
+  std::vector<FittedTermAvar> fitted_terms;
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = summary.at(c);
+    if (!e.fitted) continue;
+    FittedTermAvar& t = fitted_terms.emplace_back(FittedTermAvar{std::string(estimators::CoefficientId(c)),
+                                                                 estimators::TermShape(c, curve, true)});
+    for (double& v : t.avar) v *= e.value_si * e.value_si;
+  }
+  for (const std::string& w : WeaklySupportedTerms(curve.tau_s, curve.m, curve.num_samples, fitted_terms)) {
+    std::cerr << "allanlab fit: warning: " << report.record.path << ": " << w << std::endl;
+  }
 
   Provenance& p = report.provenance;
   p = MakeProvenance(kCommand, command_line);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -140,6 +141,27 @@ TEST_F(FitCommandTest, ReadsTheUnitsTheRecordStates) {
   EXPECT_NE(Read("err.txt").find("--units (deg/s) contradicts column rate_rad_per_s (rad/s)"),
             std::string::npos)
       << Read("err.txt");
+}
+
+// 1 s at 100 Hz of white noise: the old fit reported R = 4.85e6 +- 0.48e6 deg/h^2 without a
+// word. Five terms need 256 samples (app/record_support.h); one term is fine.
+TEST_F(FitCommandTest, RefusesRecordsTooShortForTheTerms) {
+  std::ofstream(dir_ / "white.yaml") << "name: white\nsample_rate: 100 Hz\nterms:\n"
+                                        "  - {type: arw, N: 0.2 deg/sqrt(h)}\n";
+  ASSERT_EQ(Run("simulate --sensor " + Path("white.yaml") + " --duration 1 --seed 2 -o " +
+                Path("one.csv")),
+            0)
+      << Read("err.txt");
+  EXPECT_EQ(Run("fit " + Path("one.csv") + " --json " + Path("j.json")), 1);
+  const std::string err = Read("err.txt");
+  EXPECT_NE(err.find("one.csv: 1 s (100 samples at 100 Hz) gives 4 octave tau(s) with at least "
+                     "8 clusters (tau <= T/8); fitting 5 parameter(s) needs 6: record at least "
+                     "2.56 s (256 samples), or fit fewer terms (--terms)"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "j.json"));
+  EXPECT_EQ(Run("fit " + Path("one.csv") + " --terms N --band-limit off"), 0) << Read("err.txt");
 }
 
 }  // namespace
