@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -13,6 +12,7 @@
 #include "app/allan_plot.h"
 #include "app/atomic_file.h"
 #include "app/constant_stretch.h"
+#include "app/curve_table.h"
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
@@ -52,58 +52,6 @@ bool ParseModel(const std::string& text, std::vector<Coefficient>* terms, std::s
     return false;
   }
   return true;
-}
-
-// An Allan-deviation table: '#' comments, a header naming tau_s and `column`, numeric rows.
-std::optional<Failure> ReadCurveTable(const DiagnoseCommandOptions& o, double rate_hz,
-                                      estimators::AvarCurve* curve) {
-  std::ifstream in(o.curve_path);
-  if (!in) return RuntimeFailure(o.curve_path + ": cannot open");
-  RateUnit unit;
-  std::string why;
-  if (!ParseRateUnit(o.curve_units, &unit, &why)) return UsageFailure("--curve-units: " + why);
-  std::string line;
-  int tau_col = -1, dev_col = -1;
-  const double tau0 = 1.0 / rate_hz;
-  curve->sample_period_s = tau0;
-  curve->num_samples = static_cast<std::int64_t>(std::llround(*o.record_length_s * rate_hz));
-  curve->estimator = sim::AvarEstimatorKind::kOverlapping;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    if (tau_col < 0) {
-      for (std::size_t i = 0; i < cells.size(); ++i) {
-        if (cells[i] == "tau_s") tau_col = static_cast<int>(i);
-        if (cells[i] == o.curve_column) dev_col = static_cast<int>(i);
-      }
-      if (tau_col < 0 || dev_col < 0) {
-        return RuntimeFailure(o.curve_path + ": header needs columns tau_s and " + o.curve_column);
-      }
-      continue;
-    }
-    if (static_cast<int>(cells.size()) <= std::max(tau_col, dev_col)) {
-      return RuntimeFailure(o.curve_path + ":" + std::to_string(line_no) + ": too few columns");
-    }
-    char* end = nullptr;
-    const double tau = std::strtod(cells[tau_col].c_str(), &end);
-    const double dev = std::strtod(cells[dev_col].c_str(), &end);
-    if (!std::isfinite(tau) || !std::isfinite(dev) || !(tau > 0) || !(dev > 0)) continue;
-    const std::int64_t m = std::llround(tau / tau0);
-    if (m < 1 || 2 * m > curve->num_samples || (!curve->m.empty() && m <= curve->m.back())) continue;
-    curve->m.push_back(m);
-    curve->tau_s.push_back(static_cast<double>(m) * tau0);
-    const double si = ToRadPerSecond(unit, dev);
-    curve->avar.push_back(si * si);
-    // Initial weights only (the GLS fit uses the model covariance): white-noise EDF.
-    curve->edf.push_back(std::max(1.0, static_cast<double>(curve->num_samples) / m - 1.0));
-  }
-  if (curve->m.empty()) return RuntimeFailure(o.curve_path + ": no usable rows for " + o.curve_column);
-  return std::nullopt;
 }
 
 Json MetricsJson(const GapMetrics& m) {
@@ -373,9 +321,17 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   Provenance p = MakeProvenance(kCommand, command_line);
   DiagnosisSummary s;
   if (curve_mode) {
-    estimators::AvarCurve curve;
-    if (auto f = ReadCurveTable(o, *o.record.rate_hz, &curve)) return f;
-    if (!DiagnoseCurve(d, curve, &s)) return RuntimeFailure(o.curve_path + ": " + s.message);
+    CurveTableOptions read{o.curve_path, o.curve_column, RateUnit::kDegPerHour, *o.record_length_s,
+                           *o.record.rate_hz};
+    if (!ParseRateUnit(o.curve_units, &read.unit, &why)) return UsageFailure("--curve-units: " + why);
+    CurveTable table;
+    CurveTableError error;
+    if (!ReadCurveTable(read, &table, &error)) return Failure{error.exit_code, error.message};
+    if (!DiagnoseCurve(d, table.curve, &s)) return RuntimeFailure(o.curve_path + ": " + s.message);
+    if (!table.skipped.empty()) {
+      s.notes.push_back("curve: " + std::to_string(table.skipped.size()) + " row(s) not used, e.g. " +
+                        table.skipped.front());
+    }
     p.Add("curve", o.curve_path + " column " + o.curve_column + " (" + o.curve_units + ")");
     p.Add("record_length", ShortestDecimal(*o.record_length_s) + " s");
   } else {
