@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -23,10 +24,13 @@
 #include "app/allan_plot.h"
 #include "app/atomic_file.h"
 #include "app/provenance.h"
+#include "app/record_reader.h"
 #include "app/simulate_command.h"
 #include "experiments/diagnosis/benchmark_case.h"
 #include "experiments/diagnosis/benchmark_report.h"
 #include "experiments/diagnosis/benchmark_score.h"
+#include "experiments/diagnosis/independent_case.h"
+#include "independent/generate.h"
 #include "sim/embedded_presets.h"
 #include "sim/sensor_spec.h"
 
@@ -188,48 +192,41 @@ AllanPlot RatePlot(const BenchmarkSummary& s, std::uint64_t seed, int recordings
   return plot;
 }
 
-std::optional<CommandFailure> Benchmark(const DiagnosisBenchmarkOptions& o, const std::string& command_line) {
-  std::string why;
-  if (o.recordings < 1 || o.recordings > 100000) return UsageFailure("--recordings must be in [1, 100000]");
-  if (o.jobs < 1 || o.jobs > 64) return UsageFailure("--jobs must be in [1, 64]");
-  BenchmarkDrawOptions draw;
-  draw.min_duration_s = o.min_duration_s;
-  draw.max_duration_s = o.max_duration_s;
-  draw.min_rate_hz = o.min_rate_hz;
-  draw.max_rate_hz = o.max_rate_hz;
-  draw.max_samples = o.max_samples;
-  draw.control_fraction = o.control_fraction;
-  if (!draw.IsValid(&why)) return UsageFailure(why);
-  if (o.plot && !FindGnuplot(&why)) return RuntimeFailure(why + " (or pass --no-plot)");
-  const fs::path out_dir(o.out_dir);
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) return RuntimeFailure("--out-dir " + o.out_dir + ": " + ec.message());
-  AtomicFile csv, md, png, timing;
-  if (!csv.Open((out_dir / "benchmark.csv").string(), &why)) return RuntimeFailure(why);
-  if (!md.Open((out_dir / "benchmark.md").string(), &why)) return RuntimeFailure(why);
-  if (o.plot && !png.Open((out_dir / "benchmark.png").string(), &why)) return RuntimeFailure(why);
-  if (!o.timing_path.empty() && !timing.Open(o.timing_path, &why)) return RuntimeFailure(why);
-  fs::path work = o.work_dir.empty()
-                      ? fs::temp_directory_path() / ("allanlab_diagnosis_benchmark_" + std::to_string(o.seed) + "_" +
-                                                     std::to_string(::getpid()))
-                      : fs::path(o.work_dir);
-  fs::create_directories(work, ec);
-  if (ec) return RuntimeFailure("--work-dir " + work.string() + ": " + ec.message());
+// One recording ready to diagnose: its descriptor, its record on disk and where the diagnosis goes.
+struct Prepared {
+  BenchmarkCase c;
+  fs::path record, json, log;
+  std::vector<std::string> diagnose_args;  // after FILE: format, rate, units, the user's model
+  bool reusable = false;                   // an earlier run's diagnosis of this very record is used
+  BenchmarkOutcome reused;
+};
 
-  // Diagnoses run as child processes of this very binary (`allanlab diagnose FILE ...`, the CLI
-  // itself), up to --jobs at a time, while the next recordings are drawn and written.
+// Writes recording i's record (and anything else it needs) into the work directory and fills
+// *p; nullopt on success.
+using PrepareRecording = std::function<std::optional<CommandFailure>(int i, Prepared* p)>;
+
+struct RunResult {
+  std::vector<BenchmarkRow> rows;
+  std::vector<std::string> timing_lines;
+  int reused = 0;
+  double cpu_s = 0.0;  // diagnose CPU (user + sys) over the recordings diagnosed in this run
+};
+
+// Diagnoses run as child processes of this very binary (`allanlab diagnose FILE ...`, the CLI
+// itself), up to --jobs at a time, while the next recordings are prepared.
+std::optional<CommandFailure> RunRecordings(const DiagnosisBenchmarkOptions& o, int count, const std::string& label,
+                                            const PrepareRecording& prepare, RunResult* result) {
+  std::error_code ec;
   const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
   if (ec) return RuntimeFailure("cannot find the allanlab binary (/proc/self/exe): " + ec.message());
   struct Running {
-    BenchmarkCase c;
-    fs::path record, json, log;
+    Prepared p;
     std::chrono::steady_clock::time_point start;
   };
   std::map<pid_t, Running> running;
-  std::vector<BenchmarkRow> rows(static_cast<std::size_t>(o.recordings));
-  std::vector<std::string> timing_lines(static_cast<std::size_t>(o.recordings));
-  int done = 0, reused = 0;
+  result->rows.assign(static_cast<std::size_t>(count), BenchmarkRow{});
+  result->timing_lines.assign(static_cast<std::size_t>(count), "");
+  int done = 0;
   auto reap = [&]() -> std::optional<CommandFailure> {
     int status = 0;
     rusage usage{};
@@ -241,94 +238,60 @@ std::optional<CommandFailure> Benchmark(const DiagnosisBenchmarkOptions& o, cons
     const double cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                        1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - r.start).count();
+    result->cpu_s += cpu;
     BenchmarkOutcome outcome;
     if (WIFEXITED(status) && WEXITSTATUS(status) == kExitOk) {
-      outcome = ReadOutcome(r.json.string());
+      outcome = ReadOutcome(r.p.json.string());
     } else {
-      std::ifstream log(r.log);
+      std::ifstream log(r.p.log);
       std::string last, line;
       while (std::getline(log, line)) last = line;
       outcome.failure = "diagnose failed: " + last;
     }
-    const int i = r.c.index;
-    rows[static_cast<std::size_t>(i)] = ScoreBenchmarkCase(r.c, outcome);
-    const BenchmarkRow& row = rows[static_cast<std::size_t>(i)];
+    const auto i = static_cast<std::size_t>(r.p.c.index);
+    result->rows[i] = ScoreBenchmarkCase(r.p.c, outcome);
+    const BenchmarkRow& row = result->rows[i];
     ++done;
-    std::fprintf(stderr, "allanlab %s: %d/%d done: #%d %s %s N=%lld strength %.3g (%s) -> %s%s (%.1f s CPU, %.1f s wall)\n",
-                 kCommand, done, o.recordings, i, r.c.preset.c_str(), row.truth.c_str(),
-                 static_cast<long long>(r.c.num_samples), r.c.strength_z, r.c.strength_class.c_str(),
+    std::fprintf(stderr, "allanlab %s: %s %d/%d done: #%zu %s %s N=%lld strength %.3g (%s) -> %s%s (%.1f s CPU, %.1f s wall)\n",
+                 kCommand, label.c_str(), done, count, i, r.p.c.preset.c_str(), row.truth.c_str(),
+                 static_cast<long long>(r.p.c.num_samples), r.p.c.strength_z, r.p.c.strength_class.c_str(),
                  outcome.ok ? outcome.verdict.c_str() : outcome.failure.c_str(), row.right ? " [right]" : "", cpu, wall);
     std::ostringstream t;
-    t << i << ',' << row.truth << ',' << r.c.num_samples << ',' << cpu << ',' << wall << '\n';
-    timing_lines[static_cast<std::size_t>(i)] = t.str();
+    t << label << ',' << i << ',' << row.truth << ',' << r.p.c.num_samples << ',' << cpu << ',' << wall << '\n';
+    result->timing_lines[i] = t.str();
     if (!o.keep_work) {
-      fs::remove(r.record, ec);
-      fs::remove(r.record.string() + ".json", ec);
+      fs::remove(r.p.record, ec);
+      fs::remove(r.p.record.string() + ".json", ec);
     }
     running.erase(it);
     return std::nullopt;
   };
-  for (int i = 0; i < o.recordings; ++i) {
-    Running r;
-    if (!DrawBenchmarkCase(draw, o.seed, i, &r.c, &why)) return RuntimeFailure("recording " + std::to_string(i) + ": " + why);
-    const std::string stem = "rec" + std::to_string(i);
-    const fs::path spec = work / (stem + ".yaml");
-    r.record = work / (stem + ".f64");
-    r.json = work / (stem + ".diagnosis.json");
-    r.log = work / (stem + ".diagnose.log");
-    std::string yaml;
-    if (!SpecYaml(r.c, &yaml, &why)) return RuntimeFailure(why);
-    if (o.reuse && fs::exists(r.json)) {
-      // A diagnosis an earlier run left for this very recording (same draw: same seed and
-      // options; checked by the record path and sample count it names).
-      BenchmarkOutcome outcome = ReadOutcome(r.json.string());
-      std::ifstream in(r.json);
-      nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-      const bool same = !j.is_discarded() && j.contains("provenance") &&
-                        j["provenance"].value("input", "") == r.record.string() &&
-                        j["provenance"].value("samples", "") == std::to_string(r.c.num_samples);
-      if (outcome.ok && same) {
-        rows[static_cast<std::size_t>(i)] = ScoreBenchmarkCase(r.c, outcome);
-        ++reused;
-        ++done;
-        std::fprintf(stderr, "allanlab %s: %d/%d reused: #%d %s -> %s\n", kCommand, done, o.recordings, i,
-                     rows[static_cast<std::size_t>(i)].truth.c_str(), outcome.verdict.c_str());
-        continue;
-      }
+  for (int i = 0; i < count; ++i) {
+    Prepared p;
+    if (auto f = prepare(i, &p)) return f;
+    if (p.reusable) {
+      result->rows[static_cast<std::size_t>(i)] = ScoreBenchmarkCase(p.c, p.reused);
+      ++result->reused;
+      ++done;
+      std::fprintf(stderr, "allanlab %s: %s %d/%d reused: #%d %s -> %s\n", kCommand, label.c_str(), done, count, i,
+                   result->rows[static_cast<std::size_t>(i)].truth.c_str(), p.reused.verdict.c_str());
+      continue;
     }
-    {
-      std::ofstream out(spec);
-      out << yaml;
-      if (!out) return RuntimeFailure(spec.string() + ": cannot write");
-    }
-    SimulateOptions so;
-    so.sensor_path = spec.string();
-    so.rate_hz = r.c.rate_hz;
-    so.duration_s = r.c.duration_s();
-    so.seed = o.seed;
-    so.trial = static_cast<std::uint64_t>(i);
-    so.output_path = r.record.string();
-    so.format = "f64";
-    so.units = "rad/s";
-    std::ostringstream sim_line;
-    sim_line << "allanlab simulate --sensor " << spec.string() << " --rate " << Exact(r.c.rate_hz) << " --duration "
-             << Exact(so.duration_s) << " --seed " << o.seed << " --trial " << i << " --format f64 --units rad/s -o "
-             << r.record.string();
-    if (RunSimulate(so, sim_line.str()) != kExitOk) return RuntimeFailure("recording " + std::to_string(i) + ": simulate failed");
     while (static_cast<int>(running.size()) >= o.jobs) {
       if (auto f = reap()) return f;
     }
-    std::vector<std::string> args = {self, "diagnose", r.record.string(), "--format", "f64", "--rate",
-                                     Exact(r.c.rate_hz), "--units", "rad/s", "--json", r.json.string()};
+    std::vector<std::string> args = {self, "diagnose", p.record.string()};
+    args.insert(args.end(), p.diagnose_args.begin(), p.diagnose_args.end());
+    args.insert(args.end(), {"--json", p.json.string()});
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, r.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 1, p.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
     pid_t pid = 0;
-    r.start = std::chrono::steady_clock::now();
+    Running r{std::move(p), std::chrono::steady_clock::now()};
     const int err = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (err != 0) return RuntimeFailure("cannot start diagnose: " + std::string(std::strerror(err)));
@@ -337,40 +300,346 @@ std::optional<CommandFailure> Benchmark(const DiagnosisBenchmarkOptions& o, cons
   while (!running.empty()) {
     if (auto f = reap()) return f;
   }
-  if (timing.is_open()) {
-    timing.stream() << "index,truth,samples,cpu_s,wall_s\n";
-    for (const auto& line : timing_lines) timing.stream() << line;
-  }
-  const BenchmarkSummary summary = SummarizeBenchmark(rows);
+  return std::nullopt;
+}
 
-  Provenance p = MakeProvenance(kCommand, command_line);
-  p.Add("seed", std::to_string(o.seed));
-  p.Add("recordings", std::to_string(o.recordings));
-  p.Add("presets", "consumer_mems, fog, mg25_mems, rlg, tactical_mems, tg100 (IEEE 952 terms only)");
-  p.Add("duration", ShortestDecimal(o.min_duration_s) + " .. " + ShortestDecimal(o.max_duration_s) + " s, log-uniform");
-  p.Add("rate", ShortestDecimal(o.min_rate_hz) + " .. " + ShortestDecimal(o.max_rate_hz) +
-                    " Hz, log-uniform, lowered to keep samples <= " + std::to_string(o.max_samples));
-  p.Add("control_fraction", ShortestDecimal(o.control_fraction));
-  p.Add("strength_classes", "weak 0.2 (z 0.3..2), borderline 0.2 (2..10), clear 0.6 (10..100), log-uniform targets");
-  p.Add("diagnose", "default settings: --model Q,N,B,K,R --trials 30 --seed 1 --false-alarm 0.05");
-  p.Add("records", "simulate --seed <seed> --trial <index> --format f64 --units rad/s");
-  if (o.reuse) p.Add("reused_diagnoses", std::to_string(reused) + " from the work directory (each JSON names the build that made it)");
-  const std::string comments = ProvenanceCommentLines(p);
+// An earlier run's diagnosis of the same record (same draw: same seed and options; checked by
+// the record path and sample count its JSON names), when --reuse asks for it.
+void MaybeReuse(const DiagnosisBenchmarkOptions& o, Prepared* p) {
+  if (!o.reuse || !fs::exists(p->json)) return;
+  BenchmarkOutcome outcome = ReadOutcome(p->json.string());
+  std::ifstream in(p->json);
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  const bool same = !j.is_discarded() && j.contains("provenance") &&
+                    j["provenance"].value("input", "") == p->record.string() &&
+                    j["provenance"].value("samples", "") == std::to_string(p->c.num_samples);
+  if (outcome.ok && same) {
+    p->reusable = true;
+    p->reused = outcome;
+  }
+}
+
+void SetPaths(const fs::path& work, const std::string& stem, Prepared* p) {
+  p->record = work / (stem + ".f64");
+  p->json = work / (stem + ".diagnosis.json");
+  p->log = work / (stem + ".diagnose.log");
+}
+
+// Raw little-endian float64, written whole to a temporary and renamed.
+std::optional<CommandFailure> WriteF64(const fs::path& path, const std::vector<double>& y) {
+  AtomicFile f;
+  std::string why;
+  if (!f.Open(path.string(), &why)) return RuntimeFailure(why);
+  f.stream().write(reinterpret_cast<const char*>(y.data()), static_cast<std::streamsize>(y.size() * sizeof(double)));
+  if (!f.Commit(&why)) return RuntimeFailure(why);
+  return std::nullopt;
+}
+
+PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const BenchmarkDrawOptions& draw, const fs::path& work) {
+  return [&o, draw, work](int i, Prepared* p) -> std::optional<CommandFailure> {
+    std::string why;
+    if (!DrawBenchmarkCase(draw, o.seed, i, &p->c, &why)) return RuntimeFailure("recording " + std::to_string(i) + ": " + why);
+    const std::string stem = "rec" + std::to_string(i);
+    SetPaths(work, stem, p);
+    p->diagnose_args = {"--format", "f64", "--rate", Exact(p->c.rate_hz), "--units", "rad/s"};
+    std::string yaml;
+    if (!SpecYaml(p->c, &yaml, &why)) return RuntimeFailure(why);
+    MaybeReuse(o, p);
+    if (p->reusable) return std::nullopt;
+    const fs::path spec = work / (stem + ".yaml");
+    {
+      std::ofstream out(spec);
+      out << yaml;
+      if (!out) return RuntimeFailure(spec.string() + ": cannot write");
+    }
+    SimulateOptions so;
+    so.sensor_path = spec.string();
+    so.rate_hz = p->c.rate_hz;
+    so.duration_s = p->c.duration_s();
+    so.seed = o.seed;
+    so.trial = static_cast<std::uint64_t>(i);
+    so.output_path = p->record.string();
+    so.format = "f64";
+    so.units = "rad/s";
+    std::ostringstream sim_line;
+    sim_line << "allanlab simulate --sensor " << spec.string() << " --rate " << Exact(p->c.rate_hz) << " --duration "
+             << Exact(so.duration_s) << " --seed " << o.seed << " --trial " << i << " --format f64 --units rad/s -o "
+             << p->record.string();
+    if (RunSimulate(so, sim_line.str()) != kExitOk) return RuntimeFailure("recording " + std::to_string(i) + ": simulate failed");
+    return std::nullopt;
+  };
+}
+
+// The user's model handed to diagnose with the independent recordings: the IEEE terms the
+// generator used (N, B, K), free.
+const std::vector<std::string> kIndependentModel = {"--model", "N,B,K"};
+
+PrepareRecording IndependentPreparer(const DiagnosisBenchmarkOptions& o, const IndependentDrawOptions& draw,
+                                     const fs::path& work) {
+  return [&o, draw, work](int i, Prepared* p) -> std::optional<CommandFailure> {
+    std::string why;
+    IndependentCase c;
+    if (!DrawIndependentCase(draw, o.seed, i, &c, &why)) return RuntimeFailure("independent recording " + std::to_string(i) + ": " + why);
+    p->c = c.descriptor;
+    SetPaths(work, "indep" + std::to_string(i), p);
+    p->diagnose_args = {"--format", "f64", "--rate", Exact(c.recipe.rate_hz), "--units", "rad/s"};
+    p->diagnose_args.insert(p->diagnose_args.end(), kIndependentModel.begin(), kIndependentModel.end());
+    MaybeReuse(o, p);
+    if (p->reusable) return std::nullopt;
+    return WriteF64(p->record, independent::Generate(c.recipe, c.num_samples, o.seed, static_cast<std::uint64_t>(i)));
+  };
+}
+
+// The ADIS16405 gyro axes (deg/s, 100 Hz) cut into segments of `segment_s`.
+struct RealSegments {
+  std::vector<std::pair<std::string, std::vector<double>>> segments;  // name, rad/s
+  double rate_hz = 100.0;
+};
+
+std::optional<CommandFailure> LoadRealSegments(const fs::path& dir, double segment_s, RealSegments* out) {
+  for (const char* file : {"adis_16405_imu1", "adis_16405_imu2"}) {
+    for (const char* axis : {"Gyro_X", "Gyro_Y", "Gyro_Z"}) {
+      RecordReaderOptions ro;
+      ro.path = (dir / "real" / "adis16405" / (std::string(file) + ".csv.xz")).string();
+      ro.column = axis;
+      std::vector<double> values;
+      RecordInfo info;
+      RecordError error;
+      if (!ReadRecordValues(ro, &values, &info, &error)) return RuntimeFailure(error.message);
+      out->rate_hz = info.sample_rate_hz;
+      const auto len = static_cast<std::size_t>(std::llround(segment_s * info.sample_rate_hz));
+      for (std::size_t start = 0, k = 0; start + len <= values.size(); start += len, ++k) {
+        std::vector<double> seg(values.begin() + static_cast<std::ptrdiff_t>(start),
+                                values.begin() + static_cast<std::ptrdiff_t>(start + len));
+        for (double& v : seg) v *= M_PI / 180.0;
+        std::ostringstream name;
+        name << file << ':' << axis << ':' << static_cast<double>(start) / info.sample_rate_hz << "s";
+        out->segments.emplace_back(name.str(), std::move(seg));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+PrepareRecording InjectedPreparer(const DiagnosisBenchmarkOptions& o, const RealSegments& real, const fs::path& work) {
+  return [&o, &real, work](int i, Prepared* p) -> std::optional<CommandFailure> {
+    // Effects in turn; the segments stepped through with a stride coprime to their count.
+    const std::size_t n = real.segments.size();
+    const auto& [name, segment] = real.segments[(static_cast<std::size_t>(i) * 7) % n];
+    IndependentCase c;
+    std::vector<double> record;
+    std::string why;
+    if (!DrawInjectedCase(segment, real.rate_hz, name, o.seed, i, &c, &record, &why)) {
+      return RuntimeFailure("injected recording " + std::to_string(i) + ": " + why);
+    }
+    p->c = c.descriptor;
+    SetPaths(work, "real" + std::to_string(i), p);
+    p->diagnose_args = {"--format", "f64", "--rate", Exact(real.rate_hz), "--units", "rad/s"};
+    p->diagnose_args.insert(p->diagnose_args.end(), kIndependentModel.begin(), kIndependentModel.end());
+    MaybeReuse(o, p);
+    if (p->reusable) return std::nullopt;
+    return WriteF64(p->record, record);
+  };
+}
+
+const char* kSimDescription =
+    "Each recording is drawn at random (sensor preset reduced to its IEEE 952 terms, length, rate, effect or "
+    "none, strength), written as a file by `allanlab simulate`, and diagnosed by `allanlab diagnose` with its "
+    "default settings, told nothing but the file's format, rate and unit. Strength is the expected peak gap z of "
+    "the view that sees the effect (OAVAR against the best baseline fit; kurtosis for outliers and quantizers; "
+    "halves for steps and drifts): see experiments/diagnosis/benchmark_case.h. Classes: weak < 2, borderline < 10, "
+    "clear >= 10. Rates carry Wilson 95 % intervals.";
+
+const char* kIndependentDescription =
+    "Each recording comes from independent/, a generator written apart from sim/ and from the diagnosis "
+    "candidates (continuous-time terms averaged over each sample, flicker by spectral synthesis, four digital "
+    "low-pass designs and CIC decimation, Poisson telegraph, heavy-tailed one- and two-sided spikes, quantizers "
+    "with random bias and dither, random phases and signs), written as raw float64 and diagnosed by `allanlab "
+    "diagnose FILE --format f64 --rate R --units rad/s --model N,B,K` (the user's model: the IEEE terms the "
+    "sensor was made with). Controls and effects follow a fixed layout, effects in turn, every fourth round "
+    "borderline; strength is the expected gap z computed from the generator's own closed forms (OAVAR against "
+    "the user's model refitted; kurtosis for spikes and quantizers; adjacent block means for steps and drifts): "
+    "see experiments/diagnosis/independent_case.h. Classes: borderline [3, 10), clear >= 10. Rates carry Wilson "
+    "95 % intervals.";
+
+struct Outputs {
+  AtomicFile csv, md, png;
+};
+
+std::optional<CommandFailure> OpenOutputs(const DiagnosisBenchmarkOptions& o, const fs::path& dir, const std::string& stem,
+                                          Outputs* out) {
+  std::string why;
+  if (!out->csv.Open((dir / (stem + ".csv")).string(), &why)) return RuntimeFailure(why);
+  if (!out->md.Open((dir / (stem + ".md")).string(), &why)) return RuntimeFailure(why);
+  if (o.plot && !out->png.Open((dir / (stem + ".png")).string(), &why)) return RuntimeFailure(why);
+  return std::nullopt;
+}
+
+std::string ProvenanceList(const Provenance& p) {
   std::ostringstream list;
   list << "- tool: allanlab " << p.version << " (git " << p.git_sha << ", " << p.build_type << ")\n- date: " << p.utc_date
        << "\n- command: `" << p.command_line << "`\n";
   for (const auto& [k, v] : p.fields) list << "- " << k << ": " << v << "\n";
-  WriteBenchmarkCsv(csv.stream(), comments, rows);
-  WriteBenchmarkMarkdown(md.stream(), list.str(), rows, summary);
-  if (o.plot && !RenderAllanPlot(RatePlot(summary, o.seed, o.recordings), &png, &why)) return RuntimeFailure(why);
-  for (AtomicFile* f : {&csv, &md, &png, &timing}) {
+  return list.str();
+}
+
+std::string Cpu(double s) {
+  std::ostringstream os;
+  os.precision(4);
+  os << s << " s (" << s / 60.0 << " min)";
+  return os.str();
+}
+
+std::optional<CommandFailure> Benchmark(const DiagnosisBenchmarkOptions& o, const std::string& command_line) {
+  std::string why;
+  if (o.recordings < 1 || o.recordings > 100000) return UsageFailure("--recordings must be in [1, 100000]");
+  if (o.jobs < 1 || o.jobs > 64) return UsageFailure("--jobs must be in [1, 64]");
+  if (o.generator != "sim" && o.generator != "independent" && o.generator != "both") {
+    return UsageFailure("--generator must be sim, independent or both (not '" + o.generator + "')");
+  }
+  if (o.real_recordings < 0 || o.real_recordings > 10000) return UsageFailure("--real-recordings must be in [0, 10000]");
+  const bool run_sim = o.generator != "independent", run_independent = o.generator != "sim";
+  BenchmarkDrawOptions draw;
+  draw.min_duration_s = o.min_duration_s;
+  draw.max_duration_s = o.max_duration_s;
+  draw.min_rate_hz = o.min_rate_hz;
+  draw.max_rate_hz = o.max_rate_hz;
+  draw.max_samples = o.max_samples;
+  draw.control_fraction = o.control_fraction;
+  if (run_sim && !draw.IsValid(&why)) return UsageFailure(why);
+  IndependentDrawOptions idraw;
+  idraw.rate_hz = o.independent_rate_hz;
+  idraw.min_duration_s = o.independent_min_duration_s;
+  idraw.max_duration_s = o.independent_max_duration_s;
+  idraw.control_fraction = o.independent_control_fraction;
+  {
+    Effect resonance;
+    idraw.with_resonance = ParseEffect("resonance", &resonance);
+  }
+  if (run_independent && !idraw.IsValid(&why)) return UsageFailure("independent generator: " + why);
+  if (o.plot && !FindGnuplot(&why)) return RuntimeFailure(why + " (or pass --no-plot)");
+  const fs::path out_dir(o.out_dir);
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) return RuntimeFailure("--out-dir " + o.out_dir + ": " + ec.message());
+  Outputs sim_out, indep_out;
+  AtomicFile timing, comparison;
+  if (run_sim) {
+    if (auto f = OpenOutputs(o, out_dir, "benchmark", &sim_out)) return f;
+  }
+  if (run_independent) {
+    if (auto f = OpenOutputs(o, out_dir, "benchmark_independent", &indep_out)) return f;
+  }
+  if (o.generator == "both" && !comparison.Open((out_dir / "benchmark_generators.md").string(), &why)) return RuntimeFailure(why);
+  if (!o.timing_path.empty() && !timing.Open(o.timing_path, &why)) return RuntimeFailure(why);
+  // The real recordings for the injected cases: skipped, with a message, when the data are absent.
+  RealSegments real;
+  std::string real_note = "none asked (--real-recordings 0)";
+  if (run_independent && o.real_recordings > 0) {
+    const fs::path data = o.data_dir.empty() ? fs::path(ALLANLAB_SOURCE_DIR) / ".." / "shared" / "data" : fs::path(o.data_dir);
+    if (!fs::exists(data / "real" / "adis16405" / "adis_16405_imu1.csv.xz")) {
+      real_note = "skipped: no ADIS16405 recordings under " + data.string() + " (give --data-dir DIR)";
+      std::fprintf(stderr, "allanlab %s: real recordings %s\n", kCommand, real_note.c_str());
+    } else {
+      if (auto f = LoadRealSegments(data, o.real_segment_s, &real)) return f;
+      if (real.segments.empty()) return UsageFailure("--real-segment is longer than the recordings");
+      real_note = std::to_string(o.real_recordings) + " from " + std::to_string(real.segments.size()) + " segments of " +
+                  ShortestDecimal(o.real_segment_s) + " s of the ADIS16405 imu1/imu2 gyro axes in " + data.string();
+    }
+  }
+  fs::path work = o.work_dir.empty()
+                      ? fs::temp_directory_path() / ("allanlab_diagnosis_benchmark_" + std::to_string(o.seed) + "_" +
+                                                     std::to_string(::getpid()))
+                      : fs::path(o.work_dir);
+  fs::create_directories(work, ec);
+  if (ec) return RuntimeFailure("--work-dir " + work.string() + ": " + ec.message());
+
+  RunResult sim_run, indep_run, real_run;
+  if (run_sim) {
+    if (auto f = RunRecordings(o, o.recordings, "sim", SimPreparer(o, draw, work), &sim_run)) return f;
+  }
+  if (run_independent) {
+    if (auto f = RunRecordings(o, o.recordings, "independent", IndependentPreparer(o, idraw, work), &indep_run)) return f;
+    if (!real.segments.empty()) {
+      if (auto f = RunRecordings(o, o.real_recordings, "real+injected", InjectedPreparer(o, real, work), &real_run)) return f;
+    }
+  }
+  if (timing.is_open()) {
+    timing.stream() << "generator,index,truth,samples,cpu_s,wall_s\n";
+    for (const RunResult* r : {&sim_run, &indep_run, &real_run}) {
+      for (const auto& line : r->timing_lines) timing.stream() << line;
+    }
+  }
+  Provenance base = MakeProvenance(kCommand, command_line);
+  base.Add("seed", std::to_string(o.seed));
+  base.Add("recordings", std::to_string(o.recordings) + " per generator");
+  std::vector<std::pair<std::string, BenchmarkSummary>> summaries;
+  if (run_sim) {
+    const BenchmarkSummary summary = SummarizeBenchmark(sim_run.rows);
+    summaries.emplace_back("sim", summary);
+    Provenance p = base;
+    p.Add("generator", "sim (sim/: simulate --sensor <spec> --seed <seed> --trial <index> --format f64 --units rad/s)");
+    p.Add("presets", "consumer_mems, fog, mg25_mems, rlg, tactical_mems, tg100 (IEEE 952 terms only)");
+    p.Add("duration", ShortestDecimal(o.min_duration_s) + " .. " + ShortestDecimal(o.max_duration_s) + " s, log-uniform");
+    p.Add("rate", ShortestDecimal(o.min_rate_hz) + " .. " + ShortestDecimal(o.max_rate_hz) +
+                      " Hz, log-uniform, lowered to keep samples <= " + std::to_string(o.max_samples));
+    p.Add("control_fraction", ShortestDecimal(o.control_fraction));
+    p.Add("strength_classes", "weak 0.2 (z 0.3..2), borderline 0.2 (2..10), clear 0.6 (10..100), log-uniform targets");
+    p.Add("diagnose", "default settings (told the format, rate and unit only)");
+    p.Add("diagnose_cpu", Cpu(sim_run.cpu_s) + " over the recordings diagnosed in this run");
+    if (o.reuse) p.Add("reused_diagnoses", std::to_string(sim_run.reused) + " from the work directory (each JSON names the build that made it)");
+    WriteBenchmarkCsv(sim_out.csv.stream(), ProvenanceCommentLines(p), sim_run.rows);
+    WriteBenchmarkMarkdown(sim_out.md.stream(), "Blind diagnosis benchmark: sim generator", kSimDescription,
+                           ProvenanceList(p), sim_run.rows, summary);
+    if (o.plot && !RenderAllanPlot(RatePlot(summary, o.seed, o.recordings), &sim_out.png, &why)) return RuntimeFailure(why);
+  }
+  if (run_independent) {
+    const BenchmarkSummary summary = SummarizeBenchmark(indep_run.rows);
+    summaries.emplace_back("independent", summary);
+    Provenance p = base;
+    p.Add("generator", "independent (independent/: Generate(recipe, n, seed, index), raw float64 rad/s)");
+    p.Add("sensor", "N 0.05..0.5 deg/sqrt(h), flicker floor 0.5..10 deg/h, K 0.5..10 deg/h/sqrt(h), bias +-0.05..1 deg/s, all log-uniform");
+    p.Add("duration", ShortestDecimal(o.independent_min_duration_s) + " .. " + ShortestDecimal(o.independent_max_duration_s) +
+                          " s, log-uniform, at " + ShortestDecimal(o.independent_rate_hz) + " Hz");
+    p.Add("control_fraction", ShortestDecimal(o.independent_control_fraction) + " (evenly spread)");
+    p.Add("effects", std::string("in turn: ") + [&] {
+            std::string s;
+            for (const auto& id : IndependentEffectOrder(idraw.with_resonance)) s += (s.empty() ? "" : ", ") + id;
+            return s;
+          }() + "; every fourth round borderline (z 3..10), the others clear (z 10..60)");
+    p.Add("diagnose", "--model N,B,K (the user's model), otherwise default settings");
+    p.Add("real_recordings", real_note);
+    p.Add("diagnose_cpu", Cpu(indep_run.cpu_s + real_run.cpu_s) + " over the recordings diagnosed in this run");
+    if (o.reuse) p.Add("reused_diagnoses", std::to_string(indep_run.reused + real_run.reused) + " from the work directory");
+    std::vector<BenchmarkRow> all = indep_run.rows;
+    WriteBenchmarkCsv(indep_out.csv.stream(), ProvenanceCommentLines(p), all);
+    std::ostringstream md;
+    WriteBenchmarkMarkdown(md, "Diagnosis benchmark: independent generator", kIndependentDescription, ProvenanceList(p),
+                           indep_run.rows, summary);
+    // The injected real recordings go before the provenance.
+    std::string text = md.str();
+    std::ostringstream injected;
+    if (!real.segments.empty()) {
+      WriteInjectedSection(injected, real_run.rows);
+    } else {
+      injected << "## Real recordings with an injected effect\n\n" << real_note << ".\n\n";
+    }
+    const std::size_t at = text.rfind("## Provenance");
+    text.insert(at == std::string::npos ? text.size() : at, injected.str());
+    indep_out.md.stream() << text;
+    if (o.plot && !RenderAllanPlot(RatePlot(summary, o.seed, o.recordings), &indep_out.png, &why)) return RuntimeFailure(why);
+  }
+  if (comparison.is_open()) WriteGeneratorComparison(comparison.stream(), ProvenanceList(base), summaries);
+  for (AtomicFile* f : {&sim_out.csv, &sim_out.md, &sim_out.png, &indep_out.csv, &indep_out.md, &indep_out.png,
+                        &comparison, &timing}) {
     if (f->is_open() && !f->Commit(&why)) return RuntimeFailure(why);
   }
   if (o.work_dir.empty() && !o.keep_work) fs::remove_all(work, ec);
-  std::cout << "false alarms on controls: " << summary.false_alarm.successes << "/" << summary.false_alarm.trials
-            << "; right effect on clear single effects: " << summary.clear_right.successes << "/"
-            << summary.clear_right.trials << "; held-out shrink >= 5x: " << summary.shrink_5x.successes << "/"
-            << summary.shrink_count << "\n";
+  for (const auto& [name, s] : summaries) {
+    std::cout << name << ": false alarms on controls: " << s.false_alarm.successes << "/" << s.false_alarm.trials
+              << "; right effect on clear single effects: " << s.clear_right.successes << "/" << s.clear_right.trials
+              << "; held-out shrink >= 5x: " << s.shrink_5x.successes << "/" << s.shrink_count << "\n";
+  }
   return std::nullopt;
 }
 
@@ -394,6 +663,18 @@ Subcommand AddDiagnosisBenchmarkCommand(CLI::App* parent) {
   cmd->add_option("--min-rate", o->min_rate_hz, "lowest rate [Hz] (default 100)");
   cmd->add_option("--max-rate", o->max_rate_hz, "highest rate [Hz] (default 1000)");
   cmd->add_option("--control-fraction", o->control_fraction, "share of recordings with no effect (default 0.4)");
+  cmd->add_option("--generator", o->generator,
+                  "sim (sim/'s generators, default), independent (independent/, written apart from sim/ and the "
+                  "diagnosis), or both side by side");
+  cmd->add_option("--independent-rate", o->independent_rate_hz, "independent generator: rate [Hz] (default 100)");
+  cmd->add_option("--independent-min-duration", o->independent_min_duration_s, "independent generator: shortest record [s] (default 1800)");
+  cmd->add_option("--independent-max-duration", o->independent_max_duration_s, "independent generator: longest record [s] (default 3600)");
+  cmd->add_option("--independent-control-fraction", o->independent_control_fraction,
+                  "independent generator: share of controls (default 0.45)");
+  cmd->add_option("--real-recordings", o->real_recordings,
+                  "independent generator: ADIS16405 segments with an injected effect (default 0)");
+  cmd->add_option("--real-segment", o->real_segment_s, "length of those segments [s] (default 1800)");
+  cmd->add_option("--data-dir", o->data_dir, "where real/adis16405 is (default ../shared/data beside the repository)")->type_name("DIR");
   cmd->add_option("--jobs", o->jobs, "diagnoses run at once, as child processes (default 2)");
   cmd->add_flag("--reuse", o->reuse, "reuse diagnoses an earlier run of the same draw left in --work-dir");
   cmd->add_option("--timing", o->timing_path, "per-recording CPU and wall seconds (CSV)")->type_name("FILE");

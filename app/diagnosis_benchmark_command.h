@@ -20,6 +20,16 @@
 //   --jobs J            diagnoses at once (default 2; each is a process)
 //   --timing FILE       per-recording CPU (user + sys) and wall seconds, CSV (not deterministic, so
 //                       kept out of the tables)
+//   --generator G       sim (default): the draw above; independent: recordings from independent/
+//                       (experiments/diagnosis/independent_case.h), written as raw f64 and diagnosed
+//                       with --model N,B,K, to <out-dir>/benchmark_independent.{csv,md,png}; both: the
+//                       two, and <out-dir>/benchmark_generators.md with their targets side by side
+//   --independent-rate HZ --independent-min-duration S --independent-max-duration S
+//   --independent-control-fraction F   (defaults 100, 1800, 3600, 0.45)
+//   --real-recordings K ADIS16405 gyro segments (--real-segment S long, default 1800) with one
+//                       injected effect each, in the independent table (default 0); skipped with a
+//                       message when --data-dir DIR (default ../shared/data beside the repository)
+//                       has no real/adis16405 recordings
 // Deterministic: the tables depend on the seed and options only (diagnose is deterministic for any
 // thread count). Exit codes: 2 usage, 1 a recording could not be written or an output not
 // written (a diagnose failure on a record is a row, not an error), 0 otherwise.
@@ -45,6 +55,13 @@ struct DiagnosisBenchmarkOptions {
   bool reuse = false;
   std::string timing_path;
   bool plot = true;  // --no-plot: no PNG (machines without gnuplot)
+  std::string generator = "sim";  // sim | independent | both
+  double independent_rate_hz = 100.0;
+  double independent_min_duration_s = 1800.0, independent_max_duration_s = 3600.0;
+  double independent_control_fraction = 0.45;
+  int real_recordings = 0;       // ADIS16405 segments with an injected effect (independent generator)
+  double real_segment_s = 1800.0;
+  std::string data_dir;          // empty: <source dir>/../shared/data
 };
 
 Subcommand AddDiagnosisBenchmarkCommand(CLI::App* parent);

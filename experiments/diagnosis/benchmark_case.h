@@ -77,6 +77,9 @@ struct BenchmarkCase {
   double halves_z = 0.0;      // bias_step and exponential_drift
   double halves_peak_tau_s = 0.0;
   std::string strength_class;
+  // What the table's params column shows when the parameters are not the effect's own (effect.h),
+  // as for the independent generator's recordings (independent_case.h); empty: effect->params.
+  std::string params_text;
   std::vector<double> tau_s, gap_z;  // the OAVAR gap z per tau (10 per decade, m <= N/2)
   // Taus where gap_z >= threshold_z; {0, 0} when none.
   std::pair<double, double> ExpectedTauRange(double threshold_z) const;

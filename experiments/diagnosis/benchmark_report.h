@@ -15,8 +15,26 @@ namespace allanlab::experiments {
 // `provenance` is written first, as given ('#' comment lines).
 void WriteBenchmarkCsv(std::ostream& os, const std::string& provenance, const std::vector<BenchmarkRow>& rows);
 
-// `provenance` is a Markdown list (written under "## Provenance").
-void WriteBenchmarkMarkdown(std::ostream& os, const std::string& provenance,
-                            const std::vector<BenchmarkRow>& rows, const BenchmarkSummary& summary);
+// `provenance` is a Markdown list (written under "## Provenance"); `title` and `description`
+// (a Markdown paragraph: how the recordings were made) head the page.
+void WriteBenchmarkMarkdown(std::ostream& os, const std::string& title, const std::string& description,
+                            const std::string& provenance, const std::vector<BenchmarkRow>& rows,
+                            const BenchmarkSummary& summary);
+
+// A target and whether it is met: only when the whole Wilson 95 % interval clears it.
+struct TargetCheck {
+  std::string name;
+  std::string measured;
+  bool met = false;
+};
+std::vector<TargetCheck> CheckTargets(const BenchmarkSummary& summary);
+
+// The targets of several generators' runs side by side (one column pair per generator).
+void WriteGeneratorComparison(std::ostream& os, const std::string& provenance,
+                              const std::vector<std::pair<std::string, BenchmarkSummary>>& runs);
+
+// Real recordings with an injected effect: each row, and how often the injected effect is named
+// (the verdict, one member of a set verdict, or also_consistent), with its Wilson interval.
+void WriteInjectedSection(std::ostream& os, const std::vector<BenchmarkRow>& rows);
 
 }  // namespace allanlab::experiments

@@ -40,6 +40,18 @@ Proportion MakeProportion(int k, int n) {
   return p;
 }
 
+bool NamesEffect(const BenchmarkOutcome& o, const std::string& id) {
+  if (!o.ok) return false;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t plus = o.verdict.find('+', start);
+    if (o.verdict.substr(start, plus == std::string::npos ? std::string::npos : plus - start) == id) return true;
+    if (plus == std::string::npos) break;
+    start = plus + 1;
+  }
+  return std::find(o.also_consistent.begin(), o.also_consistent.end(), id) != o.also_consistent.end();
+}
+
 std::string VerdictColumn(const BenchmarkOutcome& o) {
   if (!o.ok) return "failed";
   if (o.verdict.find('+') != std::string::npos) return "pair";
@@ -53,7 +65,7 @@ BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& 
   r.rate_hz = c.rate_hz;
   r.num_samples = c.num_samples;
   r.truth = c.effect ? std::string(EffectId(c.effect->effect)) : "control";
-  r.params = ParamsText(c.effect);
+  r.params = c.params_text.empty() ? ParamsText(c.effect) : c.params_text;
   r.target_z = c.target_z;
   r.strength_z = c.strength_z;
   r.oavar_z = c.oavar_z;

@@ -63,6 +63,10 @@ struct BenchmarkRow {
 // The row of a drawn case and its diagnosis, scored.
 BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& outcome);
 
+// The diagnosis names `id`: the verdict is it, holds it as a member of a set ("a+b"), or lists
+// it in also_consistent.
+bool NamesEffect(const BenchmarkOutcome& outcome, const std::string& id);
+
 // The verdict's column in the confusion matrix: "none", an id, "pair" or "unexplained"
 // ("failed" when diagnose did not run).
 std::string VerdictColumn(const BenchmarkOutcome& outcome);

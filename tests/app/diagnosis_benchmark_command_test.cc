@@ -59,5 +59,37 @@ TEST_F(DiagnosisBenchmarkCommandTest, RefusesBadOptionsAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "c" / "benchmark.csv"));
 }
 
+// The independent generator end to end: three short recordings (a control, then two effects in
+// turn), the injected real recordings skipped with a message when the data directory is absent,
+// and the two generators side by side.
+TEST_F(DiagnosisBenchmarkCommandTest, IndependentGeneratorAndBothSideBySide) {
+  const std::string common = "--recordings 3 --seed 5 --no-plot --jobs 2 --independent-min-duration 120 "
+                             "--independent-max-duration 150 --min-duration 60 --max-duration 90 --max-samples 20000 ";
+  ASSERT_EQ(Run(common + "--generator independent --real-recordings 2 --data-dir " + Path("no_such_dir") +
+                " --out-dir " + Path("i") + " --work-dir " + Path("i_work")),
+            0)
+      << Read("err.txt");
+  EXPECT_NE(Read("err.txt").find("real recordings skipped: no ADIS16405 recordings under"), std::string::npos)
+      << Read("err.txt");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "i" / "benchmark.csv"));
+  const std::string csv = testing_support::WithoutCommentLines(Read("i/benchmark_independent.csv"));
+  EXPECT_NE(csv.find(",independent,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",control,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("design="), std::string::npos) << csv;
+  const std::string md = Read("i/benchmark_independent.md");
+  for (const char* text : {"## Targets", "Wilson 95 % interval clears it", "## Real recordings with an injected effect",
+                           "skipped: no ADIS16405", "--model N,B,K"}) {
+    EXPECT_NE(md.find(text), std::string::npos) << text;
+  }
+  ASSERT_EQ(Run(common + "--generator both --out-dir " + Path("b2") + " --work-dir " + Path("b2_work")), 0) << Read("err.txt");
+  const std::string side = Read("b2/benchmark_generators.md");
+  EXPECT_NE(side.find("| target | sim | met | independent | met |"), std::string::npos) << side;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "b2" / "benchmark.csv"));
+  // The independent table of `both` is the independent run's (same seed, same draw).
+  EXPECT_EQ(testing_support::WithoutCommentLines(Read("b2/benchmark_independent.csv")), csv);
+  EXPECT_EQ(Run("--generator other --no-plot --out-dir " + Path("c2")), 2);
+  EXPECT_NE(Read("err.txt").find("--generator must be sim, independent or both"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace allanlab::app
