@@ -364,19 +364,13 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     std::vector<double> rate2;
     RecordInfo info2;
     if (const int code = ReadRateFromFile(v, kCommand, &rate2, &info2, &why); code != kExitOk) return Failure{code, why};
-    estimators::AvarCurve c2;
-    if (!RecordCurve(rate2, 1.0 / info2.sample_rate_hz, &c2, &why)) return RuntimeFailure(o.validate_path + ": " + why);
-    auto score = [&](sim::SensorModel model) {
-      model.sample_rate_hz = info2.sample_rate_hz;
-      std::vector<double> z;
-      std::string ignored;
-      if (!model.IsValid(&ignored)) return Json(nullptr);
-      const OavarTheory t = ExactOavar(model, c2.m, c2.num_samples);
-      for (std::size_t i = 0; i < c2.size(); ++i) z.push_back(ZFromChiSquare(c2.avar[i], t.mean[i], t.edf[i]));
-      return MetricsJson(Metrics(z));
-    };
-    validation = {{"file", o.validate_path}, {"baseline", score(s.baseline_model)}};
-    if (s.verdict_candidate >= 0) validation["with_" + s.candidates[s.verdict_candidate].id()] = score(s.candidates[s.verdict_candidate].model);
+    ValidationScores scores;
+    if (!ScoreOnSecondRecord(s, rate2, 1.0 / info2.sample_rate_hz, &scores, &why)) {
+      return RuntimeFailure(o.validate_path + ": " + why);
+    }
+    auto metrics = [](const std::optional<GapMetrics>& m) { return m ? MetricsJson(*m) : Json(nullptr); };
+    validation = {{"file", o.validate_path}, {"baseline", metrics(scores.baseline)}};
+    if (!scores.candidate_id.empty()) validation["with_" + scores.candidate_id] = metrics(scores.candidate);
     p.Add("validate_on", o.validate_path);
   }
 

@@ -417,53 +417,53 @@ std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(double 
       order == 2.0 ? sim::LowPassKind::kButterworth2 : sim::LowPassKind::kFirstOrder, sim::OutputSampling::kPoint, 8));
 }
 
-std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs& in, std::string* why) {
-  const double tau0 = in.curve->sample_period_s;
-  const bool have_data = !in.rate_rad_per_s.empty();
-  switch (effect) {
-    case Effect::kBandwidth: return Bandwidth(*in.curve, in.baseline_model, why);
-    case Effect::kGaussMarkov:
-    case Effect::kRandomTelegraph:
-      return Bump(effect, in, why);
-    default:
-      break;
+std::optional<EffectInstance> BandwidthStart(const EstimateInputs& in, std::string* why) {
+  return Bandwidth(*in.curve, in.baseline_model, why);
+}
+std::optional<EffectInstance> GaussMarkovStart(const EstimateInputs& in, std::string* why) {
+  return Bump(Effect::kGaussMarkov, in, why);
+}
+std::optional<EffectInstance> RandomTelegraphStart(const EstimateInputs& in, std::string* why) {
+  return Bump(Effect::kRandomTelegraph, in, why);
+}
+std::optional<EffectInstance> HarmonicStart(const EstimateInputs& in, std::string* why) {
+  return Harmonic(in.rate_rad_per_s, in.curve->sample_period_s, why);
+}
+std::optional<EffectInstance> AngleQuantizationStart(const EstimateInputs& in, std::string* why) {
+  if (const auto lsb = ValueGrid(in.rate_rad_per_s, why)) {
+    return EffectInstance{Effect::kAngleQuantization, {{"lsb_rad", *lsb * in.curve->sample_period_s}}};
   }
-  if (!have_data) {
+  const auto lsb = LsbFromBaselineQ(in.baseline_model, why);
+  if (!lsb) return std::nullopt;
+  return EffectInstance{Effect::kAngleQuantization, {{"lsb_rad", *lsb}}};
+}
+std::optional<EffectInstance> RateQuantizationStart(const EstimateInputs& in, std::string* why) {
+  const auto lsb = ValueGrid(in.rate_rad_per_s, why);
+  if (!lsb) return std::nullopt;
+  return EffectInstance{Effect::kRateQuantization, {{"lsb_rad_per_s", *lsb}}};
+}
+std::optional<EffectInstance> ExponentialDriftStart(const EstimateInputs& in, std::string* why) {
+  return Drift(in.rate_rad_per_s, in.curve->sample_period_s, why);
+}
+std::optional<EffectInstance> BiasStepStart(const EstimateInputs& in, std::string* why) {
+  return Step(in.rate_rad_per_s, in.curve->sample_period_s, why);
+}
+std::optional<EffectInstance> OutliersStart(const EstimateInputs& in, std::string* why) {
+  return Spikes(in.rate_rad_per_s, in.curve->sample_period_s, why);
+}
+
+std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs& in, std::string* why) {
+  const EffectSpec& spec = SpecOf(effect);
+  if (spec.needs_record && in.rate_rad_per_s.empty()) {
     *why = "needs the record (curve mode)";
     return std::nullopt;
   }
-  const auto y = in.rate_rad_per_s;
-  switch (effect) {
-    case Effect::kHarmonic: return Harmonic(y, tau0, why);
-    case Effect::kAngleQuantization: {
-      if (const auto lsb = ValueGrid(y, why)) return EffectInstance{effect, {{"lsb_rad", *lsb * tau0}}};
-      const auto lsb = LsbFromBaselineQ(in.baseline_model, why);
-      if (!lsb) return std::nullopt;
-      return EffectInstance{effect, {{"lsb_rad", *lsb}}};
-    }
-    case Effect::kRateQuantization: {
-      const auto lsb = ValueGrid(y, why);
-      if (!lsb) return std::nullopt;
-      return EffectInstance{effect, {{"lsb_rad_per_s", *lsb}}};
-    }
-    case Effect::kExponentialDrift: return Drift(y, tau0, why);
-    case Effect::kBiasStep: return Step(y, tau0, why);
-    case Effect::kOutliers: return Spikes(y, tau0, why);
-    default: break;
-  }
-  *why = "no estimate";
-  return std::nullopt;
+  return spec.start(in, why);
 }
 
 std::optional<EffectInstance> ShiftEffect(const EffectInstance& e, double offset_s) {
-  EffectInstance s = e;
-  if (e.effect == Effect::kExponentialDrift) {
-    s.params["amplitude_rad_per_s"] *= std::exp(-offset_s / e.params.at("time_constant_s"));
-  } else if (e.effect == Effect::kBiasStep) {
-    s.params["time_s"] -= offset_s;
-    if (s.params["time_s"] <= 0.0) return std::nullopt;
-  }
-  return s;
+  const EffectSpec& spec = SpecOf(e.effect);
+  return spec.shift != nullptr ? spec.shift(e, offset_s) : std::optional<EffectInstance>(e);
 }
 
 }  // namespace allanlab::experiments

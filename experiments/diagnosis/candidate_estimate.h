@@ -30,13 +30,26 @@ struct EstimateInputs {
 // there on a curve without a band-limit takes minutes (a 2e4-sample record: 490 s CPU).
 std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(double order);
 
-// nullopt with *why when the effect has no starting value (no bump, no spike, no grid, curve
-// mode for a data-domain effect).
+// Each effect's start (the registry's EffectSpec::start, effect.h): nullopt with *why when the
+// record shows nothing to start from (no bump, no spike, no grid).
+std::optional<EffectInstance> BandwidthStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> GaussMarkovStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> RandomTelegraphStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> HarmonicStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> AngleQuantizationStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> RateQuantizationStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> ExponentialDriftStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> BiasStepStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> OutliersStart(const EstimateInputs& in, std::string* why);
+
+// The registry's start for `effect`; nullopt with *why when it has none (see above, or curve mode
+// for an effect whose start reads the samples).
 std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs& in,
                                              std::string* why);
 
 // The effect seen from a record that starts `offset_s` later (the held-out second half):
-// a warm-up drift has decayed, a step time moves. nullopt when it no longer acts.
+// a warm-up drift has decayed, a step time moves (the registry's EffectSpec::shift). nullopt when
+// it no longer acts; a stationary effect is unchanged.
 std::optional<EffectInstance> ShiftEffect(const EffectInstance& e, double offset_s);
 
 }  // namespace allanlab::experiments

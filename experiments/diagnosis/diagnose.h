@@ -28,6 +28,7 @@
 //    candidates within 2 of the best penalised score (which the record cannot tell apart), the
 //    one with the largest held-out shrink.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -125,6 +126,19 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
 // (bandwidth, gauss_markov, random_telegraph), no held-out score. curve.num_samples must be set.
 bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
                    DiagnosisSummary* summary);
+
+// A diagnosis' models scored on a second recording of the same sensor (`--validate-on`): the
+// exact OAVAR view of that record's curve against the baseline and against the verdict's model
+// (or, for "unexplained", the best tried), each with its sample rate set to the second record's.
+// A model invalid at that rate has no score (nullopt).
+struct ValidationScores {
+  std::optional<GapMetrics> baseline;
+  std::string candidate_id;  // empty when the diagnosis has no candidate
+  std::optional<GapMetrics> candidate;
+};
+// False with *why when the second record gives no usable curve.
+bool ScoreOnSecondRecord(const DiagnosisSummary& summary, std::span<const double> rate_rad_per_s,
+                         double sample_period_s, ValidationScores* scores, std::string* why);
 
 // The record's overlapping Allan curve on 10 taus per decade with Greenhall-Riley EDFs
 // (positive values only), as the baseline fit uses it.

@@ -2,52 +2,189 @@
 
 #include <cmath>
 
+#include "estimators/fit/parametric_term.h"
+#include "experiments/diagnosis/candidate_estimate.h"
+
 namespace allanlab::experiments {
 namespace {
 
-struct EffectInfo {
-  Effect effect;
-  std::string_view id;
-  std::vector<std::string> params;
-};
-
-const std::vector<EffectInfo>& Table() {
-  static const std::vector<EffectInfo> table = {
-      {Effect::kBandwidth, "bandwidth", {"cutoff_hz", "order"}},
-      {Effect::kGaussMarkov, "gauss_markov", {"sigma_rad_per_s", "correlation_time_s"}},
-      {Effect::kRandomTelegraph, "random_telegraph", {"amplitude_rad_per_s", "mean_dwell_s"}},
-      {Effect::kHarmonic, "harmonic", {"amplitude_rad_per_s", "frequency_hz"}},
-      {Effect::kAngleQuantization, "angle_quantization", {"lsb_rad"}},
-      {Effect::kRateQuantization, "rate_quantization", {"lsb_rad_per_s"}},
-      {Effect::kExponentialDrift, "exponential_drift", {"amplitude_rad_per_s", "time_constant_s"}},
-      {Effect::kBiasStep, "bias_step", {"size_rad_per_s", "time_s"}},
-      {Effect::kOutliers, "outliers", {"rate_hz", "size_rad_per_s"}},
-  };
-  return table;
+double Param(const EffectInstance& e, const char* name) {
+  const auto it = e.params.find(name);
+  return it == e.params.end() ? std::nan("") : it->second;
 }
 
-const EffectInfo& Info(Effect e) {
-  for (const EffectInfo& info : Table()) {
-    if (info.effect == e) return info;
+// A term of sim/ added to the model after its own validity check.
+template <typename Term>
+bool AddTerm(Term t, sim::SensorModel* model, std::string* why) {
+  if (!t.IsValid(why)) return false;
+  model->terms.push_back(t);
+  return true;
+}
+
+bool AddBandwidth(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  if (model->band_limit.enabled()) {
+    *why = "the model already has a band-limit";
+    return false;
   }
-  return Table().front();  // unreachable: the table covers the enum
+  const double order = Param(e, "order");
+  if (order != 1.0 && order != 2.0) {
+    *why = "bandwidth: order must be 1 or 2";
+    return false;
+  }
+  model->band_limit.kind = order == 1.0 ? sim::LowPassKind::kFirstOrder : sim::LowPassKind::kButterworth2;
+  model->band_limit.cutoff_hz = Param(e, "cutoff_hz");
+  // Point sampling of the filtered internal signal: the analog chain of sim/band_limit.h.
+  model->band_limit.sampling = sim::OutputSampling::kPoint;
+  return model->band_limit.IsValid(model->sample_rate_hz, why);
+}
+
+bool AddGaussMarkov(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::GaussMarkov t;
+  t.sigma_rad_per_s = Param(e, "sigma_rad_per_s");
+  t.correlation_time_s = Param(e, "correlation_time_s");
+  return AddTerm(t, model, why);
+}
+
+bool AddRandomTelegraph(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::RandomTelegraph t;
+  t.amplitude_rad_per_s = Param(e, "amplitude_rad_per_s");
+  t.mean_dwell_s = Param(e, "mean_dwell_s");
+  return AddTerm(t, model, why);
+}
+
+bool AddHarmonic(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::Harmonic t;
+  t.amplitude_rad_per_s = Param(e, "amplitude_rad_per_s");
+  t.frequency_hz = Param(e, "frequency_hz");
+  return AddTerm(t, model, why);
+}
+
+bool AddAngleQuantization(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::AngleQuantizer q;
+  q.lsb_rad = Param(e, "lsb_rad");
+  if (!q.IsValid(why)) return false;
+  model->angle_quantizer = q;
+  return true;
+}
+
+bool AddRateQuantization(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::RateQuantizer q;
+  q.lsb_rad_per_s = Param(e, "lsb_rad_per_s");
+  if (!q.IsValid(why)) return false;
+  model->rate_quantizer = q;
+  return true;
+}
+
+bool AddExponentialDrift(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::ExponentialDrift t;
+  t.amplitude_rad_per_s = Param(e, "amplitude_rad_per_s");
+  t.time_constant_s = Param(e, "time_constant_s");
+  return AddTerm(t, model, why);
+}
+
+bool AddBiasStep(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::BiasStep t;
+  t.size_rad_per_s = Param(e, "size_rad_per_s");
+  t.time_s = Param(e, "time_s");
+  return AddTerm(t, model, why);
+}
+
+bool AddOutliers(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::Outliers t;
+  t.rate_hz = Param(e, "rate_hz");
+  t.size_rad_per_s = Param(e, "size_rad_per_s");
+  return AddTerm(t, model, why);
+}
+
+std::shared_ptr<const estimators::ParametricTerm> GaussMarkovTerm(const EffectInstance&) {
+  return estimators::MakeGaussMarkovTerm();
+}
+std::shared_ptr<const estimators::ParametricTerm> RandomTelegraphTerm(const EffectInstance&) {
+  return estimators::MakeRandomTelegraphTerm();
+}
+std::shared_ptr<const estimators::ParametricTerm> HarmonicTerm(const EffectInstance&) {
+  return estimators::MakeHarmonicTerm();
+}
+std::shared_ptr<const estimators::ParametricTerm> BandwidthTerm(const EffectInstance& e) {
+  return DiagnosisBandLimitTerm(e.params.at("order"));
+}
+
+// A warm-up drift seen offset_s later has decayed by exp(-offset / tw).
+std::optional<EffectInstance> ShiftDrift(const EffectInstance& e, double offset_s) {
+  EffectInstance s = e;
+  s.params["amplitude_rad_per_s"] *= std::exp(-offset_s / e.params.at("time_constant_s"));
+  return s;
+}
+
+// A step seen offset_s later happens offset_s earlier; before the start it no longer acts.
+std::optional<EffectInstance> ShiftStep(const EffectInstance& e, double offset_s) {
+  EffectInstance s = e;
+  s.params["time_s"] -= offset_s;
+  if (s.params["time_s"] <= 0.0) return std::nullopt;
+  return s;
 }
 
 }  // namespace
 
-std::string_view EffectId(Effect e) { return Info(e).id; }
+const std::vector<EffectSpec>& EffectRegistry() {
+  using enum View;
+  // A telegraph signal of amplitude a and mean dwell T has the autocovariance a^2 e^{-2|t|/T} of a
+  // Gauss-Markov process with sigma = a, Tc = T/2 (sim/random_telegraph.h): every second-moment
+  // view (Allan, Hadamard, PSD) is the same; the increments' kurtosis is not.
+  static const std::vector<EffectSpec> registry = {
+      {Effect::kBandwidth, "bandwidth", {"cutoff_hz", "order"}, AddBandwidth, BandwidthStart, false,
+       BandwidthTerm, HeldRefit::kRatio, nullptr, {kOavar, kHadamard, kPsd}, {}},
+      {Effect::kGaussMarkov, "gauss_markov", {"sigma_rad_per_s", "correlation_time_s"}, AddGaussMarkov,
+       GaussMarkovStart, false, GaussMarkovTerm, HeldRefit::kRatio, nullptr, {kOavar, kHadamard, kPsd},
+       {{Effect::kRandomTelegraph, "kurtosis"}}},
+      {Effect::kRandomTelegraph, "random_telegraph", {"amplitude_rad_per_s", "mean_dwell_s"},
+       AddRandomTelegraph, RandomTelegraphStart, false, RandomTelegraphTerm, HeldRefit::kRatio, nullptr,
+       {kOavar, kHadamard, kPsd, kKurtosis}, {{Effect::kGaussMarkov, "kurtosis"}}},
+      {Effect::kHarmonic, "harmonic", {"amplitude_rad_per_s", "frequency_hz"}, AddHarmonic, HarmonicStart,
+       true, HarmonicTerm, HeldRefit::kRatio, nullptr, {kOavar, kHadamard, kPsd}, {}},
+      {Effect::kAngleQuantization, "angle_quantization", {"lsb_rad"}, AddAngleQuantization,
+       AngleQuantizationStart, true, nullptr, HeldRefit::kSubtractive, nullptr, {kOavar, kPsd, kKurtosis}, {}},
+      {Effect::kRateQuantization, "rate_quantization", {"lsb_rad_per_s"}, AddRateQuantization,
+       RateQuantizationStart, true, nullptr, HeldRefit::kSubtractive, nullptr, {kOavar, kPsd, kKurtosis}, {}},
+      {Effect::kExponentialDrift, "exponential_drift", {"amplitude_rad_per_s", "time_constant_s"},
+       AddExponentialDrift, ExponentialDriftStart, true, nullptr, HeldRefit::kJointFit, ShiftDrift,
+       {kOavar, kHalves, kDynamic}, {}},
+      {Effect::kBiasStep, "bias_step", {"size_rad_per_s", "time_s"}, AddBiasStep, BiasStepStart, true,
+       nullptr, HeldRefit::kJointFit, ShiftStep, {kOavar, kHalves, kDynamic, kKurtosis}, {}},
+      {Effect::kOutliers, "outliers", {"rate_hz", "size_rad_per_s"}, AddOutliers, OutliersStart, true,
+       nullptr, HeldRefit::kJointFit, nullptr, {kOavar, kPsd, kKurtosis}, {}},
+  };
+  return registry;
+}
+
+const EffectSpec& SpecOf(Effect e) {
+  for (const EffectSpec& spec : EffectRegistry()) {
+    if (spec.effect == e) return spec;
+  }
+  return EffectRegistry().front();  // unreachable: the registry covers the enum
+}
+
+std::string_view EffectId(Effect e) { return SpecOf(e).id; }
 
 bool ParseEffect(std::string_view id, Effect* e) {
-  for (const EffectInfo& info : Table()) {
-    if (info.id == id) {
-      *e = info.effect;
+  for (const EffectSpec& spec : EffectRegistry()) {
+    if (spec.id == id) {
+      *e = spec.effect;
       return true;
     }
   }
   return false;
 }
 
-std::vector<std::string> EffectParameterNames(Effect e) { return Info(e).params; }
+std::vector<std::string> EffectParameterNames(Effect e) { return SpecOf(e).params; }
+
+bool AddEffect(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  return SpecOf(e.effect).add(e, model, why);
+}
+
+bool IsOneOffEvent(Effect e) { return SpecOf(e).shift != nullptr; }
+
+std::vector<Indistinguishable> AllanEquivalents(Effect e) { return SpecOf(e).allan_equivalents; }
 
 bool EffectInstance::IsValid(double sample_rate_hz, std::string* why) const {
   for (const std::string& name : EffectParameterNames(effect)) {
@@ -60,105 +197,6 @@ bool EffectInstance::IsValid(double sample_rate_hz, std::string* why) const {
   sim::SensorModel probe;
   probe.sample_rate_hz = sample_rate_hz;
   return AddEffect(*this, &probe, why) && probe.IsValid(why);
-}
-
-bool AddEffect(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
-  auto p = [&](const char* name) {
-    const auto it = e.params.find(name);
-    return it == e.params.end() ? std::nan("") : it->second;
-  };
-  switch (e.effect) {
-    case Effect::kBandwidth: {
-      if (model->band_limit.enabled()) {
-        *why = "the model already has a band-limit";
-        return false;
-      }
-      const double order = p("order");
-      if (order != 1.0 && order != 2.0) {
-        *why = "bandwidth: order must be 1 or 2";
-        return false;
-      }
-      model->band_limit.kind =
-          order == 1.0 ? sim::LowPassKind::kFirstOrder : sim::LowPassKind::kButterworth2;
-      model->band_limit.cutoff_hz = p("cutoff_hz");
-      // Point sampling of the filtered internal signal: the analog chain of sim/band_limit.h.
-      model->band_limit.sampling = sim::OutputSampling::kPoint;
-      return model->band_limit.IsValid(model->sample_rate_hz, why);
-    }
-    case Effect::kGaussMarkov: {
-      sim::GaussMarkov t;
-      t.sigma_rad_per_s = p("sigma_rad_per_s");
-      t.correlation_time_s = p("correlation_time_s");
-      if (!t.IsValid(why)) return false;
-      model->terms.push_back(t);
-      return true;
-    }
-    case Effect::kRandomTelegraph: {
-      sim::RandomTelegraph t;
-      t.amplitude_rad_per_s = p("amplitude_rad_per_s");
-      t.mean_dwell_s = p("mean_dwell_s");
-      if (!t.IsValid(why)) return false;
-      model->terms.push_back(t);
-      return true;
-    }
-    case Effect::kHarmonic: {
-      sim::Harmonic t;
-      t.amplitude_rad_per_s = p("amplitude_rad_per_s");
-      t.frequency_hz = p("frequency_hz");
-      if (!t.IsValid(why)) return false;
-      model->terms.push_back(t);
-      return true;
-    }
-    case Effect::kAngleQuantization: {
-      sim::AngleQuantizer q;
-      q.lsb_rad = p("lsb_rad");
-      if (!q.IsValid(why)) return false;
-      model->angle_quantizer = q;
-      return true;
-    }
-    case Effect::kRateQuantization: {
-      sim::RateQuantizer q;
-      q.lsb_rad_per_s = p("lsb_rad_per_s");
-      if (!q.IsValid(why)) return false;
-      model->rate_quantizer = q;
-      return true;
-    }
-    case Effect::kExponentialDrift: {
-      sim::ExponentialDrift t;
-      t.amplitude_rad_per_s = p("amplitude_rad_per_s");
-      t.time_constant_s = p("time_constant_s");
-      if (!t.IsValid(why)) return false;
-      model->terms.push_back(t);
-      return true;
-    }
-    case Effect::kBiasStep: {
-      sim::BiasStep t;
-      t.size_rad_per_s = p("size_rad_per_s");
-      t.time_s = p("time_s");
-      if (!t.IsValid(why)) return false;
-      model->terms.push_back(t);
-      return true;
-    }
-    case Effect::kOutliers: {
-      sim::Outliers t;
-      t.rate_hz = p("rate_hz");
-      t.size_rad_per_s = p("size_rad_per_s");
-      if (!t.IsValid(why)) return false;
-      model->terms.push_back(t);
-      return true;
-    }
-  }
-  *why = "unknown effect";
-  return false;
-}
-
-std::vector<Indistinguishable> AllanEquivalents(Effect e) {
-  // A telegraph signal of amplitude a and mean dwell T has the autocovariance a^2 e^{-2|t|/T}
-  // of a Gauss-Markov process with sigma = a, Tc = T/2 (sim/random_telegraph.h): every
-  // second-moment view (Allan, Hadamard, PSD) is the same; the increments' kurtosis is not.
-  if (e == Effect::kGaussMarkov) return {{Effect::kRandomTelegraph, "kurtosis"}};
-  if (e == Effect::kRandomTelegraph) return {{Effect::kGaussMarkov, "kurtosis"}};
-  return {};
 }
 
 }  // namespace allanlab::experiments

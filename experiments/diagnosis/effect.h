@@ -1,7 +1,10 @@
 #pragma once
-// The fixed vocabulary of unmodelled effects `allanlab diagnose` can name (issue 6, DESIGN.md
-// "Output contracts": ids are stable; add, never rename), and how each one is added to a sensor
-// model so that sim/ generates it and knows its exact expected Allan variance.
+// The unmodelled effects `allanlab diagnose` can name, in one registry: for each effect its stable
+// id (JSON and CLI; add, never rename), its parameters, how sim/ generates it (added to a sensor
+// model, which then knows its exact expected Allan variance), where a candidate starts
+// (candidate_estimate.h), the fit library term that refits it (estimators/fit/parametric_term.h)
+// and the views it shows in. Adding an effect is one row in effect.cc plus its generator, start
+// and (optionally) fit term.
 //
 // Parameters are SI with the unit in the name (JSON keys are these names):
 //   bandwidth           cutoff_hz, order (1: RC, 2: Butterworth)
@@ -14,11 +17,18 @@
 //   bias_step           size_rad_per_s, time_s
 //   outliers            rate_hz, size_rad_per_s
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "experiments/diagnosis/record_views.h"
 #include "sim/sensor_model.h"
+
+namespace allanlab::estimators {
+class ParametricTerm;
+}
 
 namespace allanlab::experiments {
 
@@ -38,12 +48,7 @@ inline constexpr Effect kAllEffects[] = {
     Effect::kHarmonic,          Effect::kAngleQuantization, Effect::kRateQuantization,
     Effect::kExponentialDrift,  Effect::kBiasStep,          Effect::kOutliers};
 
-std::string_view EffectId(Effect e);
-bool ParseEffect(std::string_view id, Effect* e);
-// Names of the effect's parameters, in the order above.
-std::vector<std::string> EffectParameterNames(Effect e);
-
-// One effect with its parameter values (keys from EffectParameterNames).
+// One effect with its parameter values (keys: the effect's parameter names).
 struct EffectInstance {
   Effect effect = Effect::kGaussMarkov;
   std::map<std::string, double> params;
@@ -51,16 +56,55 @@ struct EffectInstance {
   bool IsValid(double sample_rate_hz, std::string* why) const;
 };
 
-// `model` with the effect added (a term, the band-limit or an output quantizer). Returns false
-// with *why when the effect does not fit the model (invalid parameters, a second band-limit).
-bool AddEffect(const EffectInstance& effect, sim::SensorModel* model, std::string* why);
+struct EstimateInputs;  // candidate_estimate.h
 
-// Effects whose Allan variance is identical for matching parameters, so no Allan-family view
-// can tell them apart, and the view that can (empty when none is known).
+// How a candidate's refit treats the effect when no fit term frees its parameters.
+enum class HeldRefit {
+  kJointFit,     // held at its start inside the joint GLS fit (an additive term the linear terms
+                 // must not absorb: spikes, a step, a warm-up drift)
+  kSubtractive,  // the linear terms refitted to the curve minus its AVAR (an output quantizer,
+                 // whose error is uncorrelated with the signal)
+  kRatio,        // the linear terms refitted to the curve scaled by E[without] / E[with]
+};
+
+// Effects with the same Allan variance for matching parameters (no Allan-family view tells them
+// apart), and the view that can (empty when none is known).
 struct Indistinguishable {
   Effect other;
   std::string separating_view;
 };
+
+struct EffectSpec {
+  Effect effect;
+  std::string_view id;
+  std::vector<std::string> params;  // SI names; a fit term's parameters are the first ones, in order
+  // The generator: `model` with the effect added (a term, the band-limit or an output quantizer);
+  // false with *why for invalid parameters or a model the effect cannot join.
+  bool (*add)(const EffectInstance& effect, sim::SensorModel* model, std::string* why);
+  // The candidate's starting value from the record (or its curve); nullopt with *why when the
+  // record shows nothing to start from.
+  std::optional<EffectInstance> (*start)(const EstimateInputs& in, std::string* why);
+  bool needs_record;  // the start reads the samples (no candidate in curve mode)
+  // The fit library term that refits the effect's free parameters jointly with the linear terms;
+  // nullptr: the effect is held at its start (`held`).
+  std::shared_ptr<const estimators::ParametricTerm> (*fit_term)(const EffectInstance& effect);
+  HeldRefit held;
+  // A one-off event (a step, a warm-up drift): the effect seen from a record starting offset_s
+  // later (nullopt when it no longer acts there); nullptr for a stationary effect.
+  std::optional<EffectInstance> (*shift)(const EffectInstance& effect, double offset_s);
+  std::vector<View> views;  // the views in which it shows
+  std::vector<Indistinguishable> allan_equivalents;
+};
+
+// Every effect, in kAllEffects order.
+const std::vector<EffectSpec>& EffectRegistry();
+const EffectSpec& SpecOf(Effect e);
+
+std::string_view EffectId(Effect e);
+bool ParseEffect(std::string_view id, Effect* e);
+std::vector<std::string> EffectParameterNames(Effect e);
+bool AddEffect(const EffectInstance& effect, sim::SensorModel* model, std::string* why);
+bool IsOneOffEvent(Effect e);
 std::vector<Indistinguishable> AllanEquivalents(Effect e);
 
 }  // namespace allanlab::experiments

@@ -1,0 +1,74 @@
+#pragma once
+// What the steps of a diagnosis (baseline.h, refit.h, heldout.h, verdict.h) share: the record, its
+// curve and views, its halves, and how a model is assessed against them.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+#include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/record_views.h"
+
+namespace allanlab::experiments::detail {
+
+
+// One half of the record, as a fit sees it and as a held-out score reads it.
+struct HalfRecord {
+  estimators::AvarCurve curve;
+  std::span<const double> rate;
+  estimators::FitSummary baseline;  // the asked terms fitted on this half alone
+  std::vector<double> edf;          // exact EDFs of `curve` under `baseline`
+  ViewLayout layout;
+  ViewValues observed;
+  bool have_views = false;
+};
+
+
+struct HeldoutBefore {
+  std::vector<ViewResiduals> residuals;
+  std::vector<View> gap_views;  // views with a point beyond the record's threshold
+};
+
+
+// Everything the candidates share.
+struct Context {
+  const DiagnoseOptions* options = nullptr;
+  estimators::AvarCurve curve;
+  std::vector<double> curve_edf;  // exact EDFs of `curve` under the baseline model
+  std::span<const double> rate;
+  ViewLayout layout;
+  ViewValues observed;
+  bool have_record = false;
+  // Held-out halves: [0] the first, [1] the second.
+  bool have_halves = false;
+  HalfRecord halves[2];
+  double half_length_s = 0.0;
+  // Each half against the other half's baseline (computed once, when a candidate needs it).
+  mutable std::optional<HeldoutBefore> heldout_before[2];
+};
+
+// A record's views against a model: OAVAR exact, the others from a Monte Carlo envelope when
+// `monte_carlo` (and trials >= 3).
+std::vector<ViewResiduals> RecordResiduals(const ViewLayout& layout, const ViewValues& observed,
+                                           const sim::SensorModel& model, bool monte_carlo, int trials,
+                                           std::uint64_t seed, std::string* note);
+
+// The record (or in curve mode the curve) against a model.
+ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
+                std::uint64_t seed, std::string* note);
+
+// A curve against a model's exact OAVAR distribution (the exact view's z, ExactOavar).
+GapMetrics CurveMetrics(const sim::SensorModel& model, const estimators::AvarCurve& curve);
+
+int ParameterCount(const std::vector<EffectInstance>& effects);
+bool ClosesGap(const ModelGap& gap, double threshold);
+
+// One candidate (one or more effects from their starts): refitted, assessed on the exact OAVAR
+// view, scored, and held out.
+std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisSummary& s,
+                                            const std::vector<EffectInstance>& effects,
+                                            std::string* why);
+
+}  // namespace allanlab::experiments::detail

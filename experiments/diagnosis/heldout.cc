@@ -1,0 +1,132 @@
+#include "experiments/diagnosis/heldout.h"
+
+#include <algorithm>
+
+#include "experiments/diagnosis/baseline.h"
+#include "experiments/diagnosis/candidate_estimate.h"
+#include "experiments/diagnosis/refit.h"
+#include "experiments/diagnosis/envelope.h"
+
+namespace allanlab::experiments::detail {
+namespace {
+
+
+// The views of `views` pooled.
+GapMetrics MetricsOf(const std::vector<ViewResiduals>& residuals, const std::vector<View>& views) {
+  std::vector<ViewResiduals> kept;
+  for (const ViewResiduals& r : residuals) {
+    if (std::find(views.begin(), views.end(), r.view) != views.end()) kept.push_back(r);
+  }
+  return Metrics(kept);
+}
+
+
+// The held-out half against the other half's baseline, every view, and the views in which it
+// departs from that baseline beyond `threshold` (computed once per half).
+const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold) {
+  if (!ctx.heldout_before[h]) {
+    const HalfRecord& scored = ctx.halves[h];
+    HeldoutBefore b;
+    std::string ignored;
+    b.residuals = RecordResiduals(scored.layout, scored.observed,
+                                  LinearModel(ctx.halves[1 - h].baseline, 1.0 / ctx.curve.sample_period_s), true,
+                                  ctx.options->trials, ctx.options->seed + 500 + h, &ignored);
+    for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
+      if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
+    }
+    ctx.heldout_before[h] = std::move(b);
+  }
+  return *ctx.heldout_before[h];
+}
+
+}  // namespace
+
+
+// The half a candidate is scored on: the one that holds its one-off event (a warm-up drift acts
+// in the first half; a step in the half of its time), else the second (fit on the first).
+int ScoredHalf(const Context& ctx, const std::vector<EffectInstance>& effects) {
+  for (const EffectInstance& e : effects) {
+    if (e.effect == Effect::kExponentialDrift) return 0;
+    if (e.effect == Effect::kBiasStep) return e.params.at("time_s") < ctx.half_length_s ? 0 : 1;
+  }
+  return 1;
+}
+
+
+// The candidate's model for the held-out half `scored`: its stationary effects estimated, and the
+// terms refitted with them, on the other half; its one-off events estimated on `scored` (falling
+// back to the whole record's estimate moved to that half's clock).
+bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects, int scored,
+                  sim::SensorModel* model, std::string* why) {
+  const HalfRecord& fit_half = ctx.halves[1 - scored];
+  const HalfRecord& scored_half = ctx.halves[scored];
+  const double fs = 1.0 / ctx.curve.sample_period_s;
+  const sim::SensorModel probe = LinearModel(fit_half.baseline, fs);
+  std::vector<EffectInstance> stationary, events;
+  for (const EffectInstance& e : effects) {
+    const bool event = IsOneOffEvent(e.effect);
+    const HalfRecord& from = event ? scored_half : fit_half;
+    const auto base = probe.ExpectedAvar(from.curve.m, {from.curve.num_samples, from.curve.estimator});
+    const EstimateInputs in{&from.curve, base, from.rate, &probe};
+    std::string ignored;
+    auto est = EstimateEffect(e.effect, in, &ignored);
+    if (!est && event) est = ShiftEffect(e, scored == 1 ? ctx.half_length_s : 0.0);
+    if (!est && !event) est = e;
+    if (est) (event ? events : stationary).push_back(*est);
+  }
+  estimators::FitSummary fit = fit_half.baseline;
+  if (!stationary.empty()) {
+    sim::SensorModel ignored_model;
+    if (!BestRefit(*ctx.options, fit_half.curve, fit_half.edf, fit_half.baseline, &stationary, &fit, &ignored_model, why)) {
+      return false;
+    }
+  }
+  stationary.insert(stationary.end(), events.begin(), events.end());
+  return WithEffects(LinearModel(fit, fs), stationary, model, why);
+}
+
+
+// The held-out half against the candidate's held-out model and against the other half's
+// baseline, in the views where that half departs from the baseline (`threshold`): the score
+// looks where the effect shows in the data it did not fit (spikes in the kurtosis, a step in
+// the halves or the long-tau OAVAR) rather than diluting it among views it leaves alone. When no
+// view of the half departs, the OAVAR score of TryCandidate stands.
+void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std::uint64_t seed) {
+  const int h = c->heldout_half;
+  const HalfRecord& scored = ctx.halves[h];
+  if (!c->after.has_heldout || !scored.have_views || ctx.options->trials < 3) return;
+  const HeldoutBefore& before = HeldoutBaseline(ctx, h, threshold);
+  if (before.gap_views.empty()) return;
+  std::string ignored;
+  c->heldout_before = MetricsOf(before.residuals, before.gap_views);
+  c->after.heldout = MetricsOf(RecordResiduals(scored.layout, scored.observed, c->heldout_model, true,
+                                               ctx.options->trials, seed, &ignored),
+                               before.gap_views);
+  c->heldout_in_gap_views = true;
+}
+
+}  // namespace allanlab::experiments::detail
+
+namespace allanlab::experiments {
+
+bool ScoreOnSecondRecord(const DiagnosisSummary& summary, std::span<const double> rate, double tau0,
+                         ValidationScores* scores, std::string* why) {
+  estimators::AvarCurve curve;
+  if (!RecordCurve(rate, tau0, &curve, why)) return false;
+  auto score = [&](sim::SensorModel model) -> std::optional<GapMetrics> {
+    model.sample_rate_hz = 1.0 / tau0;
+    std::string ignored;
+    if (!model.IsValid(&ignored)) return std::nullopt;
+    return detail::CurveMetrics(model, curve);
+  };
+  *scores = ValidationScores{};
+  scores->baseline = score(summary.baseline_model);
+  if (summary.verdict_candidate >= 0) {
+    const CandidateResult& c = summary.candidates[summary.verdict_candidate];
+    scores->candidate_id = c.id();
+    scores->candidate = score(c.model);
+  }
+  return true;
+}
+
+}  // namespace allanlab::experiments

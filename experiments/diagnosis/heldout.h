@@ -1,0 +1,22 @@
+#pragma once
+// Held-out scores: a candidate fitted on one half of the record and scored on the other, and a
+// model scored on a second recording of the same sensor.
+#include <cstdint>
+#include <vector>
+
+#include "experiments/diagnosis/diagnosis_context.h"
+
+namespace allanlab::experiments::detail {
+
+// The half a candidate is scored on (0: first, 1: second).
+int ScoredHalf(const Context& ctx, const std::vector<EffectInstance>& effects);
+
+// The candidate's model for the held-out half `scored`.
+bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects, int scored,
+                  sim::SensorModel* model, std::string* why);
+
+// The held-out score of a candidate with the Monte Carlo views moved to the views in which the
+// scored half departs from the other half's baseline beyond `threshold`.
+void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std::uint64_t seed);
+
+}  // namespace allanlab::experiments::detail

@@ -1,0 +1,29 @@
+#pragma once
+// A candidate's refit: the baseline's linear terms refitted with one or more effects added (the
+// effects' free parameters fitted jointly where the registry gives a fit term, effect.h), and the
+// best of the ways to do it by AIC on the curve.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "estimators/fit/avar_curve.h"
+#include "estimators/fit/fit_avar_model.h"
+#include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/effect.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::experiments::detail {
+
+// `model` with `effects` added, into *out; false with *why when an effect does not fit the model.
+bool WithEffects(sim::SensorModel model, const std::vector<EffectInstance>& effects,
+                 sim::SensorModel* out, std::string* why);
+
+// The effects added to `start` (a fit without them) by the best of the refits (see refit.cc);
+// `edf`: the exact EDFs of `curve` under the start model. *effects receives the fitted
+// parameters.
+bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+               std::span<const double> edf, const estimators::FitSummary& start,
+               std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
+               sim::SensorModel* model, std::string* why);
+
+}  // namespace allanlab::experiments::detail
