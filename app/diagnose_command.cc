@@ -1,5 +1,6 @@
 #include "app/diagnose_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "app/provenance.h"
 #include "app/rate_units.h"
 #include "app/record_reader.h"
+#include "sim/sensor_spec.h"
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/diagnosis/diagnose.h"
 #include "experiments/diagnosis/envelope.h"
@@ -52,6 +54,53 @@ bool ParseModel(const std::string& text, std::vector<Coefficient>* terms, std::s
     return false;
   }
   return true;
+}
+
+// The baseline the options ask for (DiagnoseOptions::baseline) into *d, and its description for
+// the provenance.
+std::optional<Failure> BaselineOptions(const DiagnoseCommandOptions& o, DiagnoseOptions* d) {
+  std::string why;
+  const bool sensor = !o.sensor_path.empty() || !o.preset.empty();
+  if (!o.sensor_path.empty() && !o.preset.empty()) return UsageFailure("give --sensor or --preset, not both");
+  if (sensor && o.model) {
+    return UsageFailure("--model and --" + std::string(o.preset.empty() ? "sensor" : "preset") +
+                        " contradict: the sensor model fixes the terms (use --float LIST to refit some of its coefficients)");
+  }
+  if (!sensor && !o.float_terms.empty()) return UsageFailure("--float needs --sensor SPEC.yaml or --preset NAME");
+  d->terms.clear();
+  if (sensor) {
+    d->baseline = DiagnoseOptions::Baseline::kSensor;
+    if (!o.preset.empty()) {
+      const std::vector<std::string> names = sim::PresetNames();
+      if (std::find(names.begin(), names.end(), o.preset) == names.end()) {
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+        return UsageFailure("unknown preset '" + o.preset + "' (known: " + known + ")");
+      }
+      if (!sim::LoadPreset(o.preset, &d->sensor, &why)) return RuntimeFailure("preset " + o.preset + ": " + why);
+    } else if (!sim::LoadSensorModelFile(o.sensor_path, &d->sensor, &why)) {
+      return RuntimeFailure(why);
+    }
+    if (!o.float_terms.empty() && !ParseModel(o.float_terms, &d->terms, &why)) return UsageFailure("--float: " + why);
+    return std::nullopt;
+  }
+  if (o.model) {
+    d->baseline = DiagnoseOptions::Baseline::kTerms;
+    if (!ParseModel(*o.model, &d->terms, &why)) return UsageFailure("--model: " + why);
+    return std::nullopt;
+  }
+  d->baseline = DiagnoseOptions::Baseline::kFit;
+  d->terms = {Coefficient::kQ, Coefficient::kN, Coefficient::kB, Coefficient::kK, Coefficient::kR};
+  return std::nullopt;
+}
+
+std::string BaselineDescription(const DiagnoseCommandOptions& o) {
+  if (!o.preset.empty() || !o.sensor_path.empty()) {
+    return (o.preset.empty() ? "sensor " + o.sensor_path : "preset " + o.preset) + " held" +
+           (o.float_terms.empty() ? "" : ", " + o.float_terms + " refitted");
+  }
+  if (o.model) return "terms " + *o.model + " fitted (no band-limit)";
+  return "as allanlab fit: Q,N,B,K,R fitted, plus a band-limit when the curve shows one";
 }
 
 Json MetricsJson(const GapMetrics& m) {
@@ -151,7 +200,14 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   Json skipped = Json::array();
   for (const auto& k : s.skipped) skipped.push_back({{"effect", std::string(EffectId(k.effect))}, {"reason", k.reason}});
   j["skipped"] = skipped;
-  j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline)},
+  Json band_limit = nullptr;
+  if (s.baseline_model.band_limit.enabled()) {
+    const auto& b = s.baseline_model.band_limit;
+    band_limit = {{"order", b.kind == sim::LowPassKind::kFirstOrder ? 1 : 2},
+                  {"cutoff_hz", b.cutoff_hz},
+                  {"sampling", b.sampling == sim::OutputSampling::kAverage ? "average" : "point"}};
+  }
+  j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline)}, {"band_limit", band_limit},
                    {"fit", {{"chi2", s.baseline.chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
   if (!validation.is_null()) j["validation"] = validation;
   j["notes"] = s.notes;
@@ -175,6 +231,11 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
   for (const auto& a : s.also_consistent) {
     os << "  also consistent: " << a.effect
        << (a.separating_view.empty() ? "" : " (the " + a.separating_view + " view could separate them)") << "\n";
+  }
+  if (s.baseline_model.band_limit.enabled()) {
+    const auto& b = s.baseline_model.band_limit;
+    os << "  baseline band-limit: " << (b.kind == sim::LowPassKind::kFirstOrder ? "first order" : "2nd-order Butterworth")
+       << ", cutoff " << Format(b.cutoff_hz) << " Hz (held)\n";
   }
   if (markdown) os << "\n";
   os << h << "gap: " << (s.significant ? "significant" : "none") << " (|z| > " << Format(s.threshold)
@@ -295,8 +356,7 @@ AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
 std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::string& command_line) {
   std::string why;
   DiagnoseOptions d;
-  d.terms.clear();
-  if (!ParseModel(o.model, &d.terms, &why)) return UsageFailure("--model: " + why);
+  if (auto f = BaselineOptions(o, &d)) return f;
   d.trials = o.trials;
   d.seed = o.seed;
   d.false_alarm = o.false_alarm;
@@ -352,7 +412,8 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     p.Add("samples", std::to_string(rate.size()));
     if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
   }
-  p.Add("model", o.model);
+  p.Add("baseline", BaselineDescription(o));
+  if (o.model) p.Add("model", *o.model);
   p.Add("trials", std::to_string(o.trials));
   p.Add("seed", std::to_string(o.seed));
   p.Add("false_alarm", ShortestDecimal(o.false_alarm));
@@ -404,7 +465,17 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   AddRecordCurveOptions(cmd, &options->record);
   // FILE is optional here: --curve replaces it.
   cmd->get_option("FILE")->required(false);
-  cmd->add_option("--model", options->model, "baseline terms, a comma list of Q,N,B,K,R (default all)")->type_name("LIST");
+  cmd->add_option("--sensor", options->sensor_path,
+                  "baseline: your simulation model (sensor spec as for simulate), held as given")
+      ->type_name("SPEC.yaml");
+  cmd->add_option("--preset", options->preset, "baseline: a shipped sensor model, held as given")->type_name("NAME");
+  cmd->add_option("--float", options->float_terms,
+                  "with --sensor/--preset: refit these coefficients of it (comma list of Q,N,B,K,R)")
+      ->type_name("LIST");
+  cmd->add_option("--model", options->model,
+                  "baseline: only these IEEE terms, fitted, no band-limit (comma list of Q,N,B,K,R; default: "
+                  "what allanlab fit reports, band-limit included)")
+      ->type_name("LIST");
   cmd->add_option("--trials", options->trials, "simulated records per Monte Carlo envelope (default 30; 0: OAVAR view only)");
   cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)");
   cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)");

@@ -2,7 +2,12 @@
 // `allanlab diagnose FILE`: where a recording departs from its fitted IEEE 952 model, which
 // unmodelled effect explains the gap and how far it shrinks (experiments/diagnosis/diagnose.h,
 // issue 6). Input options are those of `avar` (app/avar_command.h).
-//   --model Q,N,B,K,R   baseline terms (default all five)
+//   (no baseline option) the baseline is what `allanlab fit` reports by default: Q,N,B,K,R plus
+//                       a band-limit when the curve shows one (its cutoff then held)
+//   --sensor SPEC.yaml | --preset NAME  the user's simulation model as the baseline: its
+//                       coefficients, band-limit, quantizers and terms held as given
+//   --float LIST        with --sensor/--preset: these IEEE coefficients (Q,N,B,K,R) refitted
+//   --model LIST        a free IEEE baseline: only these terms, fitted (no band-limit)
 //   --trials N --seed S simulated records per Monte Carlo envelope (default 30; 0: OAVAR only)
 //   --false-alarm A     chance that a record of the model itself is flagged (default 0.05)
 //   --json OUT          the issue 6 contract: gap{significant, threshold_z, regions[{view,
@@ -30,7 +35,8 @@ namespace allanlab::app {
 
 struct DiagnoseCommandOptions {
   AvarCommandOptions record;  // FILE and the input options of `avar`
-  std::string model = "Q,N,B,K,R";
+  std::optional<std::string> model;  // unset: the fit's default baseline
+  std::string sensor_path, preset, float_terms;
   int trials = 30;
   std::uint64_t seed = 1;
   double false_alarm = 0.05;

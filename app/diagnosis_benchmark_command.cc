@@ -341,7 +341,8 @@ PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const Benchmark
     if (!DrawBenchmarkCase(draw, o.seed, i, &p->c, &why)) return RuntimeFailure("recording " + std::to_string(i) + ": " + why);
     const std::string stem = "rec" + std::to_string(i);
     SetPaths(work, stem, p);
-    p->diagnose_args = {"--format", "f64", "--rate", Exact(p->c.rate_hz), "--units", "rad/s"};
+    // A free IEEE baseline: the sim generator's effects (a band-limit among them) are gaps from it.
+    p->diagnose_args = {"--format", "f64", "--rate", Exact(p->c.rate_hz), "--units", "rad/s", "--model", "Q,N,B,K,R"};
     std::string yaml;
     if (!SpecYaml(p->c, &yaml, &why)) return RuntimeFailure(why);
     MaybeReuse(o, p);

@@ -59,7 +59,7 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
                                             std::string* why) {
   CandidateResult c;
   c.effects = effects;
-  if (!BestRefit(*ctx.options, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why)) return std::nullopt;
+  if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why)) return std::nullopt;
   c.after = Assess(ctx, c.model, false, 0, why);
   const int k = ParameterCount(effects);
   c.score = s.before.View(View::kOavar).chi2 - c.after.View(View::kOavar).chi2 - 2.0 * k;
@@ -69,7 +69,7 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
     if (HeldoutModel(ctx, effects, c.heldout_half, &c.heldout_model, &ignored)) {
       const HalfRecord& fit = ctx.halves[1 - c.heldout_half];
       const HalfRecord& scored = ctx.halves[c.heldout_half];
-      c.heldout_before = CurveMetrics(LinearModel(fit.baseline, 1.0 / ctx.curve.sample_period_s), scored.curve);
+      c.heldout_before = CurveMetrics(ctx.spec.Model(fit.baseline, 1.0 / ctx.curve.sample_period_s), scored.curve);
       c.after.heldout = CurveMetrics(c.heldout_model, scored.curve);
       c.after.has_heldout = true;
     }
@@ -98,7 +98,7 @@ bool CommonChecks(const DiagnoseOptions& options, DiagnosisSummary* summary) {
 }  // namespace
 
 bool DiagnoseOptions::IsValid(std::string* why) const {
-  if (terms.empty()) {
+  if (terms.empty() && baseline != Baseline::kSensor) {
     *why = "no model terms";
     return false;
   }
@@ -166,12 +166,9 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     return false;
   }
   std::string fallback;
-  if (!FitLinear(options, ctx.curve, &s.baseline, &fallback)) {
-    s.message = "baseline fit failed: " + s.baseline.message;
-    return false;
-  }
+  if (!FitBaseline(options, ctx.curve, &ctx.spec, &s.baseline, &fallback, &s.message)) return false;
   if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
-  s.baseline_model = LinearModel(s.baseline, 1.0 / tau0);
+  s.baseline_model = ctx.spec.Model(s.baseline, 1.0 / tau0);
   s.curve = ctx.curve;
   ctx.layout = MakeViewLayout(tau0, s.num_samples, ctx.curve.m);
   if (!ComputeViews(ctx.layout, rate, &ctx.observed, &why)) {
@@ -185,9 +182,9 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   for (int h = 0; h < 2 && ctx.have_halves; ++h) {
     HalfRecord& r = ctx.halves[h];
     r.rate = rate.subspan(h * half, half);
-    ctx.have_halves = RecordCurve(r.rate, tau0, &r.curve, &why) && FitLinear(options, r.curve, &r.baseline, nullptr);
+    ctx.have_halves = RecordCurve(r.rate, tau0, &r.curve, &why) && FitLinear(ctx.spec, r.curve, &r.baseline, nullptr);
     if (!ctx.have_halves) break;
-    r.edf = ExactOavar(LinearModel(r.baseline, 1.0 / tau0), r.curve.m, r.curve.num_samples).edf;
+    r.edf = ExactOavar(ctx.spec.Model(r.baseline, 1.0 / tau0), r.curve.m, r.curve.num_samples).edf;
     r.layout = MakeViewLayout(tau0, static_cast<std::int64_t>(half), r.curve.m);
     r.have_views = ComputeViews(r.layout, r.rate, &r.observed, &why);
   }
@@ -201,7 +198,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   s.before = Assess(ctx, s.baseline_model, true, options.seed, &note);
   if (!note.empty()) s.notes.push_back("envelope: " + note);
   if (ctx.have_halves) {
-    s.before.heldout = CurveMetrics(LinearModel(ctx.halves[0].baseline, 1.0 / tau0), ctx.halves[1].curve);
+    s.before.heldout = CurveMetrics(ctx.spec.Model(ctx.halves[0].baseline, 1.0 / tau0), ctx.halves[1].curve);
     s.before.has_heldout = true;
   }
   Finish(ctx, &s);
@@ -234,12 +231,9 @@ bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& 
   s.num_samples = curve.num_samples;
   s.sample_period_s = curve.sample_period_s;
   std::string fallback;
-  if (!FitLinear(options, curve, &s.baseline, &fallback)) {
-    s.message = "baseline fit failed: " + s.baseline.message;
-    return false;
-  }
+  if (!FitBaseline(options, curve, &ctx.spec, &s.baseline, &fallback, &s.message)) return false;
   if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
-  s.baseline_model = LinearModel(s.baseline, 1.0 / curve.sample_period_s);
+  s.baseline_model = ctx.spec.Model(s.baseline, 1.0 / curve.sample_period_s);
   s.curve = curve;
   ctx.layout.sample_period_s = curve.sample_period_s;
   ctx.layout.num_samples = curve.num_samples;

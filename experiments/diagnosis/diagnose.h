@@ -42,6 +42,15 @@
 namespace allanlab::experiments {
 
 struct DiagnoseOptions {
+  // What the record is measured against.
+  //   kTerms:  the IEEE terms in `terms` fitted to the curve (GLS), nothing else;
+  //   kFit:    what `allanlab fit` reports by default: those terms plus a band-limit when the
+  //            curve shows one (estimators/fit/band_limited_fit.h), its cutoff then held;
+  //   kSensor: `sensor` as given (its coefficients, band-limit, quantizers and every term held),
+  //            only the IEEE terms listed in `terms` (may be empty) refitted.
+  enum class Baseline { kTerms, kFit, kSensor };
+  Baseline baseline = Baseline::kTerms;
+  sim::SensorModel sensor;  // kSensor: the user's simulation model (its rate is the record's)
   std::vector<estimators::Coefficient> terms = {
       estimators::Coefficient::kQ, estimators::Coefficient::kN, estimators::Coefficient::kB,
       estimators::Coefficient::kK, estimators::Coefficient::kR};

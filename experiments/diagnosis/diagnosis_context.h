@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "estimators/fit/avar_curve.h"
+#include "experiments/diagnosis/baseline.h"
 #include "experiments/diagnosis/diagnose.h"
 #include "experiments/diagnosis/record_views.h"
 
@@ -35,6 +36,7 @@ struct HeldoutBefore {
 // Everything the candidates share.
 struct Context {
   const DiagnoseOptions* options = nullptr;
+  BaselineSpec spec;  // what refits fit and hold
   estimators::AvarCurve curve;
   std::vector<double> curve_edf;  // exact EDFs of `curve` under the baseline model
   std::span<const double> rate;

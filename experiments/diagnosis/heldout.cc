@@ -29,7 +29,7 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
     HeldoutBefore b;
     std::string ignored;
     b.residuals = RecordResiduals(scored.layout, scored.observed,
-                                  LinearModel(ctx.halves[1 - h].baseline, 1.0 / ctx.curve.sample_period_s), true,
+                                  ctx.spec.Model(ctx.halves[1 - h].baseline, 1.0 / ctx.curve.sample_period_s), true,
                                   ctx.options->trials, ctx.options->seed + 500 + h, &ignored);
     for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
       if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
@@ -61,7 +61,7 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
   const HalfRecord& fit_half = ctx.halves[1 - scored];
   const HalfRecord& scored_half = ctx.halves[scored];
   const double fs = 1.0 / ctx.curve.sample_period_s;
-  const sim::SensorModel probe = LinearModel(fit_half.baseline, fs);
+  const sim::SensorModel probe = ctx.spec.Model(fit_half.baseline, fs);
   std::vector<EffectInstance> stationary, events;
   for (const EffectInstance& e : effects) {
     const bool event = IsOneOffEvent(e.effect);
@@ -77,12 +77,12 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
   estimators::FitSummary fit = fit_half.baseline;
   if (!stationary.empty()) {
     sim::SensorModel ignored_model;
-    if (!BestRefit(*ctx.options, fit_half.curve, fit_half.edf, fit_half.baseline, &stationary, &fit, &ignored_model, why)) {
+    if (!BestRefit(ctx.spec, fit_half.curve, fit_half.edf, fit_half.baseline, &stationary, &fit, &ignored_model, why)) {
       return false;
     }
   }
   stationary.insert(stationary.end(), events.begin(), events.end());
-  return WithEffects(LinearModel(fit, fs), stationary, model, why);
+  return WithEffects(ctx.spec.Model(fit, fs), stationary, model, why);
 }
 
 

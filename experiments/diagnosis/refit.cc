@@ -20,7 +20,7 @@ using estimators::Coefficient;
 // right correction for a band-limit, which scales rather than adds), or for quantizers (whose
 // error is uncorrelated with the signal: additive) the curve minus E[linear + effects] -
 // E[linear].
-bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                     const estimators::FitSummary& start, const std::vector<EffectInstance>& effects,
                     estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
   const double fs = 1.0 / curve.sample_period_s;
@@ -30,7 +30,7 @@ bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve&
     return SpecOf(e.effect).held == HeldRefit::kSubtractive;
   });
   for (int pass = 0; pass < 3; ++pass) {
-    const sim::SensorModel linear = LinearModel(current, fs);
+    const sim::SensorModel linear = spec.Model(current, fs);
     sim::SensorModel full;
     if (!WithEffects(linear, effects, &full, why)) return false;
     const auto e_lin = linear.ExpectedAvar(curve.m, shape);
@@ -49,14 +49,14 @@ bool FitWithEffects(const DiagnoseOptions& options, const estimators::AvarCurve&
       if (subtract) adjusted.avar[i] = std::max(curve.avar[i] - (e_full[i] - e_lin[i]), 0.1 * adjusted.avar[i]);
     }
     estimators::FitSummary next;
-    if (!FitLinear(options, adjusted, &next, nullptr)) {
+    if (!FitLinear(spec, adjusted, &next, nullptr)) {
       *why = "refit failed: " + next.message;
       return false;
     }
     current = next;
   }
   *fit = current;
-  return WithEffects(LinearModel(current, fs), effects, model, why);
+  return WithEffects(spec.Model(current, fs), effects, model, why);
 }
 
 
@@ -134,9 +134,12 @@ std::shared_ptr<const estimators::ParametricTerm> TermOf(const EffectInstance& e
 // is also started a factor 3 either side and the lowest chi2 kept, as the Allan bump of a
 // dominant process is flat enough near its peak to hold a local minimum. Returns false when an
 // effect is not a library term (the caller then uses the ratio refit).
-bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                    const estimators::FitSummary& baseline, std::vector<EffectInstance>* effects,
                    estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
+  // Every coefficient held (a sensor model as given, nothing floated): the fit library needs a
+  // linear term to solve for (an empty design crashes its QR), so the effects keep their starts.
+  if (spec.terms.empty()) return false;
   std::vector<std::vector<std::string>> keys(effects->size());
   std::vector<std::shared_ptr<const estimators::ParametricTerm>> terms;
   for (std::size_t i = 0; i < effects->size(); ++i) {
@@ -165,16 +168,16 @@ bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& 
   // Linear term sets: every asked term, and those the baseline's selection kept (parametric_fit
   // does not select; a term the data do not support extrapolates badly onto the held-out half,
   // while a bump the baseline soaked into other terms may need a dropped one back). AIC decides.
-  std::vector<std::vector<Coefficient>> term_sets = {options.terms};
+  std::vector<std::vector<Coefficient>> term_sets = {spec.terms};
   std::vector<Coefficient> kept;
-  for (Coefficient c : options.terms) {
+  for (Coefficient c : spec.terms) {
     if (baseline.at(c).fitted) kept.push_back(c);
   }
   // With no free effect parameter (spikes, step, drift held at their estimates) the effect only
   // takes variance from the terms, so the baseline's selection stands.
   const bool free_parameters = std::any_of(terms.begin(), terms.end(), [](const auto& t) { return !t->parameters().empty(); });
   if (!kept.empty() && !free_parameters) term_sets = {kept};
-  if (!kept.empty() && free_parameters && kept.size() != options.terms.size()) term_sets.push_back(kept);
+  if (!kept.empty() && free_parameters && kept.size() != spec.terms.size()) term_sets.push_back(kept);
   // Except under a warm-up drift, which the baseline's selection absorbed (benchmark #5: N, K,
   // R = 9586 deg/h^2, B dropped): every term, R excepted. The held drift and a ramp compete for
   // the same long-tau rise and the curve cannot tell them apart (#5: OAVAR chi2 8.8 with
@@ -186,9 +189,10 @@ bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& 
       std::erase(set, Coefficient::kR);
       return set;
     };
-    term_sets = {without_ramp(options.terms)};
+    term_sets = {without_ramp(spec.terms)};
     if (free_parameters && !kept.empty()) term_sets.push_back(without_ramp(kept));
   }
+  const estimators::AvarCurve fit_curve = spec.WithoutHeldAdditive(curve);
   double best_aic = 0.0;
   for (const auto& term_set : term_sets)
   for (const auto& start : starts) {
@@ -196,11 +200,12 @@ bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& 
     po.method = estimators::FitMethod::kGls;
     po.terms = term_set;
     for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
+    if (auto band = spec.HeldBandLimitTerm()) po.extra.push_back(std::move(band));
     estimators::ParametricFitSummary ps;
-    if (!estimators::FitAvarModelWithTerms(po, curve, &ps)) {
+    if (!estimators::FitAvarModelWithTerms(po, fit_curve, &ps)) {
       // As the baseline: WLS when the GLS covariance is singular.
       po.method = estimators::FitMethod::kWls;
-      if (!estimators::FitAvarModelWithTerms(po, curve, &ps)) {
+      if (!estimators::FitAvarModelWithTerms(po, fit_curve, &ps)) {
         *why = ps.base.message;
         continue;
       }
@@ -225,7 +230,14 @@ bool FitParametric(const DiagnoseOptions& options, const estimators::AvarCurve& 
   }
   *effects = std::move(fitted);
   *fit = best.base;
+  // The fitted terms and effects, then the held terms and quantizers the fit's curve was
+  // cleared of.
   *model = estimators::FittedModel(best_options, curve, best);
+  sim::SensorModel held = spec.held;
+  held.sample_rate_hz = model->sample_rate_hz;
+  model->terms.insert(model->terms.end(), held.terms.begin(), held.terms.end());
+  if (held.angle_quantizer && !model->angle_quantizer) model->angle_quantizer = held.angle_quantizer;
+  if (held.rate_quantizer && !model->rate_quantizer) model->rate_quantizer = held.rate_quantizer;
   return true;
 }
 
@@ -255,7 +267,7 @@ bool WithEffects(sim::SensorModel model, const std::vector<EffectInstance>& effe
 // estimate when the curve cannot place it.
 // `edf`: the exact EDFs of the curve under the start model (computed once per curve: the exact
 // moments are the costly part, and the EDFs barely move between the options).
-bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                std::span<const double> edf,
                const estimators::FitSummary& start, std::vector<EffectInstance>* effects,
                estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
@@ -271,7 +283,7 @@ bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curv
   std::vector<std::vector<EffectInstance>> starts = {*effects};
   {
     Option o{*effects, {}, {}, 0.0};
-    if (FitParametric(options, curve, start, &o.effects, &o.fit, &o.model, &ignored)) {
+    if (FitParametric(spec, curve, start, &o.effects, &o.fit, &o.model, &ignored)) {
       starts.push_back(o.effects);
       // A linear term the effect has made insignificant (a bias step's variance left to a rate
       // random walk within its sigma of zero) still shapes the other views, where it is wrong:
@@ -286,7 +298,7 @@ bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curv
         }
       }
       Option r{*effects, {}, {}, 0.0};
-      if (dropped && FitParametric(options, curve, reduced, &r.effects, &r.fit, &r.model, &ignored)) {
+      if (dropped && FitParametric(spec, curve, reduced, &r.effects, &r.fit, &r.model, &ignored)) {
         options_tried.push_back(std::move(r));
       }
       options_tried.push_back(std::move(o));
@@ -294,9 +306,9 @@ bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curv
   }
   for (const auto& from : starts) {
     Option o{from, {}, {}, 0.0};
-    if (FitWithEffects(options, curve, start, o.effects, &o.fit, &o.model, why)) options_tried.push_back(std::move(o));
+    if (FitWithEffects(spec, curve, start, o.effects, &o.fit, &o.model, why)) options_tried.push_back(std::move(o));
     Option held{from, start, {}, 0.0};
-    if (WithEffects(LinearModel(start, fs), held.effects, &held.model, &ignored)) options_tried.push_back(std::move(held));
+    if (WithEffects(spec.Model(start, fs), held.effects, &held.model, &ignored)) options_tried.push_back(std::move(held));
   }
   if (options_tried.empty()) return false;
   // AIC over the options: chi2 + 2 x the linear terms each keeps (the effects' parameters are

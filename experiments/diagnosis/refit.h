@@ -8,6 +8,7 @@
 
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/fit_avar_model.h"
+#include "experiments/diagnosis/baseline.h"
 #include "experiments/diagnosis/diagnose.h"
 #include "experiments/diagnosis/effect.h"
 #include "sim/sensor_model.h"
@@ -21,7 +22,7 @@ bool WithEffects(sim::SensorModel model, const std::vector<EffectInstance>& effe
 // The effects added to `start` (a fit without them) by the best of the refits (see refit.cc);
 // `edf`: the exact EDFs of `curve` under the start model. *effects receives the fitted
 // parameters.
-bool BestRefit(const DiagnoseOptions& options, const estimators::AvarCurve& curve,
+bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                std::span<const double> edf, const estimators::FitSummary& start,
                std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
                sim::SensorModel* model, std::string* why);
