@@ -103,15 +103,17 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
                  "hadamard_nonoverlapping, total or time)");
   }
   if (!estimators::TauGridOptions::Parse(o.taus, &a.taus, &why)) return Usage("--taus: " + why);
-  const std::string ci = o.ci.value_or(o.stream ? "simple" : "gr");
-  if (ci == "gr") {
+  const std::string ci = o.ci.value_or(o.stream ? "simple" : "auto");
+  if (ci == "auto") {
+    a.confidence_method = ConfidenceMethod::kAuto;
+  } else if (ci == "gr") {
     a.confidence_method = ConfidenceMethod::kGreenhallRiley;
   } else if (ci == "simple") {
     a.confidence_method = ConfidenceMethod::kSimple;
   } else if (ci == "none") {
     a.confidence_method = ConfidenceMethod::kNone;
   } else {
-    return Usage("--ci: unknown '" + ci + "' (expected gr, simple or none)");
+    return Usage("--ci: unknown '" + ci + "' (expected auto, gr, simple or none)");
   }
   if (!(o.confidence > 0.0 && o.confidence < 1.0)) {
     return Usage("--confidence must be in (0, 1), got " + ShortestDecimal(o.confidence));
@@ -126,10 +128,11 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
     if (a.taus.kind != estimators::TauGridKind::kOctave) {
       return Usage("--stream computes octave taus only (--taus octave), not " + o.taus);
     }
-    if (a.confidence_method == ConfidenceMethod::kGreenhallRiley) {
-      return Usage(
-          "--stream cannot give --ci gr: the Greenhall-Riley EDF needs the noise type at each "
-          "tau, identified from the record in memory; use --ci simple or none, or drop --stream");
+    if (a.confidence_method == ConfidenceMethod::kGreenhallRiley ||
+        a.confidence_method == ConfidenceMethod::kAuto) {
+      return Usage("--stream cannot give --ci " + ci +
+                   ": that EDF needs the record in memory (its differences or the noise type at "
+                   "each tau); use --ci simple or none, or drop --stream");
     }
     estimators::StreamingAvarOptions stream{o.stream_exact_max_m};
     if (!stream.IsValid(&why)) return Usage("--stream-exact-m: " + why);
@@ -316,7 +319,7 @@ std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& comm
                                                 std::to_string(o.stream_exact_max_m) + ")"
                                           : ""));
   p.Add("taus", o.taus);
-  p.Add("interval", o.ci.value_or(o.stream ? "simple" : "gr") + " at confidence " +
+  p.Add("interval", o.ci.value_or(o.stream ? "simple" : "auto") + " at confidence " +
                         ShortestDecimal(plan.avar.confidence));
 
   // 4. Outputs: stdout first, files committed last and together.
@@ -372,9 +375,12 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
       ->type_name("P");
   cmd->add_option_function<std::string>(
          "--ci", [options](const std::string& v) { options->ci = v; },
-         "interval method: gr (Greenhall-Riley EDF, default), simple (EDF = clusters - 1, "
+         "interval method: auto (default: the EDF measured on the record's own differences "
+         "where they are numerous, else Greenhall-Riley at the identified noise type, held "
+         "from the shorter tau where few averages cannot tell), gr (Greenhall-Riley EDF at the "
+         "noise type identified at each tau alone, as Stable32), simple (EDF = clusters - 1, "
          "IEEE 952; the default with --stream) or none")
-      ->type_name("gr|simple|none");
+      ->type_name("auto|gr|simple|none");
   cmd->add_option("--format", options->format,
                   "input record format: text (default), f32 or f64 (raw little-endian)")
       ->type_name("text|f32|f64");

@@ -65,6 +65,10 @@ std::string IntervalDescription(const AvarReport& r) {
       return "chi-square " + level + " with EDF = clusters - 1 (IEEE 952 simple error)";
     case estimators::ConfidenceMethod::kGreenhallRiley:
       return "chi-square " + level + " with the Greenhall-Riley EDF, alpha identified per tau";
+    case estimators::ConfidenceMethod::kAuto:
+      return "chi-square " + level +
+             " with the EDF measured on the record at short taus (edf marked r) and the "
+             "Greenhall-Riley EDF at the identified alpha elsewhere";
   }
   return "?";
 }
@@ -155,6 +159,7 @@ std::vector<AvarRow> AvarRows(const AvarReport& r) {
     }
     row.alpha = p.alpha;
     row.alpha_identified = p.alpha_identified;
+    row.edf_from_record = p.edf_from_record;
     rows.push_back(row);
   }
   return rows;
@@ -182,9 +187,11 @@ void WriteAvarTable(std::ostream& os, const AvarReport& r) {
     if (row.has_interval) {
       std::snprintf(low, sizeof low, "%.6g", row.dev_low);
       std::snprintf(high, sizeof high, "%.6g", row.dev_high);
-      std::snprintf(edf, sizeof edf, "%.4g", row.edf);
+      std::snprintf(edf, sizeof edf, "%.4g%s", row.edf, row.edf_from_record ? "r" : "");
       // alpha only matters for (and is only identified by) the Greenhall-Riley EDF.
-      if (r.summary.options.confidence_method == estimators::ConfidenceMethod::kGreenhallRiley) {
+      const estimators::ConfidenceMethod method = r.summary.options.confidence_method;
+      if (method == estimators::ConfidenceMethod::kGreenhallRiley ||
+          (method == estimators::ConfidenceMethod::kAuto && !row.edf_from_record)) {
         std::snprintf(alpha, sizeof alpha, "%d%s", row.alpha, row.alpha_identified ? "" : "*");
         any_unidentified |= !row.alpha_identified;
       }
@@ -286,6 +293,7 @@ nlohmann::ordered_json AvarJson(const AvarReport& r) {
       p["dev_low"] = nullptr;
       p["dev_high"] = nullptr;
     }
+    p["edf_from_record"] = row.edf_from_record;
     if (r.streamed) p["overlap_stride"] = r.overlap_stride[k];
     points.push_back(p);
   }

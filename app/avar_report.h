@@ -42,6 +42,7 @@ struct AvarRow {
   double dev_low = 0.0, dev_high = 0.0;
   int alpha = 0;
   bool alpha_identified = false;
+  bool edf_from_record = false;  // the EDF was measured on the record (--ci auto)
 };
 std::vector<AvarRow> AvarRows(const AvarReport& report);
 

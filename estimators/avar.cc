@@ -1,11 +1,14 @@
 #include "estimators/avar.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "estimators/allan_family.h"
 #include "estimators/confidence.h"
 #include "estimators/noise_identification.h"
+#include "estimators/record_edf.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -28,6 +31,20 @@ NoiseId IdentifyAt(const AvarOptions& options, std::span<const double> rate,
                        phase.size() == rate.size() + 1 ? phase.subspan(first, length + 1) : phase, m);
 }
 
+// kAuto at a tau with few m-averages: the shorter tau's exponent unless the unrounded estimate
+// is more than one step from it, and never a phase noise (alpha > 0) after a frequency noise. In
+// a sum of power laws the term that dominates at longer taus has the steeper Allan slope, so the
+// exponent cannot rise into phase noise (AVAR ~ 1/tau^2 fades fastest); such a reading at few
+// averages is the ACF's scatter, and its Greenhall-Riley EDF is several times too large.
+int SteadyAlpha(const AvarOptions& options, const NoiseId& id, int previous, bool first) {
+  if (options.confidence_method != ConfidenceMethod::kAuto || first ||
+      id.averages >= kSteadyIdentificationAverages || !std::isfinite(id.estimate)) {
+    return id.alpha;
+  }
+  if (std::abs(id.estimate - previous) <= 1.0) return previous;
+  return id.alpha > std::max(previous, 0) ? previous : id.alpha;
+}
+
 // Noise exponent of every point: fixed, or identified from the record. Where identification
 // cannot run (fewer than three m-averages, e.g. TOTVAR beyond n/3), the nearest shorter tau's
 // exponent stands in: noise type changes slowly with tau, and white FM (0) is the neutral start.
@@ -43,7 +60,7 @@ int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rat
     const NoiseId id = IdentifyAt(options, rate, phase, point.m);
     point.alpha_identified = id.identified;
     if (id.identified) {
-      previous = id.alpha;
+      previous = SteadyAlpha(options, id, previous, &point == &points->front());
     } else {
       ++unidentified;
     }
@@ -52,14 +69,26 @@ int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rat
   return unidentified;
 }
 
-double PointEdf(const AvarOptions& options, const AvarPoint& point, std::int64_t n_rate) {
+double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarPoint* point,
+                std::int64_t n_rate) {
   switch (options.confidence_method) {
     case ConfidenceMethod::kNone:
       return 0.0;
     case ConfidenceMethod::kSimple:
-      return SimpleEdf(n_rate / point.m);
+      return SimpleEdf(n_rate / point->m);
     case ConfidenceMethod::kGreenhallRiley:
-      return StatisticEdf(options.statistic, point.alpha, point.m, n_rate, options.sample_period_s);
+      return StatisticEdf(options.statistic, point->alpha, point->m, n_rate,
+                          options.sample_period_s);
+    case ConfidenceMethod::kAuto:
+      if (RecordEdfAvailable(options.statistic, point->m, n_rate)) {
+        const double edf = RecordEdf(options.statistic, phase, point->m);
+        if (edf > 0.0) {
+          point->edf_from_record = true;
+          return edf;
+        }
+      }
+      return StatisticEdf(options.statistic, point->alpha, point->m, n_rate,
+                          options.sample_period_s);
   }
   return 0.0;
 }
@@ -79,7 +108,7 @@ bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSumma
   }
   const auto n_rate = static_cast<std::int64_t>(rate.size());
   for (AvarPoint& point : summary->points) {
-    point.edf = PointEdf(options, point, n_rate);
+    point.edf = PointEdf(options, phase, &point, n_rate);
     if (point.edf > 0.0) {
       const Interval interval = ChiSquareInterval(point.value, point.edf, options.confidence);
       point.ci_low = interval.low;

@@ -34,7 +34,8 @@ bool AvarOptions::IsValid(std::string* why) const {
   }
   if (confidence_method != ConfidenceMethod::kNone &&
       confidence_method != ConfidenceMethod::kSimple &&
-      confidence_method != ConfidenceMethod::kGreenhallRiley) {
+      confidence_method != ConfidenceMethod::kGreenhallRiley &&
+      confidence_method != ConfidenceMethod::kAuto) {
     *why = "unknown confidence method";
     return false;
   }

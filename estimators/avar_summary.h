@@ -18,7 +18,20 @@ enum class ConfidenceMethod {
   kNone,
   kSimple,          // seed paper / IEEE 952: sigma(delta)/sigma = 1/sqrt(2(K-1)), K clusters
   kGreenhallRiley,  // EDF by Greenhall & Riley (2003), SP 1065 for TOTVAR; chi-square interval
+                    // (as Stable32 and allantools: the noise type identified at each tau alone)
+  // `allanlab avar`'s default. EDF measured on the record where its own differences are
+  // numerous enough (record_edf.h: AVAR, OAVAR, HVAR, OHVAR at short taus, free of the sampling
+  // model the Greenhall-Riley EDF assumes), elsewhere Greenhall & Riley at a noise type that, at taus with
+  // fewer than kSteadyIdentificationAverages m-averages, stays the shorter tau's unless the
+  // identification departs from it by more than one step, and does not rise into phase noise
+  // (a lag-1 ACF from 32 averages has a standard error of ~0.35 in alpha: 7 % of white records
+  // were read as phase noise at m = N/32, whose EDF is 2-4 times too large). Chi-square interval.
+  kAuto,
 };
+
+// Below this many m-averages kAuto keeps the shorter tau's noise type unless the identification
+// is more than one step away from it.
+inline constexpr std::int64_t kSteadyIdentificationAverages = 128;
 
 struct AvarOptions {
   Statistic statistic = Statistic::kAllanOverlapping;
@@ -51,6 +64,7 @@ struct AvarPoint {
   int alpha = 0;             // noise exponent used for the EDF
   bool alpha_identified = false;  // false when fixed by the options or when identification failed
   double edf = 0.0;          // equivalent degrees of freedom (0 when no interval)
+  bool edf_from_record = false;  // kAuto: the EDF was measured on the record (record_edf.h)
   double ci_low = 0.0;       // interval for the variance at options.confidence
   double ci_high = 0.0;
 };

@@ -83,15 +83,26 @@ double Lag1Autocorrelation(const std::vector<double>& x) {
 
 int ClampAlpha(double alpha) { return static_cast<int>(std::clamp(std::lround(alpha), -2L, 2L)); }
 
+// -2 (delta + d), kept within [-4, 4] (an alternating series gives delta -> -infinity).
+double ContinuousAlpha(double delta, int d) { return std::clamp(-2.0 * (delta + d), -4.0, 4.0); }
+
+NoiseId AcfId(double estimate, std::size_t averages) {
+  NoiseId id{ClampAlpha(estimate), true, false};
+  id.estimate = estimate;
+  id.averages = static_cast<std::int64_t>(averages);
+  return id;
+}
+
 // For S ~ f^p (p > -1 after d differences) the lag-1 ACF tends to r1 = -p/2 / (1 + p/2), so
 // delta = r1 / (1 + r1) = -p/2 and p = -2 delta; each difference of rate raised p by 2, so the
 // rate exponent is alpha = -2 (delta + d). (Phase input would add 2; rate is frequency here.)
-int AcfAlpha(std::vector<double> x) {
+// Returns the unrounded exponent.
+double AcfAlpha(std::vector<double> x) {
   for (int d = 0;; ++d) {
     const double r1 = Lag1Autocorrelation(x);
     // r1 -> -1 is an alternating series, white phase or bluer: alpha at the top of the range.
     const double delta = r1 > -1.0 + 1e-12 ? r1 / (1.0 + r1) : -1e9;
-    if (delta < kDeltaLimit || d >= kMaxDifferences) return ClampAlpha(-2.0 * (delta + d));
+    if (delta < kDeltaLimit || d >= kMaxDifferences) return ContinuousAlpha(delta, d);
     for (std::size_t i = 0; i + 1 < x.size(); ++i) x[i] = x[i + 1] - x[i];
     x.pop_back();
   }
@@ -99,9 +110,22 @@ int AcfAlpha(std::vector<double> x) {
 
 // Barnes' bias function B1(N, mu) = E[sample variance of N averages] / AVAR for AVAR ~ tau^mu
 // (SP 1065 eq. 66; the mu = 0 entry is the limit N ln N / (2 (N - 1) ln 2)).
-double B1Theory(double n, int mu) {
-  if (mu == 0) return n * std::log(n) / (2.0 * (n - 1.0) * std::numbers::ln2);
+double B1Theory(double n, double mu) {
+  if (std::abs(mu) < 1e-9) return n * std::log(n) / (2.0 * (n - 1.0) * std::numbers::ln2);
   return n * (1.0 - std::pow(n, mu)) / (2.0 * (n - 1.0) * (1.0 - std::pow(2.0, mu)));
+}
+
+// The mu in [-2, 2] whose B1Theory(n, mu) is b1 (B1 grows with mu), by bisection; the ends
+// when b1 lies beyond them.
+double B1Exponent(double n, double b1) {
+  double lo = -2.0, hi = 2.0;
+  if (b1 <= B1Theory(n, -2)) return lo;
+  if (b1 >= B1Theory(n, 2)) return hi;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (B1Theory(n, mid) < b1 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 // MVAR(m) / OAVAR(m). Mod Allan differences are m-averages of consecutive Allan differences, so
@@ -243,13 +267,16 @@ NoiseId B1Identification(std::span<const double> rate, std::span<const double> p
   // flicker phase, which R(n) tells apart. Boundaries: geometric means of neighbouring
   // expectations.
   NoiseId id{0, true, true};
+  id.averages = static_cast<std::int64_t>(means.size());
   for (int mu = 1; mu >= -1; --mu) {
     if (b1 > std::sqrt(B1Theory(n, mu) * B1Theory(n, mu - 1))) {
       id.alpha = -mu - 1;
+      id.estimate = -B1Exponent(n, b1) - 1.0;
       return id;
     }
   }
   id.alpha = PhaseNoiseOrWhiteFm(rate, phase, m);
+  id.estimate = id.alpha == 0 ? -B1Exponent(n, b1) - 1.0 : id.alpha;
   return id;
 }
 
@@ -260,7 +287,8 @@ NoiseId IdentifyFromMeans(std::span<const double> rate, std::span<const double> 
                           std::int64_t m, std::vector<double> means) {
   if (means.size() >= kMinAcfPoints) {
     RemoveLinearTrend(means);
-    return {AcfAlpha(std::move(means)), true, false};
+    const std::size_t count = means.size();
+    return AcfId(AcfAlpha(std::move(means)), count);
   }
   if (means.size() >= kMinB1Points) return B1Identification(rate, phase, m, means);
   return {};
@@ -377,7 +405,7 @@ NoiseId StreamedAcfIdentification(std::size_t count, MeanAt&& mean_at) {
     }
     const double r1 = moments.Lag1(len);
     const double delta = r1 > -1.0 + 1e-12 ? r1 / (1.0 + r1) : -1e9;
-    if (delta < kDeltaLimit || d >= kMaxDifferences) return {ClampAlpha(-2.0 * (delta + d)), true, false};
+    if (delta < kDeltaLimit || d >= kMaxDifferences) return AcfId(ContinuousAlpha(delta, d), count);
   }
 }
 

@@ -3,6 +3,7 @@
 // identification using the lag 1 autocorrelation"; NIST SP 1065 §5.6), with the B1 ratio
 // (Barnes) as fallback when too few points remain. alpha: S_y(f) ~ f^alpha, rate as frequency.
 #include <cstdint>
+#include <limits>
 #include <span>
 
 namespace allanlab::estimators {
@@ -11,6 +12,12 @@ struct NoiseId {
   int alpha = 0;           // rounded exponent, clamped to [-2, 2]
   bool identified = false;  // false if neither method could run
   bool used_b1 = false;     // the B1 ratio fallback was used
+  // The exponent before rounding and clamping (-2 (delta + d) for the lag-1 ACF, the B1 ratio's
+  // mu inverted for B1; 2 or 1 exactly where R(n) decided between the phase noises), and the
+  // number of m-averages it came from: the estimate's standard error is about 2 / sqrt(averages)
+  // for the ACF at the white end and grows for the B1 ratio. NaN when !identified.
+  double estimate = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t averages = 0;
 };
 
 // Identification at averaging factor m from rate samples (the lag-1 ACF of m-averaged, and if

@@ -74,6 +74,7 @@ const std::set<std::pair<std::string, std::int64_t>> kKnownAlphaDifferences = {
 
 AvarOptions TicOptions(Statistic statistic, std::vector<double> taus) {
   AvarOptions options;
+  options.confidence_method = ConfidenceMethod::kGreenhallRiley;  // Stable32's method
   options.statistic = statistic;
   options.input = InputKind::kAngle;  // phase
   options.sample_period_s = 1.0;

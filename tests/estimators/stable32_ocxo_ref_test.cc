@@ -57,6 +57,7 @@ const std::set<std::pair<std::string, std::int64_t>> kKnownAlphaDifferences = {
 
 AvarOptions OcxoOptions(Statistic statistic, std::vector<double> taus) {
   AvarOptions options;
+  options.confidence_method = ConfidenceMethod::kGreenhallRiley;  // Stable32's method
   options.statistic = statistic;
   options.input = InputKind::kRate;
   options.taus.kind = TauGridKind::kExplicit;

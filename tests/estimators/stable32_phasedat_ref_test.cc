@@ -30,6 +30,7 @@ const std::string kDir = std::string(ALLANLAB_TEST_DATA_DIR) + "/reference/phase
 
 AvarOptions PhaseDatOptions(Statistic statistic, const std::vector<Stable32Row>& rows) {
   AvarOptions options;
+  options.confidence_method = ConfidenceMethod::kGreenhallRiley;  // Stable32's method
   options.statistic = statistic;
   options.input = InputKind::kAngle;  // phase
   options.sample_period_s = 1.0;
@@ -91,6 +92,7 @@ TEST(Stable32PhaseDat, OverlappingAllanWhiteFmForced) {
                                {8, 1.0038e-1, 1.0570e-1, 1.1198e-1},
                                {128, 2.3045e-2, 2.7674e-2, 3.7027e-2}};
   AvarOptions options;
+  options.confidence_method = ConfidenceMethod::kGreenhallRiley;  // Stable32's method
   options.statistic = Statistic::kAllanOverlapping;
   options.input = InputKind::kAngle;
   options.alpha_fixed = true;

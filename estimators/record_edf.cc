@@ -1,0 +1,88 @@
+#include "estimators/record_edf.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "estimators/difference_kernel.h"  // CompensatedSum
+
+namespace allanlab::estimators {
+namespace {
+
+constexpr std::int64_t kMaxLagWindow = 256;
+constexpr std::int64_t kTermsPerLag = 16;
+
+bool Covered(Statistic s) {
+  return s == Statistic::kAllanNonOverlapping || s == Statistic::kAllanOverlapping ||
+         s == Statistic::kHadamardNonOverlapping || s == Statistic::kHadamardOverlapping;
+}
+
+// Start indices advance by the statistic's stride: 1 for the overlapping estimators, m for the
+// non-overlapping ones, whose terms then overlap only at lags of 1 .. d - 1 strides.
+std::int64_t Stride(Statistic s, std::int64_t m) { return IsOverlapping(s) ? 1 : m; }
+
+// Differences measured: the estimator's own term count, at most max_terms.
+std::int64_t MeasuredTerms(Statistic s, std::int64_t m, std::int64_t n, std::int64_t max_terms) {
+  return std::min(TermCount(s, m, n), max_terms);
+}
+
+// Lags (in terms) at which two terms of the estimate still share samples: k stride < d m.
+std::int64_t LagWindow(Statistic s, std::int64_t m) {
+  return (DifferenceOrder(s) * m + Stride(s, m) - 1) / Stride(s, m);
+}
+
+}  // namespace
+
+bool RecordEdfAvailable(Statistic s, std::int64_t m, std::int64_t n, std::int64_t max_terms) {
+  if (!Covered(s) || m < 1 || TermCount(s, m, n) < 2) return false;
+  const std::int64_t window = LagWindow(s, m);
+  return window <= kMaxLagWindow && kTermsPerLag * window <= MeasuredTerms(s, m, n, max_terms);
+}
+
+double RecordEdf(Statistic s, std::span<const double> phase, std::int64_t m,
+                 std::int64_t max_terms) {
+  const auto n = static_cast<std::int64_t>(phase.size()) - 1;
+  if (n < 1 || !RecordEdfAvailable(s, m, n, max_terms)) return 0.0;
+  const int d = DifferenceOrder(s);
+  const std::int64_t stride = Stride(s, m);
+  const std::int64_t total = TermCount(s, m, n);
+  const std::int64_t used = MeasuredTerms(s, m, n, max_terms);
+  const std::int64_t first = (total - used) / 2;
+  // The measured terms: a_j = sum_i c_i x_{t + i m}, t = (first + j) stride, binomial c with
+  // alternating signs (order 2: 1, -2, 1; order 3: -1, 3, -3, 1).
+  std::vector<double> a(static_cast<std::size_t>(used));
+  for (std::int64_t j = 0; j < used; ++j) {
+    const double* x = phase.data() + (first + j) * stride;
+    a[static_cast<std::size_t>(j)] =
+        d == 2 ? (x[2 * m] - x[m]) - (x[m] - x[0])
+               : ((x[3 * m] - x[0]) - 3.0 * (x[2 * m] - x[m]));
+  }
+  const std::int64_t window = LagWindow(s, m);
+  // Raw (not mean-removed) lag products: the estimate averages raw squares, so these are the
+  // moments its variance is made of.
+  auto lag_product = [&](std::int64_t k) {
+    CompensatedSum sum;
+    constexpr std::int64_t kBlock = 4096;
+    for (std::int64_t lo = 0; lo + k < used; lo += kBlock) {
+      const std::int64_t hi = std::min(used - k, lo + kBlock);
+      double part = 0.0;
+      for (std::int64_t j = lo; j < hi; ++j) {
+        part += a[static_cast<std::size_t>(j)] * a[static_cast<std::size_t>(j + k)];
+      }
+      sum.Add(part);
+    }
+    return sum.Value() / static_cast<double>(used - k);
+  };
+  const double c0 = lag_product(0);
+  if (!(c0 > 0.0)) return 0.0;
+  const double big_m = static_cast<double>(total);
+  double raw = 1.0;
+  for (std::int64_t k = 1; k <= window && k < total; ++k) {
+    const double rho = lag_product(k) / c0;
+    raw += 2.0 * (1.0 - static_cast<double>(k) / big_m) * rho * rho;
+  }
+  // E[rho_hat^2] ~ rho^2 + S / M' (Bartlett), so E[raw] ~ S (1 + 2 window / M').
+  const double sum = raw / (1.0 + 2.0 * static_cast<double>(window) / static_cast<double>(used));
+  return big_m / std::max(sum, 1.0);
+}
+
+}  // namespace allanlab::estimators
