@@ -1,5 +1,6 @@
 #include "experiments/aggregate.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace allanlab::experiments {
@@ -64,6 +65,22 @@ std::vector<PointStats> Aggregate(const RunSummary& run) {
 double CoverageStandardError(double nominal, std::int64_t n) {
   if (n <= 0) return std::nan("");
   return std::sqrt(nominal * (1.0 - nominal) / static_cast<double>(n));
+}
+
+RateInterval WilsonInterval(double rate, std::int64_t n, double z) {
+  if (n <= 0) return {std::nan(""), std::nan("")};
+  const double nd = static_cast<double>(n);
+  const double z2 = z * z;
+  const double centre = (rate + z2 / (2.0 * nd)) / (1.0 + z2 / nd);
+  const double half = z * std::sqrt(rate * (1.0 - rate) / nd + z2 / (4.0 * nd * nd)) / (1.0 + z2 / nd);
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+std::string TargetVerdict(const RateInterval& interval, double target_low, double target_high) {
+  if (!(interval.low <= interval.high)) return "undecided";
+  if (interval.low >= target_low && interval.high <= target_high) return "met";
+  if (interval.high < target_low || interval.low > target_high) return "not met";
+  return "undecided";
 }
 
 }  // namespace allanlab::experiments

@@ -31,4 +31,15 @@ std::vector<PointStats> Aggregate(const RunSummary& run);
 // p replaced by the nominal level when given (so 0 or 1 observed still has an error bar).
 double CoverageStandardError(double nominal, std::int64_t n);
 
+// Wilson score interval (95 % by default, z = 1.96) of a proportion observed as `rate` over n
+// trials; {NaN, NaN} when n <= 0.
+struct RateInterval {
+  double low = 0.0, high = 0.0;
+};
+RateInterval WilsonInterval(double rate, std::int64_t n, double z = 1.96);
+
+// "met" when the whole interval lies inside [target_low, target_high], "not met" when the whole
+// interval lies outside it, else "undecided" (the trials cannot tell).
+std::string TargetVerdict(const RateInterval& interval, double target_low, double target_high);
+
 }  // namespace allanlab::experiments

@@ -5,6 +5,7 @@
 #include "experiments/avar_bias.h"
 #include "experiments/avar_error_bars.h"
 #include "experiments/coefficient_recovery.h"
+#include "experiments/default_intervals.h"
 #include "experiments/record_length.h"
 #include "experiments/seed_paper.h"
 
@@ -25,6 +26,7 @@ constexpr Entry kExperiments[] = {
     {"avar_bias", &Make<AvarBiasExperiment>},
     {"avar_error_bars", &Make<AvarErrorBarsExperiment>},
     {"coefficient_recovery", &Make<CoefficientRecoveryExperiment>},
+    {"default_intervals", &Make<DefaultIntervalsExperiment>},
     {"record_length", &Make<RecordLengthExperiment>},
     {"seed_paper", &Make<SeedPaperExperiment>},
 };
