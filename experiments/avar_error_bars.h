@@ -8,8 +8,9 @@
 //                                expectation in sim/ (modified, hadamard, total) the
 //                                normaliser is E[OAVAR(m)] and the table reports no bias
 //   edf_simple/<est>/m=<m>       K - 1, K = floor(N/m) clusters (seed paper, IEEE 952)
-//   edf_gr/<est>/m=<m>           Greenhall-Riley EDF at the per-trial identified alpha (what
-//                                `allanlab avar` reports)
+//   edf_gr/<est>/m=<m>           Greenhall-Riley EDF at the per-trial identified alpha
+//                                (`allanlab avar --ci gr`; the default intervals are checked by
+//                                default_intervals.h)
 //   edf_exact/<est>/m=<m>        2 E^2 / Var from the model (THEORY.md §2.1,
 //                                estimators::ModelStatisticMoments); NaN for TOTVAR and for
 //                                models with a non-Gaussian term (ramp, harmonic, ...)
