@@ -13,12 +13,12 @@ namespace {
 
 struct Entry {
   const char* name;
-  std::unique_ptr<Experiment> (*make)();
+  std::unique_ptr<Experiment> (*make)(const InjectedFault&);
 };
 
 template <typename T>
-std::unique_ptr<Experiment> Make() {
-  return std::make_unique<T>();
+std::unique_ptr<Experiment> Make(const InjectedFault& fault) {
+  return std::make_unique<T>(fault);
 }
 
 constexpr Entry kExperiments[] = {
@@ -38,9 +38,9 @@ std::vector<std::string> ExperimentNames() {
   return names;
 }
 
-std::unique_ptr<Experiment> MakeExperiment(std::string_view name) {
+std::unique_ptr<Experiment> MakeExperiment(std::string_view name, const InjectedFault& fault) {
   for (const Entry& e : kExperiments) {
-    if (name == e.name) return e.make();
+    if (name == e.name) return e.make(fault);
   }
   return nullptr;
 }
