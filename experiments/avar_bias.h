@@ -17,7 +17,8 @@ namespace allanlab::experiments {
 
 class AvarBiasDriver : public TrialDriver {
  public:
-  explicit AvarBiasDriver(InjectedFault fault = {}) : fault_(fault) {}
+  AvarBiasDriver() = default;
+  explicit AvarBiasDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
@@ -29,7 +30,8 @@ class AvarBiasDriver : public TrialDriver {
 
 class AvarBiasExperiment : public Experiment {
  public:
-  explicit AvarBiasExperiment(InjectedFault fault = {}) : driver_(fault) {}
+  AvarBiasExperiment() = default;
+  explicit AvarBiasExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "avar_bias"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

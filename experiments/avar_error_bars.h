@@ -33,7 +33,8 @@ bool HasExactTheory(estimators::Statistic s);
 
 class AvarErrorBarsDriver : public TrialDriver {
  public:
-  explicit AvarErrorBarsDriver(InjectedFault fault = {}) : fault_(fault) {}
+  AvarErrorBarsDriver() = default;
+  explicit AvarErrorBarsDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
@@ -52,7 +53,8 @@ std::string NoiseLabel(const SweepPoint& point);
 
 class AvarErrorBarsExperiment : public Experiment {
  public:
-  explicit AvarErrorBarsExperiment(InjectedFault fault = {}) : driver_(fault) {}
+  AvarErrorBarsExperiment() = default;
+  explicit AvarErrorBarsExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "avar_error_bars"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

@@ -19,7 +19,8 @@ namespace allanlab::experiments {
 
 class CoefficientRecoveryExperiment : public Experiment {
  public:
-  explicit CoefficientRecoveryExperiment(InjectedFault fault = {}) : driver_(fault) {}
+  CoefficientRecoveryExperiment() = default;
+  explicit CoefficientRecoveryExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "coefficient_recovery"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

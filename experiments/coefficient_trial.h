@@ -83,7 +83,8 @@ std::vector<estimators::Coefficient> ComparedCoefficients(const SweepSpec& spec,
 
 class CoefficientTrialDriver : public TrialDriver {
  public:
-  explicit CoefficientTrialDriver(InjectedFault fault = {}) : fault_(fault) {}
+  CoefficientTrialDriver() = default;
+  explicit CoefficientTrialDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,

@@ -44,7 +44,8 @@ bool FitLine(const std::vector<double>& x, const std::vector<double>& y,
 
 class RecordLengthExperiment : public Experiment {
  public:
-  explicit RecordLengthExperiment(InjectedFault fault = {}) : driver_(fault) {}
+  RecordLengthExperiment() = default;
+  explicit RecordLengthExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "record_length"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

@@ -33,7 +33,8 @@ std::vector<std::int64_t> SeedPaperAveragingFactors(const SweepSpec& spec, const
 
 class SeedPaperDriver : public TrialDriver {
  public:
-  explicit SeedPaperDriver(InjectedFault fault = {}) : fault_(fault) {}
+  SeedPaperDriver() = default;
+  explicit SeedPaperDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
@@ -45,7 +46,8 @@ class SeedPaperDriver : public TrialDriver {
 
 class SeedPaperExperiment : public Experiment {
  public:
-  explicit SeedPaperExperiment(InjectedFault fault = {}) : driver_(fault) {}
+  SeedPaperExperiment() = default;
+  explicit SeedPaperExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "seed_paper"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }
