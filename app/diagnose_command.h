@@ -1,11 +1,11 @@
 #pragma once
 // `allanlab diagnose FILE`: where a recording departs from its fitted IEEE 952 model, which
 // unmodelled effect explains the gap and how far it shrinks (experiments/diagnosis/diagnose.h,
-// issue 6). Input options are those of `avar` (app/avar_command.h).
+// docs/theory.md §6). Input options are those of `avar` (app/avar_command.h).
 //   --model Q,N,B,K,R   baseline terms (default all five)
 //   --trials N --seed S simulated records per Monte Carlo envelope (default 30; 0: OAVAR only)
 //   --false-alarm A     chance that a record of the model itself is flagged (default 0.05)
-//   --json OUT          the issue 6 contract: gap{significant, threshold_z, regions[{view,
+//   --json OUT          stable keys (add, never rename): gap{significant, threshold_z, regions[{view,
 //                       tau_min_s, tau_max_s, max_abs_z}], views}, verdict{effect, params,
 //                       also_consistent, separating_views}, candidates[{effect, params,
 //                       gap_before, gap_after, heldout_gap_before, heldout_gap_after, score}],

@@ -1,6 +1,6 @@
 #pragma once
-// The fixed vocabulary of unmodelled effects `allanlab diagnose` can name (issue 6, DESIGN.md
-// "Output contracts": ids are stable; add, never rename), and how each one is added to a sensor
+// The fixed vocabulary of unmodelled effects `allanlab diagnose` can name (ids are part of
+// the JSON output: stable; add, never rename, docs/architecture.md), and how each one is added to a sensor
 // model so that sim/ generates it and knows its exact expected Allan variance.
 //
 // Parameters are SI with the unit in the name (JSON keys are these names):
