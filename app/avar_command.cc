@@ -341,7 +341,8 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
                   "the record ('-' for standard input): CSV/TSV/whitespace text with '#' comments "
                   "and an optional header, or raw little-endian float32/float64 (--format); "
                   "plain, .gz or .xz (detected from the content)")
-      ->required();
+      ->required()
+      ->type_name("");
   cmd->add_option("--column", options->column,
                   "text column by header name or 0-based index (default: the first column that "
                   "is not the time column t, t_s, time, time_s, timestamp, t_ms, time_ns, %time "

@@ -32,8 +32,9 @@ constexpr SubcommandFactory kSubcommands[] = {
 }  // namespace
 
 int RunCli(int argc, char** argv) {
-  CLI::App app{"allanlab: gyro noise simulation and Allan-variance validation"};
+  CLI::App app{"allanlab: gyro noise simulation and Allan-variance validation", "allanlab"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", VersionLine(), "print the version and the git commit, then exit");
   std::vector<Subcommand> subcommands;
   for (SubcommandFactory add : kSubcommands) subcommands.push_back(add(&app));
 
@@ -42,6 +43,8 @@ int RunCli(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // The error belongs to the subcommand the parser had entered, if any.

@@ -476,16 +476,16 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
                   "baseline: only these IEEE terms, fitted, no band-limit (comma list of Q,N,B,K,R; default: "
                   "what allanlab fit reports, band-limit included)")
       ->type_name("LIST");
-  cmd->add_option("--trials", options->trials, "simulated records per Monte Carlo envelope (default 30; 0: OAVAR view only)");
-  cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)");
-  cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)");
-  cmd->add_option("--json", options->json_path, "write the diagnosis as JSON (issue 6 contract)")->type_name("OUT.json");
+  cmd->add_option("--trials", options->trials, "simulated records per Monte Carlo envelope (default 30; 0: OAVAR view only)")->type_name("N");
+  cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)")->type_name("N");
+  cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)")->type_name("P");
+  cmd->add_option("--json", options->json_path, "write the diagnosis as JSON (stable keys)")->type_name("OUT.json");
   cmd->add_option("--report", options->report_path, "write a Markdown report")->type_name("OUT.md");
   cmd->add_option("--plot", options->plot_path, "draw record, baseline and verdict model (PNG, gnuplot)")->type_name("OUT.png");
   cmd->add_option("--validate-on", options->validate_path, "score the verdict's model on a second recording of the same sensor")->type_name("FILE2");
   cmd->add_option("--curve", options->curve_path, "curve mode: an Allan-deviation CSV (tau_s + deviation columns) instead of FILE")->type_name("CSV");
-  cmd->add_option("--curve-column", options->curve_column, "deviation column of --curve (default adev_x)");
-  cmd->add_option("--curve-units", options->curve_units, "unit of the --curve deviations (default deg/h)");
+  cmd->add_option("--curve-column", options->curve_column, "deviation column of --curve (default adev_x)")->type_name("NAME");
+  cmd->add_option("--curve-units", options->curve_units, "unit of the --curve deviations (default deg/h)")->type_name("UNIT");
   cmd->add_option("--record-length", options->record_length_s, "curve mode: length of the record the curve came from [s]")->type_name("S");
   cmd->footer("Verdict: none (no significant gap), an effect id (bandwidth, gauss_markov, random_telegraph, harmonic,\n"
               "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers) or unexplained.\n"

@@ -1,7 +1,7 @@
 #pragma once
 // `allanlab diagnose FILE`: where a recording departs from its fitted IEEE 952 model, which
 // unmodelled effect explains the gap and how far it shrinks (experiments/diagnosis/diagnose.h,
-// issue 6). Input options are those of `avar` (app/avar_command.h).
+// docs/theory.md §6). Input options are those of `avar` (app/avar_command.h).
 //   (no baseline option) the baseline is what `allanlab fit` reports by default: Q,N,B,K,R plus
 //                       a band-limit when the curve shows one (its cutoff then held)
 //   --sensor SPEC.yaml | --preset NAME  the user's simulation model as the baseline: its
@@ -10,7 +10,7 @@
 //   --model LIST        a free IEEE baseline: only these terms, fitted (no band-limit)
 //   --trials N --seed S simulated records per Monte Carlo envelope (default 30; 0: OAVAR only)
 //   --false-alarm A     chance that a record of the model itself is flagged (default 0.05)
-//   --json OUT          the issue 6 contract: gap{significant, threshold_z, regions[{view,
+//   --json OUT          stable keys (add, never rename): gap{significant, threshold_z, regions[{view,
 //                       tau_min_s, tau_max_s, max_abs_z}], views}, verdict{effect, params,
 //                       also_consistent, separating_views}, candidates[{effect, params,
 //                       gap_before, gap_after, heldout_gap_before, heldout_gap_after, score}],

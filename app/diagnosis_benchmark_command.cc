@@ -653,33 +653,33 @@ Subcommand AddDiagnosisBenchmarkCommand(CLI::App* parent) {
       "Blind benchmark of diagnose: random recordings (preset, length, rate, effect or none, strength) written "
       "as files, diagnosed without being told the effect, scored (confusion matrix, detection vs strength, "
       "false alarms, localization, held-out shrinkage).");
-  cmd->add_option("--recordings", o->recordings, "number of recordings (default 80)");
-  cmd->add_option("--seed", o->seed, "seed of the draw and of the records (default 1)");
-  cmd->add_option("--out-dir", o->out_dir, "where benchmark.csv, .md and .png go (default results/diagnosis)");
-  cmd->add_option("--work-dir", o->work_dir, "where specs, records and diagnoses go (default: a temp directory)");
+  cmd->add_option("--recordings", o->recordings, "number of recordings (default 80)")->type_name("N");
+  cmd->add_option("--seed", o->seed, "seed of the draw and of the records (default 1)")->type_name("N");
+  cmd->add_option("--out-dir", o->out_dir, "where benchmark.csv, .md and .png go (default results/diagnosis)")->type_name("DIR");
+  cmd->add_option("--work-dir", o->work_dir, "where specs, records and diagnoses go (default: a temp directory)")->type_name("DIR");
   cmd->add_flag("--keep-work", o->keep_work, "keep the records (default: deleted once diagnosed)");
-  cmd->add_option("--max-samples", o->max_samples, "cap on samples per record (default 1080000)");
-  cmd->add_option("--min-duration", o->min_duration_s, "shortest record [s] (default 1800)");
-  cmd->add_option("--max-duration", o->max_duration_s, "longest record [s] (default 10800)");
-  cmd->add_option("--min-rate", o->min_rate_hz, "lowest rate [Hz] (default 100)");
-  cmd->add_option("--max-rate", o->max_rate_hz, "highest rate [Hz] (default 1000)");
-  cmd->add_option("--control-fraction", o->control_fraction, "share of recordings with no effect (default 0.4)");
+  cmd->add_option("--max-samples", o->max_samples, "cap on samples per record (default 1080000)")->type_name("N");
+  cmd->add_option("--min-duration", o->min_duration_s, "shortest record [s] (default 1800)")->type_name("S");
+  cmd->add_option("--max-duration", o->max_duration_s, "longest record [s] (default 10800)")->type_name("S");
+  cmd->add_option("--min-rate", o->min_rate_hz, "lowest rate [Hz] (default 100)")->type_name("HZ");
+  cmd->add_option("--max-rate", o->max_rate_hz, "highest rate [Hz] (default 1000)")->type_name("HZ");
+  cmd->add_option("--control-fraction", o->control_fraction, "share of recordings with no effect (default 0.4)")->type_name("P");
   cmd->add_option("--generator", o->generator,
                   "sim (sim/'s generators, default), independent (independent/, written apart from sim/ and the "
-                  "diagnosis), or both side by side");
-  cmd->add_option("--independent-rate", o->independent_rate_hz, "independent generator: rate [Hz] (default 100)");
-  cmd->add_option("--independent-min-duration", o->independent_min_duration_s, "independent generator: shortest record [s] (default 1800)");
-  cmd->add_option("--independent-max-duration", o->independent_max_duration_s, "independent generator: longest record [s] (default 3600)");
+                  "diagnosis), or both side by side")->type_name("sim|independent|both");
+  cmd->add_option("--independent-rate", o->independent_rate_hz, "independent generator: rate [Hz] (default 100)")->type_name("HZ");
+  cmd->add_option("--independent-min-duration", o->independent_min_duration_s, "independent generator: shortest record [s] (default 1800)")->type_name("S");
+  cmd->add_option("--independent-max-duration", o->independent_max_duration_s, "independent generator: longest record [s] (default 3600)")->type_name("S");
   cmd->add_option("--independent-control-fraction", o->independent_control_fraction,
-                  "independent generator: share of controls (default 0.45)");
+                  "independent generator: share of controls (default 0.45)")->type_name("P");
   cmd->add_option("--real-recordings", o->real_recordings,
-                  "independent generator: ADIS16405 segments with an injected effect (default 0)");
-  cmd->add_option("--real-segment", o->real_segment_s, "length of those segments [s] (default 1800)");
+                  "independent generator: ADIS16405 segments with an injected effect (default 0)")->type_name("N");
+  cmd->add_option("--real-segment", o->real_segment_s, "length of those segments [s] (default 1800)")->type_name("S");
   cmd->add_option("--data-dir", o->data_dir, "where real/adis16405 is (default ../shared/data beside the repository)")->type_name("DIR");
-  cmd->add_option("--jobs", o->jobs, "diagnoses run at once, as child processes (default 2)");
+  cmd->add_option("--jobs", o->jobs, "diagnoses run at once, as child processes (default 2)")->type_name("N");
   cmd->add_flag("--reuse", o->reuse, "reuse diagnoses an earlier run of the same draw left in --work-dir");
   cmd->add_option("--timing", o->timing_path, "per-recording CPU and wall seconds (CSV)")->type_name("FILE");
-  cmd->add_flag("!--no-plot", o->plot, "no PNG");
+  cmd->add_flag_callback("--no-plot", [o] { o->plot = false; }, "no PNG");
   return {cmd, [o](const std::string& command_line) { return RunDiagnosisBenchmark(*o, command_line); }};
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// `allanlab diagnosis-benchmark`: the blind benchmark of `allanlab diagnose` (issue 6, "Proof on
+// `allanlab diagnosis-benchmark`: the blind benchmark of `allanlab diagnose` ("Proof on
 // data whose effect is withheld"). From --seed, --recordings cases are drawn
 // (experiments/diagnosis/benchmark_case.h: preset, length, rate, effect or none, strength); each is
 // written as a sensor spec (the preset's IEEE 952 terms plus the effect) and a raw f64 record by

@@ -469,7 +469,7 @@ Subcommand AddFitCommand(CLI::App* parent) {
       ->type_name("L");
   cmd->add_option("--min-tau", options->min_tau_s, "fit only taus >= S seconds")->type_name("S");
   cmd->add_option("--max-tau", options->max_tau_s, "fit only taus <= S seconds")->type_name("S");
-  cmd->add_flag("!--no-select", options->select_terms,
+  cmd->add_flag_callback("--no-select", [options] { options->select_terms = false; },
                 "keep every requested term (default: drop terms the data do not support, by a "
                 "likelihood-ratio test at 5 %)");
   cmd->add_option("--uncertainty", options->uncertainty,

@@ -3,7 +3,7 @@
 // uncertainties, from its overlapping Allan curve (estimators/fit/fit_avar_model.h), with the
 // slope-method reading beside each and the bandwidth from the short-tau inflection.
 // Input options are those of `avar` (app/avar_command.h); default tau grid dense:10.
-// Outputs: a table on stdout; --json (the issue 4 contract: method, coefficients with value,
+// Outputs: a table on stdout; --json (stable keys: method, coefficients with value,
 // sigma and unit, bandwidth_hz, fit chi2/dof/converged, provenance); --kalibr (gyroscope noise
 // density and random walk for Kalibr/VINS/OpenVINS); --plot (data with intervals, fitted total and
 // each term). A short-tau band-limit is detected and fitted by default (--band-limit auto), the

@@ -50,6 +50,11 @@ bool NeedsQuoting(std::string_view arg) {
 
 }  // namespace
 
+std::string VersionLine() {
+  return std::string("allanlab ") + ALLANLAB_VERSION + " (git " + ALLANLAB_GIT_SHA + ", " +
+         ALLANLAB_BUILD_TYPE + ")";
+}
+
 Provenance MakeProvenance(std::string command, std::string command_line) {
   Provenance p;
   p.command = std::move(command);

@@ -31,6 +31,9 @@ struct Provenance {
 // reproducible-builds convention for pinning timestamps).
 Provenance MakeProvenance(std::string command, std::string command_line);
 
+// "allanlab 0.1.0 (git abc123, Release)": what `allanlab --version` prints.
+std::string VersionLine();
+
 // argv joined with spaces, each argument shell-quoted when it needs to be, so the line can be
 // pasted back into a shell.
 std::string QuotedCommandLine(int argc, const char* const* argv);

@@ -94,7 +94,7 @@ Subcommand AddSweepCommand(CLI::App* parent) {
       kCommand,
       "Run a Monte Carlo sweep spec (YAML) through its experiment and write the report; "
       "checkpointed, resumable, OpenMP across trials, MPI across ranks under mpirun.");
-  cmd->add_option("spec", options->spec_path, "sweep spec (YAML)")->required()->type_name("SPEC.yaml");
+  cmd->add_option("SPEC", options->spec_path, "sweep spec (YAML file)")->required()->type_name("");
   cmd->add_option("--out", options->out_dir, "report directory (default results/sweeps)")
       ->type_name("DIR");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default 0: all cores)")

@@ -212,7 +212,7 @@ std::optional<CommandFailure> Validate(const ValidateCommandOptions& options,
   std::int64_t compared = 0;
   std::vector<std::string> moved;
   for (const experiments::SweepSpec& spec : specs) {
-    const std::unique_ptr<experiments::Experiment> experiment = experiments::MakeExperiment(spec.driver);
+    const std::unique_ptr<experiments::Experiment> experiment = experiments::MakeExperiment(spec.driver, options.fault);
     if (!experiment) return UsageFailure("no experiment \"" + spec.driver + "\"");
     experiments::RunnerOptions runner;
     runner.threads = options.threads;

@@ -1,5 +1,5 @@
 #pragma once
-// `allanlab validate [--quick]`: the regression check of issue 5. Reruns the fixed sweep specs of
+// `allanlab validate [--quick]`: the regression check. Reruns the fixed sweep specs of
 // experiments/specs/validate/ (quick/ only with --quick; quick/ and full/ otherwise) and compares
 // every aggregated number (per point and column: the mean over trials) with the committed golden
 // tables in results/validation/golden/<name>.csv. A number has moved when its difference from
@@ -12,6 +12,7 @@
 #include <string>
 
 #include "app/subcommand.h"
+#include "experiments/injected_fault.h"
 
 namespace allanlab::app {
 
@@ -22,6 +23,9 @@ struct ValidateCommandOptions {
   std::string golden_dir;  // default: <source>/results/validation/golden
   int threads = 0;
   double z = 5.0;
+  // Not on the command line: a test of the check itself runs it with a deliberate error in the
+  // drivers (experiments/injected_fault.h) and expects exit 1.
+  experiments::InjectedFault fault;
 };
 
 Subcommand AddValidateCommand(CLI::App* parent);

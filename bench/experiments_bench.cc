@@ -1,4 +1,4 @@
-// Monte Carlo throughput of the sweep engine (issue 5 "Speed"): MG-25 preset at 200 Hz, 1 h
+// Monte Carlo throughput of the sweep engine (the runner's speed target): MG-25 preset at 200 Hz, 1 h
 // records, per trial the octave overlapping Allan curve and a GLS fit of Q, N, B, K, R.
 // Measures (1) the bare loop generate + estimate + fit on one thread, (2) RunSweep on 1 and 2
 // threads with the same work in a TrialDriver: trials/s, scaling efficiency and the engine's

@@ -1,5 +1,5 @@
 // Coefficient fits on a 60-tau overlapping Allan curve (N = 2^20 samples at 100 Hz, N+B+K model,
-// 5 terms asked). Issue 4 target: a GLS fit of 5 terms on a 60-tau curve with the exact
+// 5 terms asked). Target: a GLS fit of 5 terms on a 60-tau curve with the exact
 // covariance <= 50 ms. Run: build/bench/fit_bench
 #include <benchmark/benchmark.h>
 

@@ -1,8 +1,8 @@
+#include "estimators/avar_options.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
-
-#include "estimators/avar_summary.h"
 
 namespace allanlab::estimators {
 namespace {

@@ -7,7 +7,7 @@
 namespace allanlab::estimators {
 
 // Greenhall & Riley (2003 PTTI), "Uncertainty of stability variances based on finite
-// differences" (THEORY.md §2.4), as Stable32 and allantools implement it. alpha in -4..2,
+// differences" (docs/theory.md §3.4), as Stable32 and allantools implement it. alpha in -4..2,
 // d in {1, 2, 3}, m >= 1, n_phase = number of phase points (rate samples + 1).
 // Returns 0 when the inputs are outside the algorithm's domain (alpha + 2d <= 1).
 double GreenhallRileyEdf(int alpha, int d, std::int64_t m, std::int64_t n_phase, bool overlapping,
@@ -28,7 +28,7 @@ struct Interval {
   double low = 0.0, high = 0.0;
 };
 // Two-sided chi-square interval for a variance estimate with `edf` degrees of freedom at
-// `confidence` (Stable32 convention, THEORY.md §2.4 item 5): [v edf/chi2_{1-p}, v edf/chi2_{p}],
+// `confidence` (Stable32 convention, docs/theory.md §3.5): [v edf/chi2_{1-p}, v edf/chi2_{p}],
 // p = (1 - confidence)/2.
 Interval ChiSquareInterval(double variance, double edf, double confidence);
 

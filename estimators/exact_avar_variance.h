@@ -1,6 +1,6 @@
 #pragma once
 // Exact covariance structure of the Allan-variance estimator for Gaussian noise with a known
-// (generalised) autocovariance (THEORY.md §2.1). The Allan difference is a lag-m second
+// (generalised) autocovariance (docs/theory.md §3.1). The Allan difference is a lag-m second
 // difference of the integrated record (the phase), so every covariance follows from the phase
 // variogram V(k) = E[(Y_{t+k} - Y_t)^2] = k R(0) + 2 sum_{j=1}^{k-1} (k - j) R(j): O(N) per m.
 #include <cstdint>

@@ -1,8 +1,8 @@
 #pragma once
 // Exact equivalent degrees of freedom of the Allan-variance estimator on records of a noise
-// model, EDF = 2 E[AVAR_hat]^2 / Var(AVAR_hat) (THEORY.md §2.1, Isserlis for Gaussian noise).
+// model, EDF = 2 E[AVAR_hat]^2 / Var(AVAR_hat) (docs/theory.md §3.1, Isserlis for Gaussian noise).
 // Unlike Greenhall & Riley (confidence.h), which models continuous power-law processes, this is
-// exact for the discrete records sim::SensorModel generates (THEORY.md §2.2 table: the two
+// exact for the discrete records sim::SensorModel generates (docs/theory.md §3.2 table: the two
 // differ at small m), so Monte Carlo error bars and coverage checks should use it.
 #include <cstdint>
 #include <span>

@@ -1,7 +1,7 @@
 #pragma once
 // Exact mean and variance of any Allan-family estimate that averages squared linear differences
 // of the rate samples, for Gaussian noise with a known (generalised) autocovariance R
-// (THEORY.md §2.1, Isserlis). The estimate is V_hat = (1/T) sum_{t<T} D_{t s}^2 with
+// (docs/theory.md §3.1, Isserlis). The estimate is V_hat = (1/T) sum_{t<T} D_{t s}^2 with
 // D_u = sum_i c_i y_{u+i} (c the statistic's rate filter, s the stride of the start indices), so
 //   E[V_hat]   = r_D(0),
 //   Var(V_hat) = (2 / T^2) sum_{|k|<T} (T - |k|) r_D(k s)^2,

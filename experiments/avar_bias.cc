@@ -9,7 +9,6 @@
 
 #include "estimators/allan_family.h"
 #include "estimators/tau_grid.h"
-#include "experiments/injected_fault.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -110,7 +109,7 @@ std::vector<double> AvarBiasDriver::Run(const SweepSpec& spec, const SweepPoint&
     for (std::size_t k = 0; k < w->ms.size(); ++k) {
       while (next < summary.points.size() && summary.points[next].m < w->ms[k]) ++next;
       const bool found = next < summary.points.size() && summary.points[next].m == w->ms[k];
-      values.push_back(found ? InjectedAvarScale() * summary.points[next].value / w->expected[si][k]
+      values.push_back(found ? fault_.avar_scale * summary.points[next].value / w->expected[si][k]
                              : std::nan(""));
     }
   }

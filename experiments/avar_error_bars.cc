@@ -11,7 +11,6 @@
 #include "estimators/confidence.h"
 #include "estimators/exact_edf.h"
 #include "estimators/tau_grid.h"
-#include "experiments/injected_fault.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -229,7 +228,7 @@ std::vector<double> AvarErrorBarsDriver::Run(const SweepSpec& spec, const SweepP
     if (!estimators::ComputeAvar(options, rate, &summary)) {
       throw std::runtime_error(std::string(estimators::StatisticId(s)) + ": " + summary.message);
     }
-    for (estimators::AvarPoint& p : summary.points) p.value *= InjectedAvarScale();
+    for (estimators::AvarPoint& p : summary.points) p.value *= fault_.avar_scale;
     for (std::size_t mi = 0; mi < ms.size(); ++mi) {
       const estimators::AvarPoint* p = nullptr;
       for (const auto& candidate : summary.points) {

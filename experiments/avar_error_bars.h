@@ -1,5 +1,5 @@
 #pragma once
-// Validation table 1 (issue 5): bias and error-bar accuracy of the Allan-family estimators on
+// Validation table 1: bias and error-bar accuracy of the Allan-family estimators on
 // simulated records, against the exact theory of the record (sim::SensorModel::ExpectedAvar,
 // estimators/exact_edf.h), per noise type, estimator and averaging factor m.
 //
@@ -11,7 +11,7 @@
 //   edf_gr/<est>/m=<m>           Greenhall-Riley EDF at the per-trial identified alpha
 //                                (`allanlab avar --ci gr`; the default intervals are checked by
 //                                default_intervals.h)
-//   edf_exact/<est>/m=<m>        2 E^2 / Var from the model (THEORY.md §2.1,
+//   edf_exact/<est>/m=<m>        2 E^2 / Var from the model (docs/theory.md §3.1,
 //                                estimators::ModelStatisticMoments); NaN for TOTVAR and for
 //                                models with a non-Gaussian term (ramp, harmonic, ...)
 //   in_ci<level>/<kind>/<est>/m=<m>  1 when the chi-square interval of that EDF kind at that
@@ -23,6 +23,7 @@
 
 #include "estimators/statistic.h"
 #include "experiments/experiment.h"
+#include "experiments/injected_fault.h"
 
 namespace allanlab::experiments {
 
@@ -33,10 +34,15 @@ bool HasExactTheory(estimators::Statistic s);
 
 class AvarErrorBarsDriver : public TrialDriver {
  public:
+  AvarErrorBarsDriver() = default;
+  explicit AvarErrorBarsDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
+
+ private:
+  InjectedFault fault_;
 };
 
 // Averaging factors of a point: spec.taus candidates with 1 <= m <= N/4. Throws
@@ -48,6 +54,8 @@ std::string NoiseLabel(const SweepPoint& point);
 
 class AvarErrorBarsExperiment : public Experiment {
  public:
+  AvarErrorBarsExperiment() = default;
+  explicit AvarErrorBarsExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "avar_error_bars"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

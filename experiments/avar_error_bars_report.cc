@@ -303,7 +303,7 @@ std::string AvarErrorBarsExperiment::Question() const {
          "well do three error models predict their scatter and the coverage of their "
          "chi-square intervals: (a) the seed paper's / IEEE 952 1/sqrt(2(K-1)) (EDF K-1 with K "
          "non-overlapping clusters), (b) Greenhall-Riley EDF at the identified noise type, (c) "
-         "the exact EDF of the simulated record (THEORY.md §2.1)? Method: `trials` independent "
+         "the exact EDF of the simulated record (docs/theory.md §3.1)? Method: `trials` independent "
          "records per noise type; each estimate is divided by its exact expectation "
          "(sim::SensorModel::ExpectedAvar, finite record and band-limit included). Reference: "
          "exact expectations exist in sim/ only for the non-overlapping and overlapping Allan "

@@ -29,10 +29,10 @@ std::string CoefficientRecoveryExperiment::Question() const {
          "with Monte Carlo standard errors, reported vs empirical sigma, coverage of the reported "
          "68.3 % and 95 % intervals (binomial errors), failure rate. Reference: the simulated "
          "truth (B: the Kasdin flicker coefficient; for the slope method's B also what the curve "
-         "minimum estimates, sqrt(B^2 + 2.617 N K), THEORY.md §4.2). Read: a consistent method's "
+         "minimum estimates, sqrt(B^2 + 2.617 N K), docs/theory.md §4.2). Read: a consistent method's "
          "RMSE falls with T and its coverage is nominal within ~2 binomial errors; where terms "
          "overlap the slope method has an error floor that a longer record does not lower "
-         "(THEORY.md §4.5).";
+         "(docs/theory.md §4.5).";
 }
 
 bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const RunSummary& run,

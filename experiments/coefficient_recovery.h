@@ -1,5 +1,5 @@
 #pragma once
-// Validation table 2 of issue 5, `coefficient_recovery`: how well the slope method, WLS, log-WLS
+// Validation table 2, `coefficient_recovery`: how well the slope method, WLS, log-WLS
 // and GLS (estimators/fit/fit_avar_model.h) recover the IEEE 952 coefficients of a simulated
 // sensor, per record length.
 //
@@ -7,11 +7,11 @@
 // coefficient present in the truth: relative bias and RMSE with Monte Carlo standard errors,
 // empirical vs mean reported sigma, coverage of the reported 68.3 % / 95 % intervals with binomial
 // errors, failure rate; for the slope method's B also the bias against what the curve minimum
-// estimates, sqrt(B^2 + 2.617 N K) (THEORY.md §4.2).
+// estimates, sqrt(B^2 + 2.617 N K) (docs/theory.md §4.2).
 // Reference: the truth of the simulated model (B = the Kasdin flicker coefficient).
 // Pass criterion (what the table is read for): a consistent method's RMSE shrinks with T and its
 // coverage matches the nominal level within ~2 binomial errors; the slope method's error has a
-// floor where terms overlap (THEORY.md §4.5).
+// floor where terms overlap (docs/theory.md §4.5).
 #include "experiments/coefficient_trial.h"
 #include "experiments/experiment.h"
 
@@ -19,6 +19,8 @@ namespace allanlab::experiments {
 
 class CoefficientRecoveryExperiment : public Experiment {
  public:
+  CoefficientRecoveryExperiment() = default;
+  explicit CoefficientRecoveryExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "coefficient_recovery"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

@@ -14,7 +14,6 @@
 #include "estimators/avar.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "estimators/fit/slope_method.h"
-#include "experiments/injected_fault.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -127,9 +126,10 @@ class Workspace : public TrialWorkspace {
 // Appends the columns of one coefficient for an estimate (value, sigma; has_sigma false for the
 // slope method), in MakePlan's order.
 void AppendCoefficient(const PointPlan& plan, Coefficient c, bool found, double value,
-                       bool has_sigma, double sigma, std::vector<double>* row) {
+                       bool has_sigma, double sigma, const InjectedFault& fault,
+                       std::vector<double>* row) {
   const double truth = plan.truth.at(c);
-  value *= InjectedCoefficientScale();
+  value *= fault.coefficient_scale;
   const double rel = found ? value / truth - 1.0 : kNaN;
   row->push_back(rel);
   row->push_back(rel * rel);
@@ -192,7 +192,7 @@ TrueCoefficients TrueCoefficientsOf(const sim::SensorModel& model) {
 
 double SlopeMethodBTarget(const TrueCoefficients& truth) {
   const double b = truth.at(Coefficient::kB);
-  // 2.617 = (2 / sqrt 3) / (2 ln2 / pi), THEORY.md §4.2.
+  // 2.617 = (2 / sqrt 3) / (2 ln2 / pi), docs/theory.md §4.2.
   const double k = (2.0 / std::sqrt(3.0)) / (2.0 * std::log(2.0) / M_PI);
   return std::sqrt(b * b + k * truth.at(Coefficient::kN) * truth.at(Coefficient::kK));
 }
@@ -252,7 +252,7 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
   if (!estimators::ComputeAvar(options, record, &avar)) {
     throw std::runtime_error("avar: " + avar.message);
   }
-  for (estimators::AvarPoint& p : avar.points) p.value *= InjectedAvarScale();
+  for (estimators::AvarPoint& p : avar.points) p.value *= fault_.avar_scale;
   estimators::AvarCurve curve;
   curve.sample_period_s = options.sample_period_s;
   curve.num_samples = avar.num_samples;
@@ -279,9 +279,9 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
       for (Coefficient c : plan.compared) {
         const auto& r = slope.at(c);
         const bool found = usable && r.found;
-        AppendCoefficient(plan, c, found, r.value_si, false, 0.0, &row);
+        AppendCoefficient(plan, c, found, r.value_si, false, 0.0, fault_, &row);
         if (c == Coefficient::kB && plan.slope_read_target) {
-          const double read = InjectedCoefficientScale() * r.value_si;
+          const double read = fault_.coefficient_scale * r.value_si;
           const double rel = found ? read / SlopeMethodBTarget(plan.truth) - 1.0 : kNaN;
           row.push_back(rel);
           row.push_back(rel * rel);
@@ -301,7 +301,7 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
       const auto& e = summary.at(c);
       const double value = e.fitted ? e.value_si : 0.0;
       const double sigma = e.fitted ? e.sigma_si : 0.0;
-      AppendCoefficient(plan, c, ok, value, true, sigma, &row);
+      AppendCoefficient(plan, c, ok, value, true, sigma, fault_, &row);
     }
   }
   if (row.size() != plan.columns.size()) throw std::logic_error("coefficient trial: row size");

@@ -1,6 +1,6 @@
 #pragma once
 // One coefficient-recovery trial, shared by the `coefficient_recovery` and `record_length`
-// validation tables (issue 5): simulate the point's record, take its overlapping Allan curve on
+// validation tables: simulate the point's record, take its overlapping Allan curve on
 // the spec's tau grid, fit it with every method of the spec (slope, wls, log_wls, gls) and compare
 // each coefficient present in the truth with its true value.
 //
@@ -8,7 +8,7 @@
 //  * Fit taus: only taus where the point's band-limit lowers the white-noise AVAR by at most
 //    kMaxBandLimitDeficit, and by at most kMaxBandLimitDeficitInSd of the relative standard
 //    deviation sqrt(4m / 3N) of an overlapping white-noise estimate there (EDF ~ 1.5 N/m,
-//    THEORY.md §2.2; the deficit from the exact discrete theory of the model's filter, §1g).
+//    docs/theory.md §3.2; the deficit from the exact discrete theory of the model's filter, §2.9).
 //    No fit term knows the band-limit, so shorter taus bias N low at every record length (GLS
 //    on all octave taus of mg25_mems at 100 Hz: N 5 % low). A fixed deficit is not enough: the
 //    bias it leaves is fixed while the scatter falls as 1/sqrt(N), so on 24 h of the fog preset
@@ -32,13 +32,14 @@
 // where L is each spec confidence level in percent ("in_ci68.3", "in_ci95") and z_L the normal
 // quantile. For the slope method's B, when N and K are in the truth, also rel_err_read/slope/B
 // and sq_rel_err_read/slope/B against what the curve minimum estimates, sqrt(B^2 + 2.617 N K)
-// (THEORY.md §4.2). Per fit method also failed/M (the fit returned !ok) and converged/M.
+// (docs/theory.md §4.2). Per fit method also failed/M (the fit returned !ok) and converged/M.
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "estimators/fit/noise_coefficient.h"
+#include "experiments/injected_fault.h"
 #include "experiments/trial_driver.h"
 #include "sim/sensor_model.h"
 
@@ -82,10 +83,15 @@ std::vector<estimators::Coefficient> ComparedCoefficients(const SweepSpec& spec,
 
 class CoefficientTrialDriver : public TrialDriver {
  public:
+  CoefficientTrialDriver() = default;
+  explicit CoefficientTrialDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
+
+ private:
+  InjectedFault fault_;
 };
 
 }  // namespace allanlab::experiments

@@ -13,7 +13,7 @@
 
 namespace allanlab::experiments {
 
-// What every table carries (DESIGN.md convention 8) and where it goes.
+// What every table carries (its provenance, docs/architecture.md "Conventions") and where it goes.
 struct ReportContext {
   std::string output_dir;      // e.g. results/validation; created if missing
   std::string git_sha;         // of the built commit

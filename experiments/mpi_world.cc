@@ -12,14 +12,6 @@
 
 namespace allanlab::experiments {
 
-bool MpiBuiltIn() {
-#ifdef ALLANLAB_WITH_MPI
-  return true;
-#else
-  return false;
-#endif
-}
-
 #ifdef ALLANLAB_WITH_MPI
 
 namespace {

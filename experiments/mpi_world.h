@@ -28,7 +28,6 @@ class MpiSession {
 
 // This process's rank and the world size ({0, 1} when MPI is absent or not initialised).
 RankInfo CurrentRanks();
-bool MpiBuiltIn();
 
 // Moves every rank's rows to rank 0 (appended to its own); other ranks end with none.
 // Collective: every rank must call it. Returns false on a communication error.

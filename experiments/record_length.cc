@@ -109,11 +109,11 @@ std::string RecordLengthExperiment::Question() const {
          "weighted least-squares line through ln(relative RMSE) vs ln T (weights from the Monte "
          "Carlo error of each RMSE; its error scaled by sqrt(chi2/dof) when the points scatter "
          "more than their errors). Reference: a coefficient read where its own term dominates has "
-         "a relative error ~ 1/sqrt(EDF), EDF ~ T/tau (THEORY.md §2.2): slope -1/2 (Q, N always; "
+         "a relative error ~ 1/sqrt(EDF), EDF ~ T/tau (docs/theory.md §3.2): slope -1/2 (Q, N always; "
          "B, K once their region is inside the record); a long-tau term that never dominates "
          "(AVAR ~ tau^mu under a dominant tau^nu) is a perturbation at the longest taus whose "
          "relative error goes as T^-(mu-nu): -1 for B under white noise or K under flicker. A "
-         "method with a bias floor (the slope method where terms overlap, THEORY.md §4.5) "
+         "method with a bias floor (the slope method where terms overlap, docs/theory.md §4.5) "
          "flattens towards 0. Read: the fits' slopes should match the theory within ~2 standard "
          "errors.";
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Validation table 4 of issue 5, `record_length`: how the error of each coefficient shrinks with
+// Validation table 4, `record_length`: how the error of each coefficient shrinks with
 // the record length T, per method, against the slope the theory predicts.
 //
 // Method: the trials of coefficient_recovery (CoefficientTrialDriver) on a sweep of T; per
@@ -7,13 +7,13 @@
 // from the Monte Carlo standard error of each RMSE; the slope's error is scaled up by
 // sqrt(chi2/dof) when the points scatter more than their errors, e.g. across a crossover).
 // Reference (theory slope, PredictedErrorSlope): a coefficient estimated from taus where its own
-// term dominates has a relative error ~ sqrt(1/EDF) with EDF ~ T/tau at a fixed tau (THEORY.md
+// term dominates has a relative error ~ sqrt(1/EDF) with EDF ~ T/tau at a fixed tau (docs/theory.md
 // §2.2), i.e. T^-1/2; this holds for Q and N (short taus, EDF ~ T/tau_min), and for B and K once
 // their region lies inside the record. A long-tau term that never dominates in the record (tau^mu
 // under a dominant tau^nu at the longest taus) is seen only as a perturbation there: its squared
 // coefficient has Fisher information ~ T^(2(mu - nu)), so its relative error goes as
 // T^-(mu - nu): B under white noise T^-1, K under flicker T^-1, K under white T^-2.
-// A method whose error has a bias floor (the slope method where terms overlap, THEORY.md §4.5)
+// A method whose error has a bias floor (the slope method where terms overlap, docs/theory.md §4.5)
 // flattens to slope 0. Pass criterion: the consistent fits' slopes match the theory within ~2
 // standard errors.
 #include <vector>
@@ -44,6 +44,8 @@ bool FitLine(const std::vector<double>& x, const std::vector<double>& y,
 
 class RecordLengthExperiment : public Experiment {
  public:
+  RecordLengthExperiment() = default;
+  explicit RecordLengthExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "record_length"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

@@ -1,6 +1,8 @@
 #include "experiments/registry.h"
 
 #include <algorithm>
+#include <memory>
+#include <type_traits>
 
 #include "experiments/avar_bias.h"
 #include "experiments/avar_error_bars.h"
@@ -14,12 +16,19 @@ namespace {
 
 struct Entry {
   const char* name;
-  std::unique_ptr<Experiment> (*make)();
+  std::unique_ptr<Experiment> (*make)(const InjectedFault&);
 };
 
+// Experiments with no fault to inject (their numbers are not in the regression check's golden
+// tables) are made without one.
 template <typename T>
-std::unique_ptr<Experiment> Make() {
-  return std::make_unique<T>();
+std::unique_ptr<Experiment> Make(const InjectedFault& fault) {
+  if constexpr (std::is_constructible_v<T, InjectedFault>) {
+    return std::make_unique<T>(fault);
+  } else {
+    (void)fault;
+    return std::make_unique<T>();
+  }
 }
 
 constexpr Entry kExperiments[] = {
@@ -40,9 +49,9 @@ std::vector<std::string> ExperimentNames() {
   return names;
 }
 
-std::unique_ptr<Experiment> MakeExperiment(std::string_view name) {
+std::unique_ptr<Experiment> MakeExperiment(std::string_view name, const InjectedFault& fault) {
   for (const Entry& e : kExperiments) {
-    if (name == e.name) return e.make();
+    if (name == e.name) return e.make(fault);
   }
   return nullptr;
 }

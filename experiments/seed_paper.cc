@@ -15,7 +15,6 @@
 #include "estimators/fit/noise_coefficient.h"
 #include "estimators/fit/slope_method.h"
 #include "estimators/tau_grid.h"
-#include "experiments/injected_fault.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -84,7 +83,7 @@ SeedPaperTruth TruthOf(const sim::SensorModel& model) {
   truth.b_deg_per_h = estimators::ToDatasheetUnit(Coefficient::kB, b_si);
   truth.k_deg_per_h_per_sqrt_h = estimators::ToDatasheetUnit(Coefficient::kK, k_si);
   truth.cutoff_hz = model.band_limit.enabled() ? model.band_limit.cutoff_hz : 0.0;
-  // THEORY.md §4.2: min over tau of N^2/tau + 0.4413 B^2 + K^2 tau / 3 (SI, consistent units).
+  // docs/theory.md §4.2: min over tau of N^2/tau + 0.4413 B^2 + K^2 tau / 3 (SI, consistent units).
   const double floor_si = std::sqrt(b_si * b_si + (2.0 / std::sqrt(3.0)) * n_si * k_si /
                                                        (kFloorFactor * kFloorFactor));
   truth.b_floor_deg_per_h = estimators::ToDatasheetUnit(Coefficient::kB, floor_si);
@@ -151,7 +150,7 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
   options.confidence_method = estimators::ConfidenceMethod::kGreenhallRiley;
   estimators::AvarSummary summary;
   if (!estimators::ComputeAvar(options, rate, &summary)) throw std::runtime_error(summary.message);
-  for (estimators::AvarPoint& p : summary.points) p.value *= InjectedAvarScale();
+  for (estimators::AvarPoint& p : summary.points) p.value *= fault_.avar_scale;
 
   estimators::AvarCurve curve;
   curve.sample_period_s = tau0;
@@ -183,7 +182,7 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
   const estimators::SlopeMethodResult slopes = estimators::ReadSlopes(curve);
   const estimators::SlopeReading& n_line = slopes.at(Coefficient::kN);
   const estimators::SlopeReading& b_line = slopes.at(Coefficient::kB);
-  const double injected = InjectedCoefficientScale();
+  const double injected = fault_.coefficient_scale;
   const double n_curve = injected * sigma_1s / 60.0;
   const double n_line_value =
       n_line.found ? injected * estimators::ToDatasheetUnit(Coefficient::kN, n_line.value_si)

@@ -1,9 +1,9 @@
 #pragma once
-// Validation table 3 (issue 5): the seed paper's procedure (Mikheev et al. 2021) run on
+// Validation table 3: the seed paper's procedure (Mikheev et al. 2021) run on
 // simulated records of its two gyros (presets mg25_mems and tg100), against the truth the
 // records were generated from:
 //   N = sigma(1 s) / 60 read off the curve, and from the -1/2 line (estimators/fit/slope_method.h);
-//   B = min sigma / sqrt(2 ln2 / pi), which THEORY.md §4.2 says reads sqrt(B^2 + 2.617 N K);
+//   B = min sigma / sqrt(2 ln2 / pi), which docs/theory.md §4.2 says reads sqrt(B^2 + 2.617 N K);
 //   bandwidth from the short-tau ADEV maximum (estimators/fit/bandwidth_estimate.h), also with
 //   the paper's rule "inflection tau = time constant" (fc = 1 / (2 pi tau_peak)).
 // Per-trial columns (trial_driver.h): values in datasheet units (deg/sqrt(h), deg/h, Hz, s),
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "experiments/experiment.h"
+#include "experiments/injected_fault.h"
 
 namespace allanlab::experiments {
 
@@ -32,14 +33,21 @@ std::vector<std::int64_t> SeedPaperAveragingFactors(const SweepSpec& spec, const
 
 class SeedPaperDriver : public TrialDriver {
  public:
+  SeedPaperDriver() = default;
+  explicit SeedPaperDriver(InjectedFault fault) : fault_(fault) {}
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
+
+ private:
+  InjectedFault fault_;
 };
 
 class SeedPaperExperiment : public Experiment {
  public:
+  SeedPaperExperiment() = default;
+  explicit SeedPaperExperiment(InjectedFault fault) : driver_(fault) {}
   std::string Name() const override { return "seed_paper"; }
   std::string Question() const override;
   const TrialDriver& Driver() const override { return driver_; }

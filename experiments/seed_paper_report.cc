@@ -109,7 +109,7 @@ std::vector<Row> BuildRows(const SweepSpec& spec, const std::vector<PointStats>&
         row.note = "found in " + Num(found ? found->mean * 100.0 : kNaN, 3) + " % of trials";
       } else if (column == "peak_tau/inflection") {
         row.truth = truth.cutoff_hz > 0.0 ? 0.301 / truth.cutoff_hz : kNaN;
-        row.note = "truth = 0.301/fc (first order), THEORY.md §1g";
+        row.note = "truth = 0.301/fc (first order), docs/theory.md §2.9";
       }
       if (!ratio_column.empty()) {
         if (const ColumnStats* c = ps.Find(ratio_column); c && c->count > 0) {
@@ -240,7 +240,7 @@ std::string SeedPaperExperiment::Question() const {
          "truth the records were made from? Method: `trials` records per preset (sim/presets "
          "mg25_mems and tg100), overlapping ADEV with Greenhall-Riley EDFs, the graphical "
          "readings of estimators/fit/slope_method.h and bandwidth_estimate.h. Reference: the "
-         "presets' coefficients; for the minimum also THEORY.md §4.2's sqrt(B^2 + 2.617 N K). "
+         "presets' coefficients; for the minimum also docs/theory.md §4.2's sqrt(B^2 + 2.617 N K). "
          "Pass criterion: none - the table states the bias (ratio to truth, with its Monte "
          "Carlo error) and the spread a single record gives.";
 }

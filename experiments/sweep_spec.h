@@ -1,5 +1,5 @@
 #pragma once
-// A declarative Monte Carlo sweep, written by people in YAML (DESIGN.md convention 3, issue 5):
+// A declarative Monte Carlo sweep, written by people in YAML (an options struct with documented defaults, docs/architecture.md):
 //
 //   name: avar_error_bars             # names the output files
 //   driver: avar_error_bars           # which TrialDriver runs a trial (experiments/drivers.h)

@@ -1,5 +1,5 @@
 #pragma once
-// What one Monte Carlo trial computes (DESIGN.md convention 7): a driver maps (sweep point,
+// What one Monte Carlo trial computes (thin drivers, docs/architecture.md "… an experiment"): a driver maps (sweep point,
 // trial) to a flat row of numbers with named columns. The runner (runner.h) does threading,
 // MPI, checkpointing and progress; the aggregation (aggregate.h) turns rows into per-column
 // mean / std / standard error; each driver's report turns those into its validation table.

@@ -1,5 +1,5 @@
 #pragma once
-// Exact expected Allan variance of discrete-time processes (THEORY.md §0 and §1d).
+// Exact expected Allan variance of discrete-time processes (docs/theory.md §1.2, §2).
 // Shared by every noise term so that one quadratic-form recipe covers them all.
 #include <cstdint>
 #include <functional>
@@ -30,7 +30,7 @@ AllanStarts AllanDifferenceStarts(std::int64_t m, const RecordShape& shape);
 // Weight a(j) of lag j in the Allan quadratic form: 2m-3j for 0<=j<=m, -(2m-j) for m<j<2m.
 double AllanLagWeight(std::int64_t m, std::int64_t j);
 
-// AVAR(m) = (1/(2 m^2)) sum_{|j|<2m} a(|j|) R(j)   (THEORY.md §0).
+// AVAR(m) = (1/(2 m^2)) sum_{|j|<2m} a(|j|) R(j)   (docs/theory.md §1.2).
 // `autocovariance[j]` is the (generalised) autocovariance at lag j >= 0, in rate^2; it needs at
 // least 2m entries. Additive constants in R cancel, so generalised autocovariances of random
 // walk and flicker work as they are.
@@ -38,7 +38,7 @@ double AvarFromAutocovariance(std::int64_t m, std::span<const double> autocovari
 
 // Exact E[AVAR_hat(m)] of y_k = sum_v p_{k+offset-v} w_v, w iid with variance `innovation_var`,
 // for a causal impulse response p started from a zero state `offset` samples before y_0
-// (THEORY.md §1d, finite-record recipe). `cumulative_p[v] = sum_{k<=v} p_k` must cover indices
+// (docs/theory.md §2.5.3). `cumulative_p[v] = sum_{k<=v} p_k` must cover indices
 // up to offset + N - 1.
 double FiniteRecordAvar(std::span<const double> cumulative_p, double innovation_var,
                         std::int64_t m, std::int64_t offset, const RecordShape& shape);

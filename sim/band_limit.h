@@ -2,7 +2,7 @@
 // Band-limiting of the sensor (about 100 Hz for the MEMS gyros of the seed paper), modelled the way
 // a real sensor does it: the analog chain runs at an internal rate L times the output rate, a
 // low-pass filter acts there, and the output is either point-sampled from it or the mean of the
-// L internal samples of each output period (THEORY.md §1g).
+// L internal samples of each output period (docs/theory.md §2.9).
 #include <complex>
 #include <cstdint>
 #include <memory>

@@ -215,34 +215,4 @@ bool BandLimitAvarChange(const NoiseTerm& term, const BandLimitChain& chain, dou
   return true;
 }
 
-std::vector<double> FastExpectedAvar(const SensorModel& model, std::span<const std::int64_t> ms,
-                                     const RecordShape& shape) {
-  if (!model.band_limit.enabled()) return model.ExpectedAvar(ms, shape);
-  const double tau0 = 1.0 / model.sample_rate_hz;
-  const std::shared_ptr<const BandLimitChain> shared_chain = SharedBandLimitChain(model.band_limit, model.sample_rate_hz);
-  const BandLimitChain& chain = *shared_chain;
-  // The quantizers' share: the model without terms.
-  SensorModel rest = model;
-  rest.terms.clear();
-  std::vector<double> total = rest.ExpectedAvar(ms, shape);
-  SensorModel one = model;
-  one.angle_quantizer.reset();
-  one.rate_quantizer.reset();
-  std::vector<double> change;
-  for (const NoiseTerm& term : model.terms) {
-    one.terms = {term};
-    std::vector<double> part;
-    if (BandLimitAvarChange(term, chain, tau0, ms, &change)) {
-      one.band_limit.kind = LowPassKind::kNone;
-      part = one.ExpectedAvar(ms, shape);
-      for (std::size_t k = 0; k < ms.size(); ++k) part[k] += change[k];
-      one.band_limit = model.band_limit;
-    } else {
-      part = one.ExpectedAvar(ms, shape);
-    }
-    for (std::size_t k = 0; k < ms.size(); ++k) total[k] += part[k];
-  }
-  return total;
-}
-
 }  // namespace allanlab::sim

@@ -1,8 +1,10 @@
 #pragma once
-// Fast exact expected Allan variance of noise terms behind the band-limit chain (band_limit.h),
-// for fits that re-evaluate it at many cutoffs (estimators/fit/parametric_fit.h).
+// How the band-limit chain (band_limit.h) changes a noise term's expected Allan variance, in
+// O(len(q)) per averaging factor whatever the cutoff: SensorModel::ExpectedAvar's route for white
+// and held stationary terms, and what lets fits re-evaluate a model at many cutoffs
+// (estimators/fit/parametric_fit.h).
 //
-// Why it is cheap: the Allan kernel a(j) (THEORY.md §0) is piecewise linear with kinks at lags
+// Why it is cheap: the Allan kernel a(j) (docs/theory.md §1.2) is piecewise linear with kinks at lags
 // 0, +-m, +-2m only; exactly,
 //   a(j) = -3|j| + 2|j - m| + 2|j + m| - |j - 2m|/2 - |j + 2m|/2.
 // A held term reaches the output through q (the held response), so its output autocovariance is
@@ -15,8 +17,8 @@
 //   dAVAR(m) = (1/(2m^2)) sum_|x|<len(q) phi(x) [-3 R_x(|x|) + 4 R_x(|m + x|) - R_x(|2m + x|)].
 // White rate noise enters at the internal rate (wideband path); its output autocovariance is
 // zero beyond the chain's response, so its filtered AVAR is a sum over that short support.
-// Both are exact to rounding (the same quadratic form as SensorModel::ExpectedAvar's chain path,
-// regrouped), for every m.
+// Both are exact to rounding (the direct quadratic form over the chain's output autocovariance,
+// regrouped), for every m (docs/theory.md §2.9).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -24,29 +26,22 @@
 #include "sim/avar_theory.h"
 #include "sim/band_limit.h"
 #include "sim/noise_term.h"
-#include "sim/sensor_model.h"
 
 namespace allanlab::sim {
 
 // Change of a term's expected AVAR (rad/s)^2 when the chain is inserted, at each m of `ms`:
 // filtered minus the term's own ExpectedAvar(m, tau0_s, shape). Returns false (change untouched)
-// for terms with no fast form (harmonic, exponential drift, bias step): use
-// SensorModel::ExpectedAvar for those. Zero for digital terms (after the filter) and the rate
+// for terms with no fast form (harmonic, exponential drift, bias step), true for every other term:
+// SensorModel::ExpectedAvar relies on that. Zero for digital terms (after the filter) and the rate
 // ramp (filter-invariant). Exact for white rate noise and held terms with a stationary
 // (generalised) autocovariance: random walk, Gauss-Markov, telegraph, Gauss-Markov-sum flicker.
 // Kasdin flicker: the change is that of its stationary-increment form, while its own exact AVAR
-// and SensorModel's chain path start it from a zero state at the first sample; the difference is
+// and the exact chain path start it from a zero state at the first sample; the difference is
 // a start-up effect shared by the T = N - 2m + 1 Allan differences, below 0.5 (tc + 1)/T of the
 // flicker AVAR (tc = fs/(2 pi fc) samples; tests/sim/band_limited_avar_test.cc), far below the
 // estimation noise of any tau (whose relative size is at least ~1/sqrt(T)).
 // Precondition: every m in [1, N/2] of the record the caller's own AVARs refer to.
 bool BandLimitAvarChange(const NoiseTerm& term, const BandLimitChain& chain, double tau0_s,
                          std::span<const std::int64_t> ms, std::vector<double>* change);
-
-// E[AVAR_hat(m)] of the model's records as SensorModel::ExpectedAvar, with each term's own exact
-// AVAR plus its BandLimitAvarChange where there is one (SensorModel's chain path for the rest).
-// Cost: that of the unfiltered terms plus O(len(q)) per m and term, whatever the cutoff.
-std::vector<double> FastExpectedAvar(const SensorModel& model, std::span<const std::int64_t> ms,
-                                     const RecordShape& shape);
 
 }  // namespace allanlab::sim

@@ -2,7 +2,7 @@
 // Bias instability approximated by a sum of first-order Gauss-Markov processes with time
 // constants spaced geometrically by a ratio r (the "GM bank" used in many navigation filters).
 // With equal variances q = B^2 ln(r) / pi the sum has h_{-1} = B^2 / pi between the extreme time
-// constants (THEORY.md §1d). Ripple of AVAR / ((2 ln2/pi) B^2) for tau well inside the bank:
+// constants (docs/theory.md §2.5.5). Ripple of AVAR / ((2 ln2/pi) B^2) for tau well inside the bank:
 // 0.982..1.020 at one process per decade, 0.9992..1.0001 at r = 3 (see AvarRipple).
 #include <cstdint>
 #include <span>

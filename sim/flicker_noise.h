@@ -1,7 +1,7 @@
 #pragma once
 // Bias instability (IEEE Std 952, coefficient B): flicker (1/f) rate noise synthesised by the
 // Kasdin-Walter fractional-difference filter with alpha = 1, y = (1 - z^-1)^{-1/2} w, by FFT
-// convolution from a zero initial state (Kasdin & Walter 1992; THEORY.md §1d).
+// convolution from a zero initial state (Kasdin & Walter 1992; docs/theory.md §2.5.1).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -23,7 +23,7 @@ struct FlickerNoise {
 
   bool IsValid(std::string* why) const;
   // y_n = sum_{k<=n} h_k w_{n-k}, h_0 = 1, h_k = h_{k-1} (k - 1/2) / k, w ~ N(0, B^2);
-  // y_{-1} = 0 (zero initial state), so the record has the finite-record deficit of §1d.
+  // y_{-1} = 0 (zero initial state), so the record has the finite-record deficit of docs/theory.md §2.5.3.
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
   // Doubles a work buffer needs for SynthesizeInPlace of n samples.
   static std::size_t WorkSize(std::size_t n);
@@ -35,7 +35,7 @@ struct FlickerNoise {
   // increments, i.e. without the start-up transient).
   void FillAutocovariance(double tau0_s, std::span<double> r) const;
   // Exact E[AVAR_hat(m)] for the generated record of shape.num_samples samples, including the
-  // +44 % excess at m = 1 and the finite-record deficit at large m (THEORY.md §1d). Overlapping:
+  // +44 % excess at m = 1 and the finite-record deficit at large m (docs/theory.md §2.5.2, §2.5.3). Overlapping:
   // O(log N) per m (kasdin_finite_record.h); non-overlapping: the O(N) direct sum.
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // Stationary-increment value (no finite-record deficit).

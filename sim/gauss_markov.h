@@ -12,7 +12,7 @@
 namespace allanlab::sim {
 
 // Exact AVAR(m) of a stationary AR(1) y_k = phi y_{k-1} + w_k with variance `variance`
-// (THEORY.md §1e), evaluated as the Allan quadratic form of the generalised autocovariance
+// (docs/theory.md §2.6), evaluated as the Allan quadratic form of the generalised autocovariance
 // variance * (phi^j - 1), which stays accurate when phi -> 1 (the closed form cancels there).
 double Ar1Avar(std::int64_t m, double phi, double variance);
 // Generalised autocovariance variance * (phi^j - 1), j = first_lag..first_lag + r.size() - 1
@@ -33,7 +33,7 @@ struct GaussMarkov {
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
   // Lags first_lag .. first_lag + r.size() - 1.
   void FillAutocovariance(double tau0_s, std::span<double> r, std::int64_t first_lag = 0) const;
-  // Exact discrete AR(1) form (THEORY.md §1e).
+  // Exact discrete AR(1) form (docs/theory.md §2.6).
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // Continuous OU: (2 sigma^2 Tc / tau) [1 - (Tc / 2tau)(3 - 4 e^{-tau/Tc} + e^{-2tau/Tc})].
   double AsymptoticAvar(double tau_s) const;

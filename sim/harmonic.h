@@ -14,7 +14,7 @@ namespace allanlab::sim {
 
 // Exact estimator expectation for point samples A sin(omega k + phase), omega = 2 pi f0 tau0.
 // Random phase (nullopt): AVAR(m) = A^2 sin^4(pi f0 m tau0) / (m sin(pi f0 tau0))^2
-// (THEORY.md §1f). Fixed phase: the exact finite-record value, which oscillates about it.
+// (docs/theory.md §2.7). Fixed phase: the exact finite-record value, which oscillates about it.
 double SampledSinusoidAvar(double amplitude, double f0_hz, double tau0_s,
                            std::optional<double> phase_rad, std::int64_t m,
                            const RecordShape& shape);
@@ -38,7 +38,7 @@ struct Harmonic {
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // Continuous, phase-averaged: Omega0^2 (sin^2(pi f0 tau) / (pi f0 tau))^2. The ratio is
   // squared; the seed paper (Mikheev et al. 2021) prints it unsquared, which decays as 1/tau
-  // instead of 1/tau^2 and is 4.7x too large at f0 tau = 1.5 (THEORY.md §5.1).
+  // instead of 1/tau^2 and is 4.7x too large at f0 tau = 1.5 (docs/theory.md §8.1).
   double AsymptoticAvar(double tau_s) const;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Exact expected overlapping Allan variance of Kasdin flicker (alpha = 1) generated from a zero
-// state over a finite record (THEORY.md §1d, "Finite N" recipe), in O(log N) work per averaging
+// state over a finite record (docs/theory.md §2.5.3), in O(log N) work per averaging
 // factor instead of the O(N) direct sum of FiniteRecordAvar (avar_theory.h).
 //
 // With S(v) = sum_{k<=v} h_k the running sum of the Kasdin coefficients, g_e = (S(e) - 2 S(e-m) +

@@ -2,7 +2,7 @@
 // Digitisation effects beyond the IEEE 952 model, applied to the sensor's output:
 //  * AngleQuantizer: a quantizer on the integrated angle with carry, as delta-angle outputs do
 //    (the residual is kept, so no angle is lost); it adds IEEE quantization noise with
-//    Q = lsb / sqrt(12) when the angle moves over many LSBs (THEORY.md §1a), and correlated error
+//    Q = lsb / sqrt(12) when the angle moves over many LSBs (docs/theory.md §2.1), and correlated error
 //    when it moves less than ~1 LSB per sample (ErrorAutocovariance: exact for a Gaussian signal).
 //  * RateQuantizer: each rate sample rounded to an LSB; it adds white noise of variance lsb^2/12
 //    when the rate noise spans several LSBs, and correlated error that distorts the curve when it
@@ -61,7 +61,7 @@ struct RateQuantizer {
   // Gaussian characteristic function of the increment x_j - x_0 of variance D(j) = 2 (R(0) - R(j))):
   //   R_e(j) = sum_{k >= 1} lsb^2 / (2 pi^2 k^2) exp(-2 pi^2 k^2 D(j) / lsb^2),  R_e(0) = lsb^2/12.
   // Under the same average e is uncorrelated with x, so the output's autocovariance is R + R_e and
-  // its AVAR is AVAR_x + AvarFromAutocovariance(R_e) (THEORY.md §0). When D(j) >> lsb^2 at j = 1
+  // its AVAR is AVAR_x + AvarFromAutocovariance(R_e) (docs/theory.md §1.2). When D(j) >> lsb^2 at j = 1
   // this is the white lsb^2/12 of ApproximateAvar.
   std::vector<double> ErrorAutocovariance(std::span<const double> signal_autocovariance) const;
 };

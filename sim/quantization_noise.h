@@ -24,7 +24,7 @@ struct QuantizationNoise {
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
   // R(0) = 2 Q^2 / tau0^2, R(1) = -Q^2 / tau0^2, zero beyond.
   void FillAutocovariance(double tau0_s, std::span<double> r) const;
-  // Exact for every m: AVAR = 3 Q^2 / tau^2 (THEORY.md §1a: the Allan difference telescopes).
+  // Exact for every m: AVAR = 3 Q^2 / tau^2 (docs/theory.md §2.1: the Allan difference telescopes).
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   double AsymptoticAvar(double tau_s) const;
 };

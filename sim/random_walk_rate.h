@@ -22,7 +22,7 @@ struct RandomWalkRate {
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
   // Generalised autocovariance R(j) = -|j| K^2 tau0 / 2.
   void FillAutocovariance(double tau0_s, std::span<double> r) const;
-  // Exact: AVAR = K^2 tau / 3 + K^2 tau0^2 / (6 tau) (THEORY.md §1c).
+  // Exact: AVAR = K^2 tau / 3 + K^2 tau0^2 / (6 tau) (docs/theory.md §2.3).
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // IEEE 952: K^2 tau / 3.
   double AsymptoticAvar(double tau_s) const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <type_traits>
 
 #include <boost/random/uniform_real_distribution.hpp>
@@ -22,13 +23,29 @@ concept HasFirstIndex = requires(const T& t, Engine& e, std::span<double> r) {
   t.AddTo(e, 1.0, r, std::int64_t{0});
 };
 
-// Expected AVAR of one term after the band-limit chain (THEORY.md §1g, generalised), at every
+// Kasdin flicker's own exact expected AVAR (zero state at the first sample), for a list of m.
+std::vector<double> UnfilteredFlickerAvar(const FlickerNoise& t, std::span<const std::int64_t> ms,
+                                          const RecordShape& shape) {
+  const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
+  std::vector<double> out;
+  if (shape.estimator == AvarEstimatorKind::kOverlapping) {
+    // O(log N) per m (kasdin_finite_record.h) instead of the record-sized direct sum.
+    for (std::int64_t m : ms) out.push_back(b2 * KasdinOverlappingAvar(m, shape.num_samples));
+    return out;
+  }
+  const std::vector<double> cumulative = CumulativeSum(KasdinCoefficients(shape.num_samples));
+  for (std::int64_t m : ms) out.push_back(FiniteRecordAvar(cumulative, b2, m, 0, shape));
+  return out;
+}
+
+// Expected AVAR of one term after the band-limit chain (docs/theory.md §2.9, generalised), at every
 // averaging factor of a list (set-up work such as the flicker impulse response is done once).
 struct ChainTheory {
   const BandLimitChain& chain;
   double tau0_s;
   std::span<const std::int64_t> ms;
   const RecordShape& shape;
+  FlickerBandLimit flicker;
 
   template <typename F>
   std::vector<double> ForEachM(F&& avar_at) const {
@@ -38,30 +55,24 @@ struct ChainTheory {
     return out;
   }
 
-  // White rate noise and the held stationary terms: the term's own exact AVAR plus the
-  // band-limit's change (band_limited_avar.h), O(len(q)) per m. The direct quadratic form over
-  // the 2m lags of the chain's output autocovariance cost O(m len(q)) per m: minutes per
-  // diagnosis of a 1e6-sample record with a low cutoff. Same value to ~1e-12 relative (tests/sim/
-  // band_limited_avar_test.cc checks the change against that direct form), and the same bits as
-  // FastExpectedAvar, which the fits use.
+  // The term's own exact AVAR (`own`, at each m) plus the band-limit's change
+  // (band_limited_avar.h), O(len(q)) per m. The direct quadratic form over the 2m lags of the
+  // chain's output autocovariance cost O(m len(q)) per m: minutes per diagnosis of a 1e6-sample
+  // record with a low cutoff; tests/sim/band_limited_avar_test.cc checks the change against it.
+  std::vector<double> OwnPlusChange(const NoiseTerm& term, std::vector<double> own) const {
+    std::vector<double> change;
+    if (!BandLimitAvarChange(term, chain, tau0_s, ms, &change)) {
+      throw std::logic_error(std::string("no band-limit change for ") + std::string(TermId(term)));
+    }
+    for (std::size_t k = 0; k < ms.size(); ++k) own[k] += change[k];
+    return own;
+  }
   template <typename T>
   std::vector<double> OwnPlusChange(const T& t) const {
-    std::vector<double> change;
-    if (!BandLimitAvarChange(NoiseTerm{t}, chain, tau0_s, ms, &change)) return {};
-    std::vector<double> out;
-    out.reserve(ms.size());
-    for (std::size_t k = 0; k < ms.size(); ++k) out.push_back(t.ExpectedAvar(ms[k], tau0_s, shape) + change[k]);
-    return out;
+    return OwnPlusChange(NoiseTerm{t}, ForEachM([&](std::int64_t m) { return t.ExpectedAvar(m, tau0_s, shape); }));
   }
 
-  std::vector<double> operator()(const WhiteRateNoise& t) const {
-    if (auto fast = OwnPlusChange(t); !fast.empty() || ms.empty()) return fast;
-    const double internal_var = t.arw_rad_per_sqrt_s * t.arw_rad_per_sqrt_s /
-                                chain.internal_period_s();
-    return ForEachM([&](std::int64_t m) {
-      return AvarFromAutocovariance(m, chain.WhiteOutputAutocovariance(internal_var, 2 * m));
-    });
-  }
+  std::vector<double> operator()(const WhiteRateNoise& t) const { return OwnPlusChange(t); }
   std::vector<double> operator()(const Harmonic& t) const {
     const std::complex<double> gain = chain.WidebandGain(t.frequency_hz);
     std::optional<double> phase;
@@ -72,6 +83,9 @@ struct ChainTheory {
     });
   }
   std::vector<double> operator()(const FlickerNoise& t) const {
+    if (flicker == FlickerBandLimit::kStationaryChange) {
+      return OwnPlusChange(NoiseTerm{t}, UnfilteredFlickerAvar(t, ms, shape));
+    }
     // p = q * h: the Kasdin filter (zero state before the first output sample) followed by the
     // held-path filter.
     const std::int64_t offset = 0;
@@ -101,12 +115,7 @@ struct ChainTheory {
       return ForEachM([&](std::int64_t m) { return t.ExpectedAvar(m, tau0_s, shape); });
     } else {
       static_assert(HasAutocovariance<T>, "held stochastic terms need FillAutocovariance");
-      if (auto fast = OwnPlusChange(t); !fast.empty() || ms.empty()) return fast;
-      return ForEachM([&](std::int64_t m) {
-        std::vector<double> r_in(static_cast<std::size_t>(2 * m) + chain.held_response().size());
-        t.FillAutocovariance(tau0_s, r_in);
-        return AvarFromAutocovariance(m, chain.HeldOutputAutocovariance(r_in, 2 * m));
-      });
+      return OwnPlusChange(t);
     }
   }
 };
@@ -117,18 +126,7 @@ struct DirectTheory {
   std::span<const std::int64_t> ms;
   const RecordShape& shape;
 
-  std::vector<double> operator()(const FlickerNoise& t) const {
-    const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
-    std::vector<double> out;
-    if (shape.estimator == AvarEstimatorKind::kOverlapping) {
-      // O(log N) per m (kasdin_finite_record.h) instead of the record-sized direct sum.
-      for (std::int64_t m : ms) out.push_back(b2 * KasdinOverlappingAvar(m, shape.num_samples));
-      return out;
-    }
-    const std::vector<double> cumulative = CumulativeSum(KasdinCoefficients(shape.num_samples));
-    for (std::int64_t m : ms) out.push_back(FiniteRecordAvar(cumulative, b2, m, 0, shape));
-    return out;
-  }
+  std::vector<double> operator()(const FlickerNoise& t) const { return UnfilteredFlickerAvar(t, ms, shape); }
   template <typename T>
   std::vector<double> operator()(const T& t) const {
     std::vector<double> out;
@@ -148,7 +146,7 @@ bool SensorModel::IsValid(std::string* why) const {
     return fail("sample rate must be a finite number > 0 Hz");
   }
   if (!std::isfinite(bias_rad_per_s)) return fail("bias must be finite");
-  const double tau0 = 1.0 / sample_rate_hz;
+  const double tau0 = sample_period_s();
   for (const NoiseTerm& term : terms) {
     std::string reason;
     const bool ok = std::visit([&](const auto& t) { return t.IsValid(&reason); }, term);
@@ -168,7 +166,7 @@ bool SensorModel::IsValid(std::string* why) const {
 
 std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t trial,
                                           std::int64_t n) const {
-  const double tau0 = 1.0 / sample_rate_hz;
+  const double tau0 = sample_period_s();
   auto engine_for = [&](std::size_t i) { return MakeEngine(seed, trial, i); };
   std::shared_ptr<const BandLimitChain> chain;
   if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
@@ -305,13 +303,13 @@ double SensorModel::ExpectedAvar(std::int64_t m, const RecordShape& shape) const
 }
 
 std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
-                                              const RecordShape& shape) const {
-  const double tau0 = 1.0 / sample_rate_hz;
+                                              const RecordShape& shape, FlickerBandLimit flicker) const {
+  const double tau0 = sample_period_s();
   std::vector<double> result(ms.size(), 0.0);
   std::shared_ptr<const BandLimitChain> chain;
   if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
   for (const NoiseTerm& term : terms) {
-    const std::vector<double> part = chain ? std::visit(ChainTheory{*chain, tau0, ms, shape}, term)
+    const std::vector<double> part = chain ? std::visit(ChainTheory{*chain, tau0, ms, shape, flicker}, term)
                                            : std::visit(DirectTheory{tau0, ms, shape}, term);
     for (std::size_t k = 0; k < ms.size(); ++k) result[k] += part[k];
   }
@@ -329,7 +327,7 @@ std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
 }
 
 std::vector<double> SensorModel::AngleErrorAutocovariance(std::int64_t lags) const {
-  const double tau0 = 1.0 / sample_rate_hz;
+  const double tau0 = sample_period_s();
   const double lsb2 = angle_quantizer->lsb_rad * angle_quantizer->lsb_rad;
   for (std::int64_t length = std::min<std::int64_t>(lags, 256);; length = std::min(lags, 4 * length)) {
     const std::vector<double> r = SignalAutocovariance(length);
@@ -356,7 +354,7 @@ std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const
   std::vector<double> total = SignalAutocovariance(lags);
   if (angle_quantizer) {
     const std::vector<double> e = AngleErrorAutocovariance(lags + 1);
-    const std::vector<double> rate_error = AngleQuantizer::RateErrorAutocovariance(1.0 / sample_rate_hz, e);
+    const std::vector<double> rate_error = AngleQuantizer::RateErrorAutocovariance(sample_period_s(), e);
     for (std::size_t j = 0; j < std::min(total.size(), rate_error.size()); ++j) total[j] += rate_error[j];
   }
   if (rate_quantizer) {
@@ -367,7 +365,7 @@ std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const
 }
 
 std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
-  const double tau0 = 1.0 / sample_rate_hz;
+  const double tau0 = sample_period_s();
   std::vector<double> total(static_cast<std::size_t>(lags), 0.0);
   std::shared_ptr<const BandLimitChain> chain;
   if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
@@ -396,7 +394,7 @@ std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
 }
 
 double SensorModel::AsymptoticAvar(double tau_s) const {
-  const double tau0 = 1.0 / sample_rate_hz;
+  const double tau0 = sample_period_s();
   double sum = 0.0;
   const RecordShape long_record{std::int64_t{1} << 40, AvarEstimatorKind::kOverlapping};
   for (const NoiseTerm& term : terms) {

@@ -14,6 +14,18 @@
 
 namespace allanlab::sim {
 
+// How SensorModel::ExpectedAvar treats Kasdin flicker behind a band-limit (no other term is
+// affected, and without a band-limit both are the same).
+enum class FlickerBandLimit {
+  // The record's exact expectation: the Kasdin filter from its zero state at the first sample,
+  // then the chain (O(N len(q)) set-up and O(N) per m). For judging Monte Carlo records.
+  kExact,
+  // The flicker's own exact AVAR plus the band-limit's change of its stationary-increment form
+  // (band_limited_avar.h): O(len(q)) per m at any cutoff, off by a start-up term below
+  // 0.5 (tc + 1)/T of the flicker AVAR (docs/theory.md §2.9). For fits that try many cutoffs.
+  kStationaryChange,
+};
+
 struct SensorModel {
   std::string name;
   std::string description;
@@ -41,13 +53,14 @@ struct SensorModel {
   // ExpectedAvarIsExact() says which.
   double ExpectedAvar(std::int64_t m, const RecordShape& shape) const;
   // The same for a list of averaging factors (shares the per-term set-up work).
-  std::vector<double> ExpectedAvar(std::span<const std::int64_t> ms, const RecordShape& shape) const;
+  std::vector<double> ExpectedAvar(std::span<const std::int64_t> ms, const RecordShape& shape,
+                                   FlickerBandLimit flicker = FlickerBandLimit::kExact) const;
   bool ExpectedAvarIsExact() const {
     return !rate_quantizer || rate_quantizer->random_offset;
   }
 
   // Generalised autocovariance of the Gaussian (linear) part of the output at lags 0..lags-1,
-  // band-limit included, for exact estimator variances (THEORY.md §2.1). Flicker enters with its
+  // band-limit included, for exact estimator variances (docs/theory.md §3.1). Flicker enters with its
   // stationary-increment form (no start-up transient); deterministic terms, harmonics and outliers
   // are left out. The quantizers' errors enter with their exact second moments (so estimator
   // variances treat them as Gaussian: an approximation).
@@ -55,6 +68,9 @@ struct SensorModel {
 
   // Continuous IEEE 952 sum of the terms' asymptotes at tau (no band-limit, no quantizers).
   double AsymptoticAvar(double tau_s) const;
+
+  // tau0 = 1 / fs, the one place the period is derived from the rate.
+  double sample_period_s() const { return 1.0 / sample_rate_hz; }
 
   static constexpr std::uint64_t kQuantizerStream = 1000;
   static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset
@@ -67,5 +83,11 @@ struct SensorModel {
   // signal's autocovariance is only computed as far as the error stays correlated.
   std::vector<double> AngleErrorAutocovariance(std::int64_t lags) const;
 };
+
+// The fits' name for ExpectedAvar(ms, shape, FlickerBandLimit::kStationaryChange).
+inline std::vector<double> FastExpectedAvar(const SensorModel& model, std::span<const std::int64_t> ms,
+                                            const RecordShape& shape) {
+  return model.ExpectedAvar(ms, shape, FlickerBandLimit::kStationaryChange);
+}
 
 }  // namespace allanlab::sim

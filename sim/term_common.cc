@@ -27,10 +27,6 @@ bool CheckPositive(double v, std::string_view name, std::string* why) {
   return true;
 }
 
-bool CheckSamplePeriod(double tau0_s, std::string* why) {
-  return CheckPositive(tau0_s, "sample period tau0_s", why);
-}
-
 void AddGaussian(Engine& engine, double std_dev, std::span<double> out) {
   if (std_dev == 0.0) return;
   boost::random::normal_distribution<double> normal(0.0, 1.0);

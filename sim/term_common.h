@@ -26,7 +26,4 @@ bool CheckPositive(double v, std::string_view name, std::string* why);
 // out[i] += std_dev * z_i with z_i iid standard normal (Boost ziggurat), in index order.
 void AddGaussian(Engine& engine, double std_dev, std::span<double> out);
 
-// Checks tau0 > 0 and finite (every generator's precondition).
-bool CheckSamplePeriod(double tau0_s, std::string* why);
-
 }  // namespace allanlab::sim

@@ -33,7 +33,7 @@ constexpr double ToDegPerSqrtHour(double v) { return v / DegPerSqrtHour(1.0); }
 constexpr double ToDegPerHourPerSqrtHour(double v) { return v / DegPerHourPerSqrtHour(1.0); }
 constexpr double ToDegPerHourSquared(double v) { return v / DegPerHourSquared(1.0); }
 
-// sqrt(2 ln2 / pi): ADEV floor of flicker rate noise per unit B (IEEE 952 eq. C.?; THEORY.md §0).
+// sqrt(2 ln2 / pi): ADEV floor of flicker rate noise per unit B (docs/theory.md §1.3, §1.5).
 inline const double kFlickerFloorFactor = std::sqrt(2.0 * std::numbers::ln2 / kPi);
 
 }  // namespace allanlab::units

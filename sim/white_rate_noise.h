@@ -22,7 +22,7 @@ struct WhiteRateNoise {
   void AddTo(Engine& engine, double tau0_s, std::span<double> rate_rad_per_s) const;
   // R(0) = N^2 / tau0, R(j != 0) = 0, in (rad/s)^2.
   void FillAutocovariance(double tau0_s, std::span<double> r) const;
-  // Exact: AVAR(m) = N^2 / (m tau0) for every m (THEORY.md §1b).
+  // Exact: AVAR(m) = N^2 / (m tau0) for every m (docs/theory.md §2.2).
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
   // IEEE 952: N^2 / tau.
   double AsymptoticAvar(double tau_s) const;

@@ -1,6 +1,6 @@
 #pragma once
 // Covariance across taus of overlapping Allan-variance estimates under the IEEE sum model
-// (THEORY.md §2.1, Gaussian noise): what a generalised least-squares fit of the curve needs.
+// (docs/theory.md §3.1, Gaussian noise): what a generalised least-squares fit of the curve needs.
 //
 // With Y the integrated record (phase) and V(k) = E[(Y_{t+k} - Y_t)^2] its variogram, the Allan
 // difference at start s is a lag-m second difference of Y, so

@@ -6,9 +6,9 @@
 
 namespace allanlab::estimators {
 namespace {
-constexpr double kPeakFirstOrder = 0.301;   // tau_peak * fc, THEORY.md §1g
+constexpr double kPeakFirstOrder = 0.301;   // tau_peak * fc, docs/theory.md §2.9
 constexpr double kPeakButterworth2 = 0.468;
-constexpr double kPeakPerTimeConstant = 1.8926;  // tau_peak / Tc for first order (§1e)
+constexpr double kPeakPerTimeConstant = 1.8926;  // tau_peak / Tc for first order (docs/theory.md §2.6)
 }  // namespace
 
 BandwidthEstimate EstimateBandwidth(const AvarCurve& curve) {

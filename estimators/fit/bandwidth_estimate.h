@@ -2,7 +2,7 @@
 // The sensor's bandwidth from the short-tau inflection of the Allan curve (the seed paper's
 // indirect method): band-limited white rate noise has its ADEV maximum at tau = 0.301/fc for a
 // first-order low-pass (= 1.89 time constants) and 0.468/fc for a 2nd-order Butterworth
-// (THEORY.md §1g). The seed paper equates the inflection tau with the time constant; it is 1.89
+// (docs/theory.md §2.9). The seed paper equates the inflection tau with the time constant; it is 1.89
 // time constants. The peak is located by a weighted quadratic fit of log ADEV vs log tau around
 // the largest short-tau ADEV, with its uncertainty propagated from the EDFs.
 #include <string>

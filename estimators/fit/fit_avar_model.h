@@ -4,11 +4,11 @@
 //   kWls:    weighted least squares on the Allan variance in the linear domain, the sum model
 //            E[AVAR](tau) = sum_i c_i^2 S_i(tau) (seed paper eq. 3, with the exact discrete shapes
 //            S_i of sim/), c_i^2 >= 0 as Ceres bounds, weights nu/(2 E^2) from the EDF, iterated
-//            so that E comes from the fitted model (THEORY.md §4.4 (i)).
+//            so that E comes from the fitted model (docs/theory.md §4.4 (i)).
 //   kLogWls: the log-domain variant, weights nu/2, with the psi(nu/2) - ln(nu/2) bias removed
-//            (THEORY.md §4.4 (ii)).
+//            (docs/theory.md §4.4 (ii)).
 //   kGls:    generalised least squares with the full covariance Omega of the overlapping AVAR
-//            estimates across taus (avar_covariance.h, THEORY.md §2.1), the consistent estimator
+//            estimates across taus (avar_covariance.h, docs/theory.md §3.1), the consistent estimator
 //            the GMWM literature calls for (Guerrier et al. 2013) without its wavelet detour.
 //            Omega is computed ONCE from a pilot fit (log-WLS, whose weights nu/2 do not depend
 //            on the model) and then held, as GMWM holds its weight matrix. Iterating Omega(theta)

@@ -16,7 +16,7 @@ inline constexpr Coefficient kAllCoefficients[] = {Coefficient::kQ, Coefficient:
 std::string_view CoefficientId(Coefficient c);
 bool ParseCoefficient(std::string_view id, Coefficient* c);
 
-// Datasheet unit (issue 4's JSON contract): Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h),
+// Datasheet unit (the keys of `allanlab fit --json`): Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h),
 // R deg/h^2.
 std::string_view DatasheetUnit(Coefficient c);
 // SI value (Q rad, N rad/sqrt(s), B rad/s, K rad/s/sqrt(s), R rad/s^2) -> datasheet unit.

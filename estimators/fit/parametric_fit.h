@@ -1,7 +1,7 @@
 #pragma once
 // One fit of the linear IEEE 952 terms (c_i^2 >= 0) together with parametric terms
 // (parametric_term.h: Gauss-Markov, harmonic, band-limit, ...): the entry the sim-to-real
-// diagnosis (issue 6) uses to try candidate effects on top of a baseline model.
+// diagnosis (experiments/diagnosis/) uses to try candidate effects on top of a baseline model.
 //
 // The model is a sim::SensorModel built from the parameters, so its expected AVAR is sim/'s exact
 // one (band-limit and finite record included). Stages:
@@ -22,7 +22,7 @@
 // Jacobian: analytic in the linear terms, central differences in the parametric parameters
 // (ln scale); the residual functor passes Ceres' gradient check (tests). Uncertainties:
 // (J' J)^{-1} of the whitened problem at the solution, mapped back to SI.
-// No term selection here: the caller compares chi2 of nested fits (issue 6 does).
+// No term selection here: the caller compares chi2 of nested fits (the diagnosis does, docs/theory.md §6.4).
 // With the band-limit, each term's AVAR is its own exact AVAR plus the band-limit's change
 // (sim/band_limited_avar.h: exact for all but Kasdin flicker, whose start-up x band-limit product
 // is left out), so the linear terms' own shapes are computed once and a new cutoff costs

@@ -2,7 +2,7 @@
 // Effects with nonlinear parameters that a fit adds on top of the linear IEEE 952 sum model
 // (sum_i c_i^2 S_i(tau), noise_coefficient.h): a Gauss-Markov process (sigma, Tc), a harmonic
 // (Omega0, f0), the band-limit (fc, for a given filter order) and, later, any other sim effect.
-// Generic on purpose: the sim-to-real diagnosis (issue 6) fits candidate effects through the same
+// Generic on purpose: the sim-to-real diagnosis (experiments/diagnosis/) fits candidate effects through the same
 // interface. A term knows nothing about fitting; it says
 //   - what its parameters are (names, SI and datasheet units, bounds, scale),
 //   - where a fit should start, from the curve and the residual AVAR a baseline fit leaves,
@@ -29,7 +29,7 @@ namespace allanlab::estimators {
 struct ParameterSpec {
   std::string name;            // "sigma", "Tc", "Omega0", "f0", "fc"
   std::string si_unit;         // "rad/s", "s", "Hz"
-  std::string datasheet_unit;  // issue 4's JSON units: "deg/h", "s", "Hz"
+  std::string datasheet_unit;  // the JSON units of `allanlab fit`: "deg/h", "s", "Hz"
   double si_per_datasheet = 1.0;  // value_si = value_datasheet * si_per_datasheet
   // Admissible SI range. Bounds may depend on the curve (see Bounds()); these are the static ones.
   double lower_si = 0.0;

@@ -7,7 +7,7 @@
 //   K = sigma(3 s) on the +1/2 line     (AVAR = K^2 tau / 3)
 //   R = sigma(sqrt(2) s) on the +1 line (AVAR = R^2 tau^2 / 2)
 //   B = min sigma / sqrt(2 ln2 / pi)    (biased: sqrt(B^2 + 2.617 N K) with N, B, K present,
-//                                        THEORY.md §4.2)
+//                                        docs/theory.md §4.2)
 // Kept as the baseline whose bias the experiments measure, not as a recommended estimator.
 #include <array>
 #include <string>

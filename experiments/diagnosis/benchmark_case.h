@@ -1,5 +1,5 @@
 #pragma once
-// One recording of the blind diagnosis benchmark (issue 6, "Proof on data whose effect is
+// One recording of the blind diagnosis benchmark ("Proof on data whose effect is
 // withheld"): which sensor, how long, how fast, which effect (or none: a control) and how strong,
 // all drawn from (seed, index) alone.
 //
@@ -12,7 +12,7 @@
 // where E_full is the exact expected OAVAR of the recording's model (sim::SensorModel::
 // ExpectedAvar; quantizers approximated), E_fit the best the baseline can do with it (WLS fit of
 // Q, N, B, K, R to E_full, no term selection: the share of the effect the baseline absorbs is not
-// a gap), and nu the exact EDF of the baseline model (THEORY.md §2.1). ln(OAVAR_hat) has standard
+// a gap), and nu the exact EDF of the baseline model (docs/theory.md §3.1). ln(OAVAR_hat) has standard
 // deviation ~ sqrt(2 / nu), so z is the number of standard deviations by which the record's curve
 // is expected to leave the fitted model at that tau: 1 is invisible, the diagnosis flags beyond its
 // Bonferroni level (~3.6), 10 is clearly visible. Effects whose signature the baseline absorbs in

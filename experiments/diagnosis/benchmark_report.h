@@ -1,6 +1,6 @@
 #pragma once
 // The blind diagnosis benchmark's tables (results/diagnosis/benchmark.csv and .md, same content):
-// one row per recording, then the summary of benchmark_score.h with the issue 6 targets
+// one row per recording, then the summary of benchmark_score.h with the benchmark's targets
 // (false alarms on controls <= 5 %, right effect on clearly visible single effects >= 90 %,
 // held-out chi2 shrinking >= 5x for right diagnoses). Deterministic text: no timings, no dates
 // beyond those in the provenance lines the caller passes.

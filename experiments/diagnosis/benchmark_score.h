@@ -1,5 +1,5 @@
 #pragma once
-// Scoring of the blind diagnosis benchmark (issue 6): each recording's diagnosis (read back from
+// Scoring of the blind diagnosis benchmark: each recording's diagnosis (read back from
 // the JSON `allanlab diagnose` wrote) against the effect it was not told, and the tables:
 //   confusion matrix (true effect x verdict), detection and right-effect rates per strength bin,
 //   false-alarm rate on controls, the right effect on clearly visible single effects, localization

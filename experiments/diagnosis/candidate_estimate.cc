@@ -70,7 +70,7 @@ std::optional<EffectInstance> Bump(Effect effect, const EstimateInputs& in, std:
     return std::nullopt;
   }
   // The OU Allan variance peaks (in tau * AVAR, i.e. where it dominates a white floor most) near
-  // tau = 1.89 Tc, as the first-order low-pass of THEORY.md §1g.
+  // tau = 1.89 Tc, as the first-order low-pass of docs/theory.md §2.9.
   const double tc = c.tau_s[best] / 1.89;
   sim::GaussMarkov unit;
   unit.sigma_rad_per_s = 1.0;

@@ -1,5 +1,5 @@
 #pragma once
-// Sim-to-real gap diagnosis (issue 6): where a recording departs from its fitted IEEE 952 model,
+// Sim-to-real gap diagnosis (docs/theory.md §6): where a recording departs from its fitted IEEE 952 model,
 // which unmodelled effect (effect.h) explains it, and how far the gap shrinks once it is added.
 //
 // 1. Baseline: GLS fit of the asked terms (estimators/fit/fit_avar_model.h) on the record's

@@ -1,10 +1,10 @@
 #pragma once
-// Standardised residuals of a record against a model, the gap metrics of issue 6 ("How far it
+// Standardised residuals of a record against a model, the gap metrics (docs/theory.md §6.2; "How far it
 // shrinks": chi2, fraction inside the 95 % band, largest |z|) and the gap regions.
 //
 // Each residual is turned into an equivalent normal deviate z = Phi^{-1}(P) of its tail
 // probability under the model, so every view speaks the same language:
-//   exact (OAVAR): OAVAR_hat nu / E ~ chi2_nu with nu = 2 E^2 / Var the exact EDF (THEORY.md §2.1),
+//   exact (OAVAR): OAVAR_hat nu / E ~ chi2_nu with nu = 2 E^2 / Var the exact EDF (docs/theory.md §3.1),
 //     the log-domain chi-square that stays honest at few terms;
 //   Monte Carlo: (x - mean) / (sd sqrt(1 + 1/n)) ~ Student t_{n-1} for n simulated records (the
 //     prediction interval of one more draw; exact for Gaussian statistics, and logs of

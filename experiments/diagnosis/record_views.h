@@ -1,5 +1,5 @@
 #pragma once
-// The views through which `diagnose` compares a record with a model (issue 6, "Where"): each is a
+// The views through which `diagnose` compares a record with a model (docs/theory.md §6.1): each is a
 // vector of statistics of the record, computed identically on the real record and on records
 // simulated from the model, so the simulated ones form its envelope.
 //   oavar:    ln OAVAR(m) on the fit's tau grid (drift-sensitive, the curve people look at)

@@ -1,4 +1,4 @@
-// End-to-end tests of `allanlab diagnose`: the JSON contract of issue 6 (stable keys) on a
+// End-to-end tests of `allanlab diagnose`: the JSON output (stable keys) on a
 // simulated record, and clear refusals. The built binary runs in a fresh directory per test.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -70,7 +70,7 @@ TEST_F(DiagnoseCommandTest, RefusesTooShortRecordsAndMissingInput) {
   EXPECT_EQ(Run(curve), 2);  // no --record-length / --rate
 }
 
-// Robustness (issue 6): a stuck stretch is named (stderr and the JSON notes), not silently
+// Robustness: a stuck stretch is named (stderr and the JSON notes), not silently
 // blamed on an effect; a NaN is refused with its line, or dropped with --drop-nonfinite.
 TEST_F(DiagnoseCommandTest, NamesStuckStretchesAndRefusesNaN) {
   WriteRecord("rec.csv", 8192);

@@ -1,5 +1,5 @@
 // End-to-end tests of `allanlab fit`: a simulated record with known coefficients, the JSON
-// contract of issue 4, the Kalibr file, and clear refusals. The built binary runs in a fresh
+// keys of `fit --json`, the Kalibr file, and clear refusals. The built binary runs in a fresh
 // directory per test.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

@@ -1,5 +1,5 @@
 // Kalibr's gyroscope keys are the continuous-time densities: N in rad/sqrt(s) and K in
-// rad/s/sqrt(s) (DESIGN.md "Units of the robotics convention"), written with their units.
+// rad/s/sqrt(s) (docs/theory.md §1.5), written with their units.
 #include <string>
 
 #include <gtest/gtest.h>

@@ -175,7 +175,7 @@ TEST(AllanFamily, TimeVarianceIsTauSquaredModifiedOverThree) {
   }
 }
 
-// Exact values for deterministic signals (THEORY.md §1: a rate ramp R k tau0 has Allan
+// Exact values for deterministic signals (docs/theory.md §2: a rate ramp R k tau0 has Allan
 // difference R tau, so AVAR = R^2 tau^2 / 2 for every estimator; Hadamard removes it).
 TEST(AllanFamily, RateRampGivesExactAllanAndZeroHadamard) {
   const double r = 0.3, tau0 = 0.5;

@@ -3,7 +3,7 @@
 #include <limits>
 #include <string>
 
-#include "estimators/avar_summary.h"
+#include "estimators/avar_options.h"
 
 namespace allanlab::estimators {
 namespace {

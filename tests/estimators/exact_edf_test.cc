@@ -1,4 +1,4 @@
-// The exact EDF of (O)AVAR under a noise model reproduces the "exact" columns of THEORY.md §2.2
+// The exact EDF of (O)AVAR under a noise model reproduces the "exact" columns of docs/theory.md §3.2
 // (three decimals printed, so the tolerance is half a unit of the last digit) and the white-noise
 // closed form.
 #include "estimators/exact_edf.h"
@@ -62,7 +62,7 @@ TEST(ExactEdf, QuantizationMatchesTheoryTable) {
               {{1000, 10, 507.173, 51.180}, {1000, 100, 440.207, 4.909}}, 5e-4);
 }
 
-// THEORY.md §2.2: non-overlapping white rate noise, M clusters: EDF = 2 (M - 1)^2 / (3M - 4).
+// docs/theory.md §3.2: non-overlapping white rate noise, M clusters: EDF = 2 (M - 1)^2 / (3M - 4).
 TEST(ExactEdf, WhiteNonOverlappingClosedForm) {
   const sim::SensorModel model = SingleTermModel(sim::WhiteRateNoise{0.3}, 100.0);
   const std::vector<std::int64_t> ms = {1, 3, 7, 50, 333};

@@ -1,7 +1,7 @@
 // ModelStatisticMoments (exact_quadratic_moments.h, exact_edf.h) against an independent brute
 // force: the estimator code itself, applied to basis records, gives the matrix A of its quadratic
 // form y'Ay (polarisation), and E = tr(A Sigma), Var = 2 tr((A Sigma)^2) with Sigma the
-// record's covariance written out here from the generator's definition (THEORY.md §1):
+// record's covariance written out here from the generator's definition (docs/theory.md §2):
 // white: s^2 I; discrete random walk y_k = sum_{l<=k} w_l: s_w^2 (min(i,j) + 1) (the true,
 // non-stationary covariance, not the generalised R the fast path uses); quantization
 // y_k = theta_k - theta_{k-1}: Q^2 (2, -1) tridiagonal; stationary-increment Kasdin flicker: the
@@ -118,7 +118,7 @@ TEST(ExactQuadraticMoments, MatchBruteForceTraceOfTheEstimatorsQuadraticForm) {
 }
 
 // The filters' own normalisation: on a unit white record the modified and Hadamard filters have
-// the closed-form expectations of THEORY.md §1b (MVAR = s^2 (m^2 + 1) / (2 m^3), HVAR = s^2 / m).
+// the closed-form expectations of docs/theory.md §2.2 (MVAR = s^2 (m^2 + 1) / (2 m^3), HVAR = s^2 / m).
 TEST(ExactQuadraticMoments, FilterNormalisationMatchesWhiteNoiseClosedForms) {
   for (std::int64_t m : {1, 2, 7, 30}) {
     double sq_mod = 0.0, sq_had = 0.0;

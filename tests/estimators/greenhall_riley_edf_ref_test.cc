@@ -1,5 +1,5 @@
 // Tier a: the Greenhall & Riley (2003) EDF algorithm reproduces the reference
-// values of THEORY.md §2.4 (allantools' edf_greenhall, the algorithm Stable32
+// values of docs/theory.md §3.4 (allantools' edf_greenhall, the algorithm Stable32
 // uses; four decimals, checked to 1e-4 relative) and the "GR" columns of the
 // §2.2 table (three decimals). For white phase the algorithm is exact, which
 // checks the case-4 branch against the exact recipe of §2.1.
@@ -64,7 +64,7 @@ TEST(GreenhallRileyEdf, UnitValuesOfTheory) {
     EXPECT_TRUE(EdfNear(c, 1e-4 * c.edf));
 }
 
-// THEORY.md §2.2, "ovl GR" and "non-ovl GR" columns; N there counts rate
+// docs/theory.md §3.2, "ovl GR" and "non-ovl GR" columns; N there counts rate
 // samples, the algorithm takes phase points N + 1.
 TEST(GreenhallRileyEdf, TheoryTableColumns) {
   struct Row {

@@ -80,7 +80,7 @@ TEST(Stable32PhaseDat, Total) {
   ExpectTableMatches(Statistic::kTotal, "phase_dat_totdev_octave.txt");
 }
 
-// THEORY.md §2.4's end-to-end check, white FM (alpha = 0) forced: OADEV at tau = 1, 8, 128 s.
+// docs/theory.md §3.4's end-to-end check, white FM (alpha = 0) forced: OADEV at tau = 1, 8, 128 s.
 // Our intervals use exact chi-square quantiles; at EDF 782 and 166 (tau = 1, 8) Stable32's
 // approximate ones make its interval up to 0.7 % narrower, i.e. bounds differ by up to 4e-4
 // relative, and Stable32Interval closes that gap to the printed digits.

@@ -1,4 +1,4 @@
-// The avar_error_bars driver against closed-form white-noise theory (THEORY.md §2.2), and its
+// The avar_error_bars driver against closed-form white-noise theory (docs/theory.md §3.2), and its
 // report's files.
 #include "experiments/avar_error_bars.h"
 
@@ -103,7 +103,7 @@ TEST_F(AvarErrorBarsTest, RatiosAreUnbiased) {
 }
 
 // The scatter matches the exact EDF and, for non-overlapping white noise, exceeds the simple
-// formula's by the factor 1.5 in variance (THEORY.md §2.3). SE of a sample variance of
+// formula's by the factor 1.5 in variance (docs/theory.md §3.3). SE of a sample variance of
 // chi-square-like values: sqrt(2/n + 12/(edf n)) relative.
 TEST_F(AvarErrorBarsTest, ScatterMatchesExactEdfNotTheSimpleFormula) {
   for (std::int64_t m : {4, 16}) {

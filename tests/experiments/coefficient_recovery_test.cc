@@ -49,7 +49,7 @@ TEST(CoefficientTrial, TruthOfThePresets) {
   EXPECT_FALSE(t.has(Coefficient::kR));
   EXPECT_NEAR(estimators::ToDatasheetUnit(Coefficient::kN, t.at(Coefficient::kN)), 0.0267, 1e-12);
   EXPECT_NEAR(estimators::ToDatasheetUnit(Coefficient::kB, t.at(Coefficient::kB)), 0.1806, 1e-12);
-  // THEORY.md §4.2 example: N 0.1 deg/sqrt(h), B 0.2 deg/h, K 0.5 deg/h/sqrt(h) -> 0.413 deg/h.
+  // docs/theory.md §4.2 example: N 0.1 deg/sqrt(h), B 0.2 deg/h, K 0.5 deg/h/sqrt(h) -> 0.413 deg/h.
   TrueCoefficients example;
   example.value_si[1] = estimators::FromDatasheetUnit(Coefficient::kN, 0.1);
   example.value_si[2] = estimators::FromDatasheetUnit(Coefficient::kB, 0.2);
@@ -58,7 +58,7 @@ TEST(CoefficientTrial, TruthOfThePresets) {
 }
 
 TEST(CoefficientTrial, FitTausStartWhereTheBandLimitDeficitIsSmall) {
-  // tg100: first-order 100 Hz; THEORY.md §1g: AVAR within 0.5 % of N^2/tau from tau fc ~ 48.
+  // tg100: first-order 100 Hz; docs/theory.md §2.9: AVAR within 0.5 % of N^2/tau from tau fc ~ 48.
   const SweepPoint p = PresetPoint("tg100", 50.0, 1200.0, 0);
   std::vector<std::int64_t> octave;
   for (std::int64_t m = 1; m <= p.num_samples / 2; m *= 2) octave.push_back(m);
@@ -123,10 +123,10 @@ TEST(CoefficientTrial, GlsAndWlsRecoverTg100WithinTheirEdfError) {
   ASSERT_EQ(stats.size(), 1u);
   const PointStats& s = stats[0];
   const SweepPoint& p = spec.points[0];
-  // EDF of the shortest fitted tau (white noise, overlapping, THEORY.md §2.2: 1.5 T/tau) bounds
+  // EDF of the shortest fitted tau (white noise, overlapping, docs/theory.md §3.2: 1.5 T/tau) bounds
   // the single-trial relative sd of N from above: 0.5 sqrt(2 / EDF) (any of the fits uses that
   // tau and more). B has far fewer degrees of freedom: its flicker floor starts at ~4 s, so its
-  // bound is the EDF at the record's quarter length (flicker, ~ 1.2 T/tau, THEORY.md §2.2).
+  // bound is the EDF at the record's quarter length (flicker, ~ 1.2 T/tau, docs/theory.md §3.2).
   std::vector<std::int64_t> octave;
   for (std::int64_t m = 1; m <= p.num_samples / 2; m *= 2) octave.push_back(m);
   const double tau_min = SmallestFitAveragingFactor(p.model, p.sample_rate_hz, p.num_samples, octave) /
@@ -193,7 +193,7 @@ TEST(CoefficientTrial, SlopeMethodReadsWhiteNoiseAlone) {
   const ColumnStats* gls = stats[0].Find("rel_err/gls/N");
   ASSERT_NE(slope, nullptr);
   ASSERT_NE(gls, nullptr);
-  // m = 1 carries EDF ~ 2(N-1)^2/(3N-4) ~ 2N/3 (THEORY.md §2.2): relative sd of N >= 0.5 sqrt(3/N).
+  // m = 1 carries EDF ~ 2(N-1)^2/(3N-4) ~ 2N/3 (docs/theory.md §3.2): relative sd of N >= 0.5 sqrt(3/N).
   const double sd = 0.5 * std::sqrt(2.0 / (2.0 * p.num_samples / 3.0));
   EXPECT_EQ(slope->count, spec.trials);
   EXPECT_LE(std::abs(gls->mean), testing_support::kZ * 3.0 * sd / std::sqrt(30.0)) << gls->mean;

@@ -1,5 +1,5 @@
 // The seed_paper driver on a short TG-100 record against the exact OAVAR expectation, the truth
-// helpers against THEORY.md §4.2, and its report's files.
+// helpers against docs/theory.md §4.2, and its report's files.
 #include "experiments/seed_paper.h"
 
 #include <cmath>
@@ -48,7 +48,7 @@ TEST(SeedPaperTruth, PresetsAndTheFloorFormula) {
   EXPECT_NEAR(a.b_deg_per_h, 0.1806, 1e-9);
   EXPECT_NEAR(a.k_deg_per_h_per_sqrt_h, 0.03, 1e-9);
   EXPECT_NEAR(a.cutoff_hz, 100.0, 1e-12);
-  // THEORY.md §4.2: B_read = sqrt(B^2 + 2.617 N K) in datasheet units (consistent: deg^2/h^2).
+  // docs/theory.md §4.2: B_read = sqrt(B^2 + 2.617 N K) in datasheet units (consistent: deg^2/h^2).
   EXPECT_NEAR(a.b_floor_deg_per_h, std::sqrt(0.1806 * 0.1806 + 2.617 * 0.0267 * 0.03), 2e-5);
   EXPECT_NEAR(b.n_deg_per_sqrt_h, 0.0183, 1e-9);
   EXPECT_NEAR(b.b_floor_deg_per_h, 0.8731, 1e-9);  // no RRW: the floor is B itself

@@ -1,6 +1,7 @@
 // `allanlab validate`: the quick set passes against the committed golden tables, and a 3 % scale
-// error injected into the Allan estimates or into the coefficients (experiments/injected_fault.h)
-// makes it fail, naming what moved. Also --update and the refusals.
+// error injected into the Allan estimates or into the coefficients (experiments/injected_fault.h,
+// through RunValidateCommand in this process) makes it fail, naming what moved. Also --update and
+// the refusals, through the built binary.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/validate_command.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {
@@ -42,6 +44,23 @@ class ValidateCommandTest : public ::testing::Test {
   }
   std::string Read(const std::string& name) { return testing_support::ReadAll(dir_ / name); }
 
+  // RunValidateCommand in this process with a fault in the drivers; stdout and stderr are
+  // captured into out_ and err_.
+  int RunWithFault(const std::string& specs, const experiments::InjectedFault& fault) {
+    ValidateCommandOptions options;
+    options.quick = true;
+    options.threads = 2;
+    options.specs_dir = specs;
+    options.fault = fault;
+    ::testing::internal::CaptureStdout();
+    ::testing::internal::CaptureStderr();
+    const int code = RunValidateCommand(options, "validate --quick --threads 2 --specs " + specs);
+    out_ = ::testing::internal::GetCapturedStdout();
+    err_ = ::testing::internal::GetCapturedStderr();
+    return code;
+  }
+  std::string out_, err_;
+
   // A spec folder holding copies of some of the source tree's quick specs (compared with the
   // committed golden tables, which --golden defaults to).
   std::string QuickSubset(std::initializer_list<const char*> names) {
@@ -60,18 +79,15 @@ class ValidateCommandTest : public ::testing::Test {
 // (The clean quick set against the committed golden tables is the ctest `validate_quick`.)
 TEST_F(ValidateCommandTest, InjectedAvarScaleErrorIsARegression) {
   const std::string specs = QuickSubset({"avar_bias_quick", "avar_error_bars_quick"});
-  ASSERT_EQ(Run("ALLANLAB_INJECT_AVAR_SCALE=1.03", "validate --quick --threads 2 --specs " + specs),
-            1)
-      << Read("out.txt") << Read("err.txt");
-  const std::string out = Read("out.txt");
+  ASSERT_EQ(RunWithFault(specs, {.avar_scale = 1.03}), 1) << out_ << err_;
+  const std::string& out = out_;
   EXPECT_NE(out.find("moved: avar_bias_quick point 0 avar_ratio/overlapping/m=1: "),
             std::string::npos)
       << out;
   EXPECT_NE(out.find("moved: avar_error_bars_quick point 0 ratio/overlapping/m=1: "),
             std::string::npos)
       << out;
-  EXPECT_NE(Read("err.txt").find("allanlab validate: error: regression: "), std::string::npos)
-      << Read("err.txt");
+  EXPECT_NE(err_.find("allanlab validate: error: regression: "), std::string::npos) << err_;
 }
 
 // A 3 % error in every coefficient the drivers read or fit is caught by the coefficient tables'
@@ -79,16 +95,13 @@ TEST_F(ValidateCommandTest, InjectedAvarScaleErrorIsARegression) {
 TEST_F(ValidateCommandTest, InjectedCoefficientScaleErrorIsARegression) {
   const std::string specs =
       QuickSubset({"coefficient_recovery_quick", "record_length_quick", "seed_paper_quick"});
-  ASSERT_EQ(Run("ALLANLAB_INJECT_COEFFICIENT_SCALE=1.03",
-                "validate --quick --threads 2 --specs " + specs),
-            1)
-      << Read("out.txt") << Read("err.txt");
-  const std::string out = Read("out.txt");
+  ASSERT_EQ(RunWithFault(specs, {.coefficient_scale = 1.03}), 1) << out_ << err_;
+  const std::string& out = out_;
   for (const char* moved : {"moved: coefficient_recovery_quick point 0 rel_err/gls/N: ",
                             "moved: coefficient_recovery_quick point 0 rel_err/wls/N: ",
                             "moved: record_length_quick point 1 rel_err/gls/N: ",
                             "moved: seed_paper_quick point 0 N_line/slope: "}) {
-    EXPECT_NE(out.find(moved), std::string::npos) << moved << '\n' << out << Read("err.txt");
+    EXPECT_NE(out.find(moved), std::string::npos) << moved << '\n' << out << err_;
   }
 }
 

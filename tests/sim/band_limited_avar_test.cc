@@ -11,6 +11,7 @@
 
 #include "sim/avar_theory.h"
 #include "sim/band_limited_avar.h"
+#include "sim/sensor_model.h"
 #include "sim/units.h"
 
 namespace allanlab::sim {
@@ -111,18 +112,29 @@ TEST(BandLimitedAvarTest, StationaryFlickerMatchesTheDirectSum) {
   }
 }
 
-TEST(BandLimitedAvarTest, ModelAgreesWithTheSensorModelChainPath) {
-  // Quantization, white noise, RRW and the ramp: exact.
+TEST(BandLimitedAvarTest, SensorModelMatchesTheDirectSumOfItsTerms) {
+  // SensorModel::ExpectedAvar against an independent route: quantization (after the filter) and
+  // the ramp (filter-invariant) by their own closed forms, white noise and the random walk by the
+  // direct quadratic form over the chain's output autocovariance.
+  const QuantizationNoise quantization{1e-7};
+  const WhiteRateNoise white{units::DegPerSqrtHour(0.0267)};
+  const RandomWalkRate walk{units::DegPerHourPerSqrtHour(0.03)};
+  const RateRamp ramp{units::DegPerHourSquared(5.0)};
   SensorModel model;
   model.sample_rate_hz = kRate;
-  model.terms = {QuantizationNoise{1e-7}, WhiteRateNoise{units::DegPerSqrtHour(0.0267)},
-                 RandomWalkRate{units::DegPerHourPerSqrtHour(0.03)}, RateRamp{units::DegPerHourSquared(5.0)}};
+  model.terms = {quantization, white, walk, ramp};
+  const double tau0 = 1.0 / kRate;
   for (const ChainCase& c : Cases()) {
     model.band_limit = BandLimit{c.kind, c.fc_hz, c.oversampling, c.sampling};
-    const std::vector<double> fast = FastExpectedAvar(model, kMs, kShape);
-    const std::vector<double> slow = model.ExpectedAvar(kMs, kShape);
+    const BandLimitChain chain(model.band_limit, kRate);
+    const double internal_var = white.arw_rad_per_sqrt_s * white.arw_rad_per_sqrt_s / chain.internal_period_s();
+    const std::vector<double> model_avar = model.ExpectedAvar(kMs, kShape);
     for (std::size_t k = 0; k < std::size(kMs); ++k) {
-      EXPECT_NEAR(fast[k] / slow[k], 1.0, 1e-12) << "fc " << c.fc_hz << " L " << c.oversampling << " m " << kMs[k];
+      const std::int64_t m = kMs[k];
+      const double direct = quantization.ExpectedAvar(m, tau0, kShape) +
+                            AvarFromAutocovariance(m, chain.WhiteOutputAutocovariance(internal_var, 2 * m)) +
+                            DirectHeld(walk, chain, m) + ramp.ExpectedAvar(m, tau0, kShape);
+      EXPECT_NEAR(model_avar[k] / direct, 1.0, 1e-11) << "fc " << c.fc_hz << " L " << c.oversampling << " m " << m;
     }
   }
 }
@@ -138,8 +150,8 @@ TEST(BandLimitedAvarTest, KasdinFlickerDiffersByAStartUpTermOnly) {
   model.terms = {FlickerNoise{units::DegPerHour(0.18)}};
   for (const ChainCase& c : Cases()) {
     model.band_limit = BandLimit{c.kind, c.fc_hz, c.oversampling, c.sampling};
-    const std::vector<double> fast = FastExpectedAvar(model, kMs, kShape);
-    const std::vector<double> slow = model.ExpectedAvar(kMs, kShape);
+    const std::vector<double> fast = model.ExpectedAvar(kMs, kShape, FlickerBandLimit::kStationaryChange);
+    const std::vector<double> slow = model.ExpectedAvar(kMs, kShape, FlickerBandLimit::kExact);
     const double tc = kRate / (2.0 * std::numbers::pi * c.fc_hz);
     for (std::size_t k = 0; k < std::size(kMs); ++k) {
       const double t = static_cast<double>(kShape.num_samples - 2 * kMs[k] + 1);

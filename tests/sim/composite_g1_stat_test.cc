@@ -1,4 +1,4 @@
-// THEORY.md §3.2 / §3.4: composite model G1 (tau0 = 1, N = 2^18: quantization Q^2 = 0.25, white
+// docs/theory.md §7.2 / §7.4: composite model G1 (tau0 = 1, N = 2^18: quantization Q^2 = 0.25, white
 // s^2 = 1, Kasdin flicker B = 0.03, random-walk step variance 9e-8). The theory code reproduces
 // the published E[AVAR] and estimator SDs, and the Monte Carlo mean agrees with it.
 #include <cmath>
@@ -27,7 +27,7 @@ struct Row {
   std::int64_t m;
   double avar, sd_ovl, sd_non;
 };
-// THEORY.md §3.2 (E[AVAR] with stationary-increment flicker; SDs of the two estimators).
+// docs/theory.md §7.2 (E[AVAR] with stationary-increment flicker; SDs of the two estimators).
 const std::vector<Row> kTable = {
     {1, 1.750573e+00, 6.236e-03, 6.236e-03},     {4, 2.972921e-01, 1.306e-03, 2.048e-03},
     {16, 6.582913e-02, 5.732e-04, 8.942e-04},    {64, 1.620732e-02, 2.897e-04, 4.372e-04},

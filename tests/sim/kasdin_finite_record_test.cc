@@ -1,5 +1,5 @@
 // The O(log N) finite-record flicker expectation (sim/kasdin_finite_record.h) against the direct
-// O(N) sum of THEORY.md §1d (FiniteRecordAvar on the Kasdin running sums), an independent slow
+// O(N) sum of docs/theory.md §2.5.3 (FiniteRecordAvar on the Kasdin running sums), an independent slow
 // computation: every piece (exact head, Gregory ends, Gauss-Legendre panels) must reproduce it.
 #include <cmath>
 #include <cstdint>

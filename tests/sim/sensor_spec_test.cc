@@ -304,7 +304,7 @@ const T& OnlyTerm(const SensorModel& m) {
   return *found;
 }
 
-// Seed paper (Mikheev et al. 2021), corrected per THEORY.md §5.3-5.4: N = sigma(1 s)/60 and
+// Seed paper (Mikheev et al. 2021), corrected per docs/theory.md §8.3-8.4: N = sigma(1 s)/60 and
 // B = floor / sqrt(2 ln2 / pi).
 struct SeedCase {
   const char* preset;

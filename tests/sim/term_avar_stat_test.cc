@@ -1,6 +1,6 @@
 // Tier b: for every noise term, the Monte Carlo mean of the overlapping and non-overlapping Allan
 // variance at octave m = 1 .. N/8 matches the term's exact expected AVAR, including the small-m
-// departures from the IEEE 952 asymptote, within z = 5 exact standard errors (THEORY.md §2.1).
+// departures from the IEEE 952 asymptote, within z = 5 exact standard errors (docs/theory.md §3.1).
 #include <cmath>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 // Tier a: the exact expected Allan variances reproduce the values derived and checked in
-// THEORY.md (closed forms, spectral integrals, published filter coefficients). Tolerances are the
+// docs/theory.md (closed forms, spectral integrals, published filter coefficients). Tolerances are the
 // printed digits of those values.
 #include <cmath>
 #include <numbers>
@@ -16,7 +16,7 @@ namespace {
 
 constexpr RecordShape kLongRecord{std::int64_t{1} << 22, AvarEstimatorKind::kOverlapping};
 
-// THEORY.md §1d table: stationary Kasdin flicker AVAR / s_w^2 (8 digits).
+// docs/theory.md §2.5.2 table: stationary Kasdin flicker AVAR / s_w^2 (8 digits).
 TEST(FlickerTheory, StationaryValuesMatchTable) {
   const FlickerNoise f{1.0};
   const std::vector<std::pair<std::int64_t, double>> table = {
@@ -27,7 +27,7 @@ TEST(FlickerTheory, StationaryValuesMatchTable) {
   EXPECT_NEAR(f.AsymptoticAvar(1.0), 0.44127120, 6e-9);
 }
 
-// THEORY.md §1d finite-record values, N = 4096 (5 digits).
+// docs/theory.md §2.5.3 finite-record values, N = 4096 (5 digits).
 TEST(FlickerTheory, FiniteRecordDeficitMatchesTable) {
   const FlickerNoise f{1.0};
   const RecordShape ovl{4096, AvarEstimatorKind::kOverlapping};
@@ -38,7 +38,7 @@ TEST(FlickerTheory, FiniteRecordDeficitMatchesTable) {
   EXPECT_NEAR(f.ExpectedAvar(1024, 1.0, non), 0.42718, 6e-6);
 }
 
-// The deficit depends only on m/N (THEORY.md §1d): E[OAVAR]/(2 ln2/pi) = 0.98150 at m = N/4
+// The deficit depends only on m/N (docs/theory.md §2.5.3): E[OAVAR]/(2 ln2/pi) = 0.98150 at m = N/4
 // after removing the small-m excess.
 TEST(FlickerTheory, DeficitDependsOnRatioOnly) {
   const FlickerNoise f{1.0};
@@ -58,7 +58,7 @@ TEST(RandomWalkTheory, ClosedFormEqualsQuadraticForm) {
     EXPECT_NEAR(AvarFromAutocovariance(m, r), k.ExpectedAvar(m, 0.01, kLongRecord),
                 1e-12 * k.ExpectedAvar(m, 0.01, kLongRecord));
   }
-  // §1c: m = 3 gives s_w^2 (2 m^2 + 1)/(6m) = 1.05556 s_w^2, not K^2 tau/3 = 1.
+  // docs/theory.md §2.3: m = 3 gives s_w^2 (2 m^2 + 1)/(6m) = 1.05556 s_w^2, not K^2 tau/3 = 1.
   EXPECT_NEAR(RandomWalkRate{1.0}.ExpectedAvar(3, 1.0, kLongRecord), 19.0 / 18.0, 1e-15);
 }
 
@@ -71,7 +71,7 @@ TEST(QuantizationTheory, ExactForEveryM) {
   }
 }
 
-// §1e: the discrete AR(1) form converges to the continuous OU form (5 digits for tau >= 0.1 Tc)
+// docs/theory.md §2.6: the discrete AR(1) form converges to the continuous OU form (5 digits for tau >= 0.1 Tc)
 // and the continuous OU ADEV peaks at tau = 1.8926 Tc with 0.6174 sigma.
 TEST(GaussMarkovTheory, DiscreteMatchesContinuousAndPeak) {
   const GaussMarkov gm{1.0, 1.0};
@@ -89,7 +89,7 @@ TEST(GaussMarkovTheory, DiscreteMatchesContinuousAndPeak) {
   EXPECT_NEAR(std::sqrt(best), 0.6174, 1e-4);
 }
 
-// §1f: f0 = 7.3 Hz, tau0 = 0.01 s: discrete 0.05168/0.53405/0.06126 at m = 1/5/10, continuous
+// docs/theory.md §2.7: f0 = 7.3 Hz, tau0 = 0.01 s: discrete 0.05168/0.53405/0.06126 at m = 1/5/10, continuous
 // 0.05078/0.52476/0.06019; ADEV peak 0.7246 Omega0 at f0 tau = 0.3710; the seed paper's unsquared
 // form would give 0.2122 instead of 0.0450 at f0 tau = 1.5.
 TEST(HarmonicTheory, DiscreteAndContinuousValues) {
@@ -107,7 +107,7 @@ TEST(HarmonicTheory, DiscreteAndContinuousValues) {
   EXPECT_NEAR(std::sin(x) * std::sin(x) / x, 0.2122, 1e-4);  // the seed paper's unsquared form
 }
 
-// §1g table "digital filters at fs = 1 kHz, fc = 100 Hz": m AVAR(m) for unit white input,
+// docs/theory.md §2.9 table of digital filters at fs = 1 kHz, fc = 100 Hz: m AVAR(m) for unit white input,
 // bilinear BW2 and the exponential smoother (our first-order filter), at oversampling 1.
 TEST(BandLimitTheory, DigitalFilterTableAtOversamplingOne) {
   const std::vector<std::int64_t> ms = {1, 2, 5, 10, 100, 1000};
@@ -124,7 +124,7 @@ TEST(BandLimitTheory, DigitalFilterTableAtOversamplingOne) {
   }
 }
 
-// §1g: for a continuous filter, AVAR/(N^2/tau) at tau fc = 1, 2, 5, 10 is 0.7619/0.8806/0.9523/
+// docs/theory.md §2.9: for a continuous filter, AVAR/(N^2/tau) at tau fc = 1, 2, 5, 10 is 0.7619/0.8806/0.9523/
 // 0.9761 (1st order) and 0.8331/0.9156/0.9662/0.9831 (BW2); the ADEV maximum (the seed paper's
 // "inflection") is at tau = 0.301/fc and 0.468/fc. A fast internal rate approximates the
 // continuous filter.
@@ -152,9 +152,9 @@ TEST(BandLimitTheory, ApproachesContinuousFilterAndInflection) {
   }
 }
 
-// §1d: a GM bank of one process per decade ripples 0.982..1.020 about the flicker floor for tau
+// docs/theory.md §2.5.5: a GM bank of one process per decade ripples 0.982..1.020 about the flicker floor for tau
 // in [0.1, 1000] s (T from 1e-4 to 1e6 s); r = 3 gives 0.9992..1.0001. On a 400-point grid the
-// per-decade minimum is 0.9801 (the ripple is symmetric about 1: 0.9801..1.0198); THEORY.md's
+// per-decade minimum is 0.9801 (the ripple is symmetric about 1: 0.9801..1.0198); docs/theory.md's
 // 0.982 comes from a coarser tau grid, so the lower bound is checked to its 3rd digit only.
 TEST(GaussMarkovSumTheory, RippleMatchesTheory) {
   const FlickerGaussMarkovSum decade{1.0, 1e-4, 1e6, 1.0};
@@ -198,7 +198,7 @@ namespace allanlab::sim {
 namespace {
 
 // Output sampling of the band-limit (mg25_mems-like: fs = 400 Hz, first order at 100 Hz, L = 8).
-// Averaging keeps the white level: at tau = 1 s only the 0.24 % filter deficit of THEORY.md §1g
+// Averaging keeps the white level: at tau = 1 s only the 0.24 % filter deficit of docs/theory.md §2.9
 // remains. Point sampling aliases the filter's tail: the white level rises by
 // sum_k |H(k fs)|^2 = (pi fc/fs) coth(pi fc/fs) = 1.1977 for a continuous RC; the internal
 // exponential smoother at 3.2 kHz matches that within 1 %.

@@ -1,6 +1,6 @@
 #pragma once
-// Monte Carlo checks of generators against exact theory (DESIGN.md tier b). Tolerances come from
-// the estimator's exact variance (THEORY.md §2.1), never from guesses: the mean of `trials`
+// Monte Carlo checks of generators against exact theory (the statistical tier, docs/architecture.md "Conventions"). Tolerances come from
+// the estimator's exact variance (docs/theory.md §3.1), never from guesses: the mean of `trials`
 // independent AVAR estimates must lie within z * SD / sqrt(trials) of the exact expectation.
 #include <cstdint>
 #include <functional>
@@ -28,7 +28,7 @@ AvarSample SimulateAvar(const sim::SensorModel& model, std::uint64_t seed, int t
                         std::int64_t n, std::span<const std::int64_t> ms,
                         sim::AvarEstimatorKind kind);
 
-// Exact SD of one AVAR estimate at each m for the model's Gaussian part (THEORY.md §2.1).
+// Exact SD of one AVAR estimate at each m for the model's Gaussian part (docs/theory.md §3.1).
 std::vector<double> ExactAvarStdDev(const sim::SensorModel& model, std::int64_t n,
                                     std::span<const std::int64_t> ms, sim::AvarEstimatorKind kind);
 

@@ -1,4 +1,4 @@
-// The cross-tau covariance model reproduces the exact single-tau variance of THEORY.md §2.1
+// The cross-tau covariance model reproduces the exact single-tau variance of docs/theory.md §3.1
 // (estimators::ExactAvarMoments, itself checked against THEORY §3.2) on the diagonal, and the
 // published white-noise Cov(OAVAR(4), OAVAR(8)) off it.
 #include <cmath>
@@ -58,7 +58,7 @@ TEST(AvarCovariance, LongestTausKeepTheirVariance) {
 }
 
 TEST(AvarCovariance, WhiteNoiseCrossCovarianceMatchesTheory) {
-  // THEORY.md §2.1: white noise, N = 1000, Cov(OAVAR(4), OAVAR(8)) = 1.296e-4 (exact recipe).
+  // docs/theory.md §3.1: white noise, N = 1000, Cov(OAVAR(4), OAVAR(8)) = 1.296e-4 (exact recipe).
   AvarCurve curve;
   curve.sample_period_s = 1.0;
   curve.num_samples = 1000;

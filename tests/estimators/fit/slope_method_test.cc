@@ -1,5 +1,5 @@
 // The slope method reproduces its textbook readings on hand-checkable curves, its known bias
-// (B read at the minimum is sqrt(B^2 + 2.617 N K), THEORY.md §4.2) shows up as predicted, and
+// (B read at the minimum is sqrt(B^2 + 2.617 N K), docs/theory.md §4.2) shows up as predicted, and
 // the seed paper's conversions are pinned (with the paper's misprints recorded).
 #include <cmath>
 #include <vector>
@@ -39,7 +39,7 @@ TEST(SlopeMethod, ReadsEachPureTermExactly) {
 }
 
 TEST(SlopeMethod, BiasInstabilityFromMinimumIsBiasedAsPredicted) {
-  // THEORY.md §4.2 example: N = 0.1 deg/sqrt(h), K = 0.5 deg/h/sqrt(h), B = 0.2 deg/h reads
+  // docs/theory.md §4.2 example: N = 0.1 deg/sqrt(h), K = 0.5 deg/h/sqrt(h), B = 0.2 deg/h reads
   // B = sqrt(0.04 + 0.1309) = 0.413 deg/h (2x).
   const double n = units::DegPerSqrtHour(0.1), b = units::DegPerHour(0.2),
                k = units::DegPerHourPerSqrtHour(0.5);

@@ -1,5 +1,5 @@
 // Statistical checks that `diagnose` names effects whose signature is not a bump in the Allan
-// curve (issue 6): a band-limit (short taus bent below the white level, no ADEV maximum), a bias
+// curve: a band-limit (short taus bent below the white level, no ADEV maximum), a bias
 // step (halves and dynamic views). Fixed seeds; records of 3.6e4 samples so
 // each test takes seconds.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Statistical checks of the gap diagnosis (issue 6): records drawn from the model itself are
+// Statistical checks of the gap diagnosis (docs/theory.md §6): records drawn from the model itself are
 // flagged at no more than the stated false-alarm rate, and a record with spikes shows a gap in
 // the kurtosis view. Fixed seeds; short records so the whole file takes seconds.
 #include <gtest/gtest.h>
