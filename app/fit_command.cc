@@ -118,7 +118,7 @@ const estimators::ParametricEstimate* FittedBandLimit(const std::vector<estimato
 std::string PoorFitLine(const estimators::ModelFitSummary& m) {
   if (!m.poor_fit) return "";
   std::ostringstream os;
-  os << "POOR FIT: chi2 " << Format(m.fit.chi2) << " on " << m.fit.dof
+  os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof
      << " dof is above its 99.9 % quantile: the IEEE terms do not describe this record";
   if (m.best_extended < 0) {
     os << (m.extended.empty() ? "" : "; no extended model could be fitted");
@@ -135,8 +135,8 @@ std::string PoorFitLine(const estimators::ModelFitSummary& m) {
     }
   }
   os << "), chi2 " << Format(x.fit.chi2) << " on " << x.fit.dof << " dof (p = " << Format(x.fit.p_value) << "): "
-     << (x.fits ? "that model fits (refit with --terms ...," + x.name.substr(0, x.name.find('+')) + " to see it)"
-                : "it does not fit either; the coefficients above are those of the closest wrong model");
+     << (x.fits ? std::string("that model fits and is the one reported above")
+                : std::string("it does not fit either; the coefficients above are those of the closest wrong model"));
   return os.str();
 }
 
@@ -322,6 +322,9 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
     }
     j["fit"]["extended_models"] = tried;
     j["fit"]["poor_fit_summary"] = PoorFitLine(m);
+    const bool swapped = m.best_extended >= 0 && m.extended[static_cast<std::size_t>(m.best_extended)].fits;
+    j["fit"]["reported_model"] =
+        swapped ? "IEEE terms + " + m.extended[static_cast<std::size_t>(m.best_extended)].name : std::string("IEEE terms");
   }
   if (!m.method_disagreement.empty()) j["fit"]["method_disagreement"] = m.method_disagreement;
   j["provenance"] = ProvenanceJson(p);
@@ -392,7 +395,7 @@ KalibrGyroNoise KalibrNoise(const estimators::ModelFitSummary& m, double rate_hz
   noise.random_walk = value(Coefficient::kK);
   noise.update_rate_hz = rate_hz;
   if (m.poor_fit) {
-    noise.warning = "poor fit (chi2 " + Format(m.fit.chi2) + " on " + std::to_string(m.fit.dof) +
+    noise.warning = "poor fit (chi2 " + Format(m.poor_chi2) + " on " + std::to_string(m.poor_dof) +
                     " dof): the IEEE terms do not describe this record; the values are 95 % upper "
                     "bounds, not estimates. Check the record (allanlab diagnose) before trusting them.";
   }
@@ -537,8 +540,8 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     if (file->is_open() && !file->Commit(&why)) return Failure{kExitRuntimeError, why};
   }
   if (o.strict && fitted.poor_fit) {
-    return Failure{kExitRuntimeError, o.curve.path + ": poor fit (--strict): chi2 " + Format(summary.chi2) +
-                                          " on " + std::to_string(summary.dof) + " dof"};
+    return Failure{kExitRuntimeError, o.curve.path + ": poor fit (--strict): chi2 " + Format(fitted.poor_chi2) +
+                                          " on " + std::to_string(fitted.poor_dof) + " dof"};
   }
   return std::nullopt;
 }

@@ -159,8 +159,20 @@ bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
   if (!FitRoute(options, curve, summary)) return false;
   if (options.method == FitMethod::kSlope) return true;
   summary->poor_fit = summary->fit.dof > 0 && summary->fit.p_value < options.poor_fit_p;
+  if (summary->poor_fit) {
+    summary->poor_chi2 = summary->fit.chi2;
+    summary->poor_dof = summary->fit.dof;
+  }
   if (summary->poor_fit && options.try_extended_on_poor_fit && options.extra.empty()) {
     TryExtended(options, curve, summary);
+    // A model that fits is the one to report: the IEEE coefficients of a wrong model are not
+    // (MTi-G: B = 45 deg/h with the curve's floor at 6; with a Gauss-Markov term chi2 42 on 47).
+    if (summary->best_extended >= 0 && summary->extended[summary->best_extended].fits) {
+      const ExtendedFit& x = summary->extended[summary->best_extended];
+      summary->fit = x.fit;
+      summary->extra_terms = x.extra_terms;
+      summary->extra = x.extra;
+    }
   }
   if (options.cross_check_log_wls && options.method == FitMethod::kGls) CrossCheck(options, curve, summary);
   return true;

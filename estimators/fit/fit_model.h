@@ -49,7 +49,8 @@ struct ModelFitOptions {
   double poor_fit_p = 1e-3;
   // On a poor fit without parametric terms: also fit the terms with each of GM, H, BW and BW2
   // (RTS has GM's Allan variance, so it is not tried apart; the band-limit found, if any, kept)
-  // and report the best by AIC in ModelFitSummary::extended.
+  // and report the best by AIC in ModelFitSummary::extended; when it fits, it becomes the
+  // reported fit (poor_fit stays true: it is about the terms alone).
   bool try_extended_on_poor_fit = false;
   // GLS: also fit by log-WLS (same terms, same selection) and name the coefficients where the
   // two differ by more than 3 GLS sigmas, in ModelFitSummary::method_disagreement.
@@ -77,7 +78,9 @@ struct ModelFitSummary {
   bool band_limited = false;  // the reported fit includes a band-limit the detection found
   double plain_chi2 = 0.0;    // band-limit detection: chi2 and dof of the fit without it
   int plain_dof = 0;
-  bool poor_fit = false;      // fit.p_value < poor_fit_p
+  bool poor_fit = false;      // the fit of the listed terms had p < poor_fit_p
+  double poor_chi2 = 0.0;     // poor fit: that fit's chi2 and dof
+  int poor_dof = 0;
   // try_extended_on_poor_fit: every extended model tried (failed fits left out), and the index
   // of the best by AIC (-1: none).
   std::vector<ExtendedFit> extended;
