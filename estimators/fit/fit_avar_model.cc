@@ -293,24 +293,30 @@ void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* ca
 void ReportSubset(const FixedFitProblem& fp, unsigned keep, bool selected, FitSummary* summary) {
   const LinearProblem& p = fp.problem;
   const Eigen::VectorXd x = SolveSubset(p, keep);
-  std::vector<Eigen::Index> positive;
+  // Covariance over every kept term, those at zero included (they are free in the fit: leaving
+  // them out made the sigmas of the others 35 % smaller and the 68 % coverage of N 0.57).
+  std::vector<Eigen::Index> positive, kept;
   for (std::size_t j = 0; j < fp.asked.size(); ++j) {
-    if ((keep >> j) & 1u && x(static_cast<Eigen::Index>(j)) > 1e-12) positive.push_back(static_cast<Eigen::Index>(j));
+    if (!((keep >> j) & 1u)) continue;
+    kept.push_back(static_cast<Eigen::Index>(j));
+    if (x(static_cast<Eigen::Index>(j)) > 1e-12) positive.push_back(static_cast<Eigen::Index>(j));
   }
-  Eigen::MatrixXd ap(p.a.rows(), static_cast<Eigen::Index>(positive.size()));
-  for (std::size_t c = 0; c < positive.size(); ++c) ap.col(static_cast<Eigen::Index>(c)) = p.a.col(positive[c]);
+  Eigen::MatrixXd ap(p.a.rows(), static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t c = 0; c < kept.size(); ++c) ap.col(static_cast<Eigen::Index>(c)) = p.a.col(kept[c]);
   const Eigen::MatrixXd cov = (ap.transpose() * ap).completeOrthogonalDecomposition().pseudoInverse();
   for (std::size_t j = 0; j < fp.asked.size(); ++j) {
     CoefficientEstimate& e = summary->coefficients[fp.asked[j]];
     e = CoefficientEstimate{};
     e.asked = true;
-    const auto at = std::find(positive.begin(), positive.end(), static_cast<Eigen::Index>(j));
-    if (at != positive.end()) {
-      const auto c = static_cast<Eigen::Index>(at - positive.begin());
+    const auto at = std::find(kept.begin(), kept.end(), static_cast<Eigen::Index>(j));
+    const double sigma_theta =
+        at == kept.end() ? 0.0 : std::sqrt(std::max(cov(at - kept.begin(), at - kept.begin()), 0.0)) * fp.scale[j];
+    if (std::find(positive.begin(), positive.end(), static_cast<Eigen::Index>(j)) != positive.end()) {
       e.fitted = true;
       e.value_si = std::sqrt(x(static_cast<Eigen::Index>(j)) * fp.scale[j]);
-      e.sigma_si = std::sqrt(std::max(cov(c, c), 0.0)) * fp.scale[j] / (2.0 * e.value_si);
+      e.sigma_si = sigma_theta / (2.0 * e.value_si);
     } else {
+      e.sigma_si = std::sqrt(sigma_theta);  // kept at zero: the coefficient whose square is 1 sigma
       e.dropped = selected && !((keep >> j) & 1u);
       e.note = e.dropped ? "left out by the subset choice (AIC): the data do not determine it; 95 % upper limit given"
                          : "at zero: the data do not determine it; 95 % upper limit given";

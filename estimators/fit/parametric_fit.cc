@@ -550,6 +550,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
     const double sigma_theta = std::sqrt(std::max(cov(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(q)), 0.0)) * scale[q];
     if (theta[q] <= 1e-12) {
       ce.fitted = false;
+      ce.sigma_si = std::sqrt(sigma_theta);  // the coefficient whose square is 1 sigma
       ce.note = "at zero: the data do not determine it; 95 % upper limit given";
     } else {
       ++fitted;
