@@ -114,21 +114,56 @@ const estimators::ParametricEstimate* FittedBandLimit(const std::vector<estimato
   return nullptr;
 }
 
-void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::FitSummary& s,
-                const std::vector<estimators::ParametricEstimate>& extra,
+// What the extended terms did on a poor fit, in one line ("" when the fit is not poor).
+std::string PoorFitLine(const estimators::ModelFitSummary& m) {
+  if (!m.poor_fit) return "";
+  std::ostringstream os;
+  os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof
+     << " dof is above its 99.9 % quantile: the IEEE terms do not describe this record";
+  if (m.best_extended < 0) {
+    os << (m.extended.empty() ? "" : "; no extended model could be fitted");
+    return os.str();
+  }
+  const estimators::ExtendedFit& x = m.extended[static_cast<std::size_t>(m.best_extended)];
+  os << "; best with an extra term: " << x.name << " (";
+  bool first = true;
+  for (const auto& e : x.extra) {
+    for (std::size_t q = 0; q < e.parameters.size(); ++q) {
+      os << (first ? "" : ", ") << e.short_name << " " << e.parameters[q].name << " "
+         << Format(e.value_si[q] / e.parameters[q].si_per_datasheet) << " " << e.parameters[q].datasheet_unit;
+      first = false;
+    }
+  }
+  os << "), chi2 " << Format(x.fit.chi2) << " on " << x.fit.dof << " dof (p = " << Format(x.fit.p_value) << "): "
+     << (x.fits ? std::string("that model fits and is the one reported above")
+                : std::string("it does not fit either; the coefficients above are those of the closest wrong model"));
+  return os.str();
+}
+
+void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::ModelFitSummary& m,
                 const estimators::BandwidthEstimate& bw) {
-  os << "coefficient  value          +- sigma      unit            slope method\n";
+  const estimators::FitSummary& s = m.fit;
+  const std::vector<estimators::ParametricEstimate>& extra = m.extra;
+  os << "coefficient  value          +- sigma      95 % interval         unit            slope method\n";
   for (Coefficient c : estimators::kAllCoefficients) {
     const auto& e = s.at(c);
     if (!e.asked) continue;
     const auto& slope = s.slope.at(c);
-    char line[256];
-    std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-15s %s\n",
-                  std::string(estimators::CoefficientId(c)).c_str(),
-                  e.fitted ? Format(estimators::ToDatasheetUnit(c, e.value_si)).c_str() : "-",
-                  e.fitted && e.sigma_si > 0 ? ("+- " + Format(estimators::ToDatasheetUnit(c, e.sigma_si))).c_str() : "",
-                  std::string(estimators::DatasheetUnit(c)).c_str(),
-                  slope.found ? Format(estimators::ToDatasheetUnit(c, slope.value_si)).c_str() : "-");
+    auto unit = [c](double si) { return Format(estimators::ToDatasheetUnit(c, si)); };
+    std::string value = "-", sigma, interval;
+    if (e.fitted) {
+      value = unit(e.value_si);
+      if (e.sigma_si > 0) sigma = "+- " + unit(e.sigma_si);
+      if (e.has_intervals) interval = "[" + unit(e.interval95_si[0]) + ", " + unit(e.interval95_si[1]) + "]";
+    } else if (e.has_upper_limit) {
+      value = "< " + unit(e.upper_limit_si);
+      interval = "(95 % upper limit)";
+    }
+    char line[320];
+    std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-21s %-15s %s\n",
+                  std::string(estimators::CoefficientId(c)).c_str(), value.c_str(), sigma.c_str(),
+                  interval.c_str(), std::string(estimators::DatasheetUnit(c)).c_str(),
+                  slope.found ? unit(slope.value_si).c_str() : "-");
     os << line;
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
   }
@@ -136,9 +171,9 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
     for (std::size_t q = 0; q < e.parameters.size(); ++q) {
       const auto& spec = e.parameters[q];
       char line[256];
-      std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-15s %s\n", (e.short_name + " " + spec.name).c_str(),
+      std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-21s %-15s %s\n", (e.short_name + " " + spec.name).c_str(),
                     e.fitted ? Format(e.value_si[q] / spec.si_per_datasheet).c_str() : "-",
-                    e.fitted ? ("+- " + Format(e.sigma_si[q] / spec.si_per_datasheet)).c_str() : "",
+                    e.fitted ? ("+- " + Format(e.sigma_si[q] / spec.si_per_datasheet)).c_str() : "", "",
                     spec.datasheet_unit.c_str(), "-");
       os << line;
     }
@@ -148,6 +183,11 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
      << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
      << s.message << "\n";
+  if (m.poor_fit) os << PoorFitLine(m) << "\n";
+  if (!m.method_disagreement.empty()) {
+    os << "method check: GLS and log-WLS differ by more than 3 sigma: " << m.method_disagreement
+       << " (the curve departs from the model's shape; the GLS sigmas are too small)\n";
+  }
   os << "taus: " << s.taus_used << " from " << Format(s.tau_min_s) << " s to " << Format(s.tau_max_s)
      << " s\n";
   if (!s.band_limit.empty()) os << "band-limit: " << s.band_limit << "\n";
@@ -168,9 +208,10 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   }
 }
 
-nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::FitSummary& s,
-                               const std::vector<estimators::ParametricEstimate>& extra,
+nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::ModelFitSummary& m,
                                const estimators::BandwidthEstimate& bw, const Provenance& p) {
+  const estimators::FitSummary& s = m.fit;
+  const std::vector<estimators::ParametricEstimate>& extra = m.extra;
   nlohmann::ordered_json j;
   j["method"] = o.method;
   const bool bootstrapped = s.uncertainty == estimators::FitUncertainty::kBootstrap;
@@ -188,8 +229,22 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
     const auto& e = s.at(c);
     if (!e.asked) continue;
     nlohmann::ordered_json entry;
-    entry["value"] = e.fitted ? estimators::ToDatasheetUnit(c, e.value_si) : 0.0;
-    entry["sigma"] = estimators::ToDatasheetUnit(c, e.sigma_si);
+    auto unit = [c](double si) { return estimators::ToDatasheetUnit(c, si); };
+    if (e.fitted || !e.has_upper_limit) {
+      entry["value"] = e.fitted ? unit(e.value_si) : 0.0;
+      entry["sigma"] = unit(e.sigma_si);
+    } else {
+      // Not determined by the data: no value, its one-sided 95 % upper limit instead.
+      entry["value"] = nullptr;
+      entry["sigma"] = nullptr;
+      entry["upper_limit"] = unit(e.upper_limit_si);
+      entry["upper_limit_level"] = 0.95;
+    }
+    if (e.has_intervals) {
+      entry["interval_68"] = {unit(e.interval68_si[0]), unit(e.interval68_si[1])};
+      entry["interval_95"] = {unit(e.interval95_si[0]), unit(e.interval95_si[1])};
+    }
+    if (e.has_intervals || e.has_upper_limit) entry["interval_method"] = "profile likelihood";
     if (bootstrapped && e.fitted) {
       entry["covariance_sigma"] = estimators::ToDatasheetUnit(c, e.covariance_sigma_si);
       entry["bootstrap_bias"] = estimators::ToDatasheetUnit(c, e.bootstrap_bias_si);
@@ -247,7 +302,31 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Fit
               {"tau_min_s", s.tau_min_s},
               {"tau_max_s", s.tau_max_s},
               {"band_limit", s.band_limit},
+              {"poor_fit", m.poor_fit},
+              {"poor_fit_rule", "chi2 above the 99.9 % quantile of chi2 on its dof (p < 0.001)"},
               {"message", s.message}};
+  if (m.poor_fit) {
+    nlohmann::ordered_json tried = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < m.extended.size(); ++i) {
+      const estimators::ExtendedFit& x = m.extended[i];
+      nlohmann::ordered_json t = {{"terms", x.name}, {"chi2", x.fit.chi2}, {"dof", x.fit.dof},
+                                  {"p_value", x.fit.p_value}, {"fits", x.fits},
+                                  {"best", static_cast<int>(i) == m.best_extended}};
+      for (const auto& e : x.extra) {
+        for (std::size_t q = 0; q < e.parameters.size(); ++q) {
+          t[e.short_name + " " + e.parameters[q].name] = {
+              {"value", e.value_si[q] / e.parameters[q].si_per_datasheet}, {"unit", e.parameters[q].datasheet_unit}};
+        }
+      }
+      tried.push_back(t);
+    }
+    j["fit"]["extended_models"] = tried;
+    j["fit"]["poor_fit_summary"] = PoorFitLine(m);
+    const bool swapped = m.best_extended >= 0 && m.extended[static_cast<std::size_t>(m.best_extended)].fits;
+    j["fit"]["reported_model"] =
+        swapped ? "IEEE terms + " + m.extended[static_cast<std::size_t>(m.best_extended)].name : std::string("IEEE terms");
+  }
+  if (!m.method_disagreement.empty()) j["fit"]["method_disagreement"] = m.method_disagreement;
   j["provenance"] = ProvenanceJson(p);
   return j;
 }
@@ -290,6 +369,39 @@ AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
   return plot;
 }
 
+// The Kalibr keys from the fit: the estimate and its sigma, or its 95 % upper bound when the term
+// is not determined (never 0: a filter would take the bias as constant); on a poor fit the 95 %
+// upper ends of both and a warning (the sigmas of a wrong model mean nothing).
+KalibrGyroNoise KalibrNoise(const estimators::ModelFitSummary& m, double rate_hz) {
+  auto value = [&m](Coefficient c) {
+    const estimators::CoefficientEstimate& e = m.fit.at(c);
+    KalibrValue v;
+    if (e.fitted && !m.poor_fit) {
+      v.value = e.value_si;
+      if (e.sigma_si > 0) v.sigma = e.sigma_si;
+    } else if (e.fitted && e.has_intervals) {
+      v.value = e.interval95_si[1];
+      v.upper_bound = true;
+    } else if (e.has_upper_limit) {
+      v.value = e.upper_limit_si;
+      v.upper_bound = true;
+    } else if (e.fitted) {
+      v.value = e.value_si;
+    }
+    return v;
+  };
+  KalibrGyroNoise noise;
+  noise.noise_density = value(Coefficient::kN);
+  noise.random_walk = value(Coefficient::kK);
+  noise.update_rate_hz = rate_hz;
+  if (m.poor_fit) {
+    noise.warning = "poor fit (chi2 " + Format(m.poor_chi2) + " on " + std::to_string(m.poor_dof) +
+                    " dof): the IEEE terms do not describe this record; the values are 95 % upper "
+                    "bounds, not estimates. Check the record (allanlab diagnose) before trusting them.";
+  }
+  return noise;
+}
+
 std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& command_line) {
   std::string why;
   estimators::ModelFitOptions fit;
@@ -325,6 +437,8 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     return Failure{kExitUsageError, "--terms: H, GM, RTS and BW need a fit method (gls, wls or logwls), not slope"};
   }
   fit.select_terms = o.select_terms;
+  fit.try_extended_on_poor_fit = true;
+  fit.cross_check_log_wls = true;
   if (o.uncertainty == "bootstrap") {
     fit.uncertainty = estimators::FitUncertainty::kBootstrap;
   } else if (o.uncertainty != "covariance") {
@@ -415,25 +529,19 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
                            (o.max_tau_s > 0.0 ? ShortestDecimal(o.max_tau_s) + " s" : std::string("end")));
   }
 
-  WriteTable(std::cout, o, summary, fitted.extra, bandwidth);
+  WriteTable(std::cout, o, fitted, bandwidth);
   std::cout.flush();
-  if (json.is_open()) json.stream() << FitJson(o, summary, fitted.extra, bandwidth, p).dump(2) << "\n";
-  if (kalibr.is_open()) {
-    KalibrGyroNoise noise;
-    const auto& n = summary.at(Coefficient::kN);
-    const auto& k = summary.at(Coefficient::kK);
-    noise.noise_density_rad_per_s_per_sqrt_hz = n.fitted ? n.value_si : 0.0;
-    if (n.fitted && n.sigma_si > 0) noise.noise_density_sigma = n.sigma_si;
-    noise.random_walk_rad_per_s2_per_sqrt_hz = k.fitted ? k.value_si : 0.0;
-    if (k.fitted && k.sigma_si > 0) noise.random_walk_sigma = k.sigma_si;
-    noise.update_rate_hz = report.record.sample_rate_hz;
-    kalibr.stream() << KalibrImuYaml(noise, p);
-  }
+  if (json.is_open()) json.stream() << FitJson(o, fitted, bandwidth, p).dump(2) << "\n";
+  if (kalibr.is_open()) kalibr.stream() << KalibrImuYaml(KalibrNoise(fitted, report.record.sample_rate_hz), p);
   if (png.is_open() && !RenderAllanPlot(FitPlot(report, curve, summary, fitted_model ? &*fitted_model : nullptr), &png, &why)) {
     return Failure{kExitRuntimeError, why};
   }
   for (AtomicFile* file : {&json, &kalibr, &png}) {
     if (file->is_open() && !file->Commit(&why)) return Failure{kExitRuntimeError, why};
+  }
+  if (o.strict && fitted.poor_fit) {
+    return Failure{kExitRuntimeError, o.curve.path + ": poor fit (--strict): chi2 " + Format(fitted.poor_chi2) +
+                                          " on " + std::to_string(fitted.poor_dof) + " dof"};
   }
   return std::nullopt;
 }
@@ -469,9 +577,12 @@ Subcommand AddFitCommand(CLI::App* parent) {
       ->type_name("L");
   cmd->add_option("--min-tau", options->min_tau_s, "fit only taus >= S seconds")->type_name("S");
   cmd->add_option("--max-tau", options->max_tau_s, "fit only taus <= S seconds")->type_name("S");
+  cmd->add_flag("--strict", options->strict,
+                 "exit with status 1 on a poor fit (chi2 above its 99.9 % quantile), after writing "
+                 "the outputs");
   cmd->add_flag_callback("--no-select", [options] { options->select_terms = false; },
-                "keep every requested term (default: drop terms the data do not support, by a "
-                "likelihood-ratio test at 5 %)");
+                         "keep every requested term (default: the subset of terms with the lowest AIC "
+                         "among all subsets; a term left out is reported by its 95 % upper limit)");
   cmd->add_option("--uncertainty", options->uncertainty,
                   "covariance (default: from the fit's weight matrix) or bootstrap (the spread of "
                   "refits of records simulated from the fitted model: honest where the model "

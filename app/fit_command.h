@@ -3,10 +3,13 @@
 // uncertainties, from its overlapping Allan curve (estimators/fit/fit_avar_model.h), with the
 // slope-method reading beside each and the bandwidth from the short-tau inflection.
 // Input options are those of `avar` (app/avar_command.h); default tau grid dense:10.
-// Outputs: a table on stdout; --json (stable keys: method, coefficients with value,
-// sigma and unit, bandwidth_hz, fit chi2/dof/converged, provenance); --kalibr (gyroscope noise
-// density and random walk for Kalibr/VINS/OpenVINS); --plot (data with intervals, fitted total and
-// each term). A short-tau band-limit is detected and fitted by default (--band-limit auto), the
+// One call of estimators::FitModel (estimators/fit/fit_model.h) does the fit.
+// Outputs: a table on stdout; --json (method, coefficients with value, sigma, unit and
+// profile-likelihood intervals, or an upper limit for a term the data do not determine;
+// bandwidth_hz; fit chi2/dof/converged/poor_fit and the extended models tried on a poor fit;
+// provenance); --kalibr (gyroscope noise density and random walk for Kalibr/VINS/OpenVINS; upper
+// bounds under a warning on a poor fit); --plot (data with intervals, fitted total and each term).
+// --strict: exit 1 on a poor fit (chi2 above its 99.9 % quantile) after writing the outputs. A short-tau band-limit is detected and fitted by default (--band-limit auto), the
 // fitted cutoff reported beside the inflection reading; --min-tau/--max-tau restrict the taus.
 // Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.
 // --uncertainty bootstrap replaces the covariance sigmas by a parametric bootstrap
@@ -26,6 +29,7 @@ struct FitCommandOptions {
   std::string method = "gls";           // slope, wls, logwls, gls
   std::string terms = "Q,N,B,K,R";      // asked terms
   bool select_terms = true;
+  bool strict = false;  // exit 1 on a poor fit
   std::string uncertainty = "covariance";  // covariance or bootstrap
   int bootstrap_trials = 100;              // replicates of the parametric bootstrap
   std::uint64_t seed = 1;                  // of the bootstrap's simulated records

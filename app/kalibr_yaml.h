@@ -11,16 +11,26 @@
 
 namespace allanlab::app {
 
-struct KalibrGyroNoise {
-  double noise_density_rad_per_s_per_sqrt_hz = 0.0;  // N in SI
-  std::optional<double> noise_density_sigma;        // its standard uncertainty, if known
-  double random_walk_rad_per_s2_per_sqrt_hz = 0.0;   // K in SI (0 when not supported by the data)
-  std::optional<double> random_walk_sigma;
-  double update_rate_hz = 0.0;
+// One key's value and what it is: an estimate (with its standard uncertainty, if known) or a
+// 95 % upper bound (a term the data do not determine, or any value from a poor fit). A filter
+// told 0 would take the bias as constant: an upper bound errs on the safe side.
+struct KalibrValue {
+  double value = 0.0;
+  std::optional<double> sigma;
+  bool upper_bound = false;
 };
 
-// YAML text: provenance as comments, the two gyroscope keys, update_rate, and a comment that the
-// accelerometer keys are not estimated by this file.
+struct KalibrGyroNoise {
+  KalibrValue noise_density;  // N in SI, rad/s/sqrt(Hz)
+  KalibrValue random_walk;    // K in SI, rad/s^2/sqrt(Hz)
+  double update_rate_hz = 0.0;
+  // Non-empty: the fit did not describe the record; written as a warning comment on top.
+  std::string warning;
+};
+
+// YAML text: provenance as comments, the warning if any, the two gyroscope keys (each saying
+// whether it is an estimate or an upper bound), update_rate, and a comment that the accelerometer
+// keys are not estimated by this file.
 std::string KalibrImuYaml(const KalibrGyroNoise& noise, const Provenance& provenance);
 
 }  // namespace allanlab::app

@@ -41,6 +41,14 @@ std::string CsvField(const std::string& text) {
   return out;
 }
 
+void WilsonInterval(double share, std::int64_t n, double* low, double* high) {
+  const double z = 1.959963984540054, nn = static_cast<double>(n);
+  const double center = (share + z * z / (2.0 * nn)) / (1.0 + z * z / nn);
+  const double half = z / (1.0 + z * z / nn) * std::sqrt(share * (1.0 - share) / nn + z * z / (4.0 * nn * nn));
+  *low = std::max(0.0, center - half);
+  *high = std::min(1.0, center + half);
+}
+
 std::string DurationText(double seconds) {
   char buffer[32];
   if (seconds < 3600.0) std::snprintf(buffer, sizeof buffer, "%.3g min", seconds / 60.0);
@@ -95,6 +103,10 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
           const ColumnStats* s = ps.Find(LevelName(level) + suffix);
           r.coverage.push_back(s && s->count > 0 ? s->mean : kNaN);
           r.coverage_se.push_back(s && s->count > 0 ? CoverageStandardError(level, s->count) : kNaN);
+          double low = kNaN, high = kNaN;
+          if (s && s->count > 0) WilsonInterval(s->mean, s->count, &low, &high);
+          r.coverage_low.push_back(low);
+          r.coverage_high.push_back(high);
         }
         r.read_bias = mean("rel_err_read", &r.read_bias_se);
         rows.push_back(std::move(r));
@@ -121,6 +133,7 @@ const char* MethodColor(const std::string& method) {
   if (method == "slope") return "#d62728";
   if (method == "wls") return "#1f77b4";
   if (method == "log_wls") return "#2ca02c";
+  if (method == "default") return "#9467bd";
   return "#111111";  // gls
 }
 

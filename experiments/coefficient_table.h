@@ -31,12 +31,17 @@ struct CoefficientRow {
   double mean_sigma = 0.0;           // mean reported sigma / truth (NaN for slope)
   std::vector<double> coverage;      // per confidence level (NaN for slope)
   std::vector<double> coverage_se;   // binomial, at the nominal level
+  // Wilson score 95 % interval of each coverage (from its count of trials).
+  std::vector<double> coverage_low, coverage_high;
   // Slope method's B against sqrt(B^2 + 2.617 N K) (NaN otherwise).
   double read_bias = 0.0, read_bias_se = 0.0;
 };
 
 std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
                                             const std::vector<PointStats>& stats);
+
+// Wilson score interval at 95 % of a proportion observed as `share` of n trials: [low, high].
+void WilsonInterval(double share, std::int64_t n, double* low, double* high);
 
 // "10 min", "2 h", "24 h".
 std::string DurationText(double seconds);

@@ -13,6 +13,7 @@
 
 #include "estimators/avar.h"
 #include "estimators/fit/fit_avar_model.h"
+#include "estimators/fit/fit_model.h"
 #include "estimators/fit/slope_method.h"
 
 namespace allanlab::experiments {
@@ -29,8 +30,13 @@ std::string LevelName(double level) {
   return buffer;
 }
 
+// "default": what `allanlab fit` does by default on the point's curve (GLS, Q,N,B,K,R with the
+// subset choice, profile-likelihood intervals), scored by its intervals rather than by sigma.
+constexpr const char* kDefaultMethod = "default";
+
 bool ParseMethod(const std::string& name, estimators::FitMethod* method) {
-  if (name == "wls") *method = estimators::FitMethod::kWls;
+  if (name == kDefaultMethod) *method = estimators::FitMethod::kGls;
+  else if (name == "wls") *method = estimators::FitMethod::kWls;
   else if (name == "log_wls") *method = estimators::FitMethod::kLogWls;
   else if (name == "gls") *method = estimators::FitMethod::kGls;
   else if (name == "slope") *method = estimators::FitMethod::kSlope;
@@ -139,6 +145,25 @@ void AppendCoefficient(const PointPlan& plan, Coefficient c, bool found, double 
     for (double z : plan.z) {
       row->push_back(found ? (std::abs(value - truth) <= z * sigma ? 1.0 : 0.0) : kNaN);
     }
+  }
+}
+
+// The same columns for the default method: covered when the truth lies in the profile-likelihood
+// interval of the level (68.3 % or 95 %); a term not determined has the interval from 0 to its
+// profile end at that level.
+void AppendProfileCoefficient(const PointPlan& plan, Coefficient c, bool ok,
+                              const estimators::CoefficientEstimate& e, std::vector<double>* row) {
+  const double truth = plan.truth.at(c);
+  const double value = e.fitted ? e.value_si : 0.0;
+  const double rel = ok ? value / truth - 1.0 : kNaN;
+  row->push_back(rel);
+  row->push_back(rel * rel);
+  row->push_back(ok ? 0.0 : 1.0);
+  row->push_back(ok ? (e.fitted ? e.sigma_si : 0.0) / truth : kNaN);
+  for (double z : plan.z) {
+    const bool wide = z > 1.5;  // the 95 % level (z 1.96) or the 68.3 % one (z 1.0)
+    const std::array<double, 2>& r = wide ? e.interval95_si : e.interval68_si;
+    row->push_back(ok && e.has_intervals ? (r[0] <= truth && truth <= r[1] ? 1.0 : 0.0) : kNaN);
   }
 }
 
@@ -287,6 +312,15 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
           row.push_back(rel * rel);
         }
       }
+      continue;
+    }
+    if (name == kDefaultMethod) {
+      estimators::ModelFitOptions fit;  // the defaults of `allanlab fit` (band-limit: taus cut above)
+      estimators::ModelFitSummary m;
+      const bool ok = curve.size() >= 2 && estimators::FitModel(fit, curve, &m);
+      row.push_back(ok ? 0.0 : 1.0);
+      row.push_back(ok && m.fit.converged ? 1.0 : 0.0);
+      for (Coefficient c : plan.compared) AppendProfileCoefficient(plan, c, ok, m.fit.at(c), &row);
       continue;
     }
     estimators::FitOptions fit;

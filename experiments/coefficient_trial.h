@@ -22,6 +22,10 @@
 //    (the question is how well a method recovers a known model, not which model it picks).
 //  * A coefficient a fit leaves at zero is the estimate 0 with sigma 0 (relative error -1, not
 //    covered); a failed fit, or a slope region the slope method does not find, is "missing".
+//  * Method "default": `allanlab fit`'s defaults (estimators/fit/fit_model.h: GLS on Q,N,B,K,R
+//    with the AIC subset choice, whatever spec.fit_terms says; those only name the compared
+//    coefficients) on the same curve; in_ci<L> is whether the truth lies in its profile-likelihood
+//    interval of that level (68.3 % or 95 %; a term the fit leaves out has the interval from 0).
 //
 // Columns, per method M (spec.fit_methods, in order) and coefficient C (fitted and in the truth):
 //   rel_err/M/C         estimate / truth - 1                      mean: relative bias
@@ -75,7 +79,7 @@ std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sa
                                         const std::vector<std::int64_t>& candidates);
 
 // The method names the spec may list, in table order.
-inline constexpr const char* kFitMethodNames[] = {"slope", "wls", "log_wls", "gls"};
+inline constexpr const char* kFitMethodNames[] = {"slope", "wls", "log_wls", "gls"};  // "default" on request
 // Methods of a spec (all four when it lists none) and the coefficients compared at a point.
 std::vector<std::string> MethodsOf(const SweepSpec& spec);
 std::vector<estimators::Coefficient> ComparedCoefficients(const SweepSpec& spec,

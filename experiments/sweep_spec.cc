@@ -454,12 +454,12 @@ void Parse(const YAML::Node& root, const std::string& origin, SweepSpec* spec) {
   spec->fit_terms.clear();
   if (root["fit"]) {
     const YAML::Node fit = CheckMap(root["fit"], "fit", {"methods", "terms"});
-    if (!fit["methods"]) Fail("fit.methods", "missing (slope, wls, log_wls, gls)");
+    if (!fit["methods"]) Fail("fit.methods", "missing (slope, wls, log_wls, gls, default)");
     const auto methods = ListOrScalar(fit["methods"], "fit.methods");
     for (std::size_t i = 0; i < methods.size(); ++i) {
       const std::string m = Scalar(methods[i], Index("fit.methods", i));
-      if (m != "slope" && m != "wls" && m != "log_wls" && m != "gls") {
-        Fail(Index("fit.methods", i), "unknown fit method \"" + m + "\" (known: slope, wls, log_wls, gls)");
+      if (m != "slope" && m != "wls" && m != "log_wls" && m != "gls" && m != "default") {
+        Fail(Index("fit.methods", i), "unknown fit method \"" + m + "\" (known: slope, wls, log_wls, gls, default)");
       }
       spec->fit_methods.push_back(m);
     }

@@ -71,7 +71,7 @@ struct SweepSpec {
   // modified, Hadamard and total statistics the comment above lists can be asked for.
   std::vector<allanlab::estimators::Statistic> estimators;  // default {kAllanOverlapping}
   std::string taus = "octave";  // tau-grid spec as `allanlab avar --taus` (list: seconds, commas)
-  std::vector<std::string> fit_methods;            // "slope", "wls", "log_wls", "gls"
+  std::vector<std::string> fit_methods;            // "slope", "wls", "log_wls", "gls", "default"
   std::vector<std::string> fit_terms;              // "Q", "N", ...
   std::vector<double> confidence_levels = {0.683, 0.95};
   std::vector<SweepPoint> points;  // expanded and validated

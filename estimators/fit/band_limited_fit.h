@@ -16,7 +16,7 @@
 // The chi2 of the two fits come from different pilot weights (fit_avar_model.h), so the test is a
 // screening rule, not an exact likelihood-ratio test; detection_level is small to keep it from
 // firing on curves without a band-limit. The band-limited fit does no term selection: terms the
-// data do not support sit at zero with their one-sigma bound.
+// data do not support sit at zero with their 95 % profile upper limit.
 // The chain assumed (averaged or point-sampled output, oversampling L) is an option: averaging
 // keeps N the long-tau white level (parametric_term.h); the seed presets average with L = 8.
 // With FitUncertainty::kBootstrap the candidates are compared on covariance fits and only the

@@ -56,12 +56,11 @@ struct FitOptions {
   double reweight_tolerance = 1e-5;  // stop when no squared coefficient moves more (relative)
   // Shapes: exact discrete expectations for the record (true) or IEEE 952 asymptotes (false).
   bool exact_shapes = true;
-  // Term selection (WLS, log-WLS, GLS): backward elimination by a likelihood-ratio test on the
-  // fit cost. A term is dropped while removing it raises chi2 by less than the critical value of
-  // the 50:50 mixture of chi2_0 and chi2_1 (the coefficient sits on the c^2 >= 0 boundary under
-  // the null) at `selection_level`: 2.706 at 5 %.
+  // Term selection (WLS, log-WLS, GLS): every subset of `terms` scored by AIC on the fit's cost
+  // with the weights (GLS: Omega) of the fit of all terms held, the lowest score kept
+  // (linear_profile.h says why AIC and what it means as a test). A term left out, or at zero, is
+  // reported by its 95 % profile-likelihood upper limit.
   bool select_terms = true;
-  double selection_level = 0.05;
   // kBootstrap: sigma = standard deviation of `bootstrap.trials` refits of simulated curves
   // (the slope method included, which has no covariance sigma of its own).
   FitUncertainty uncertainty = FitUncertainty::kCovariance;
@@ -77,11 +76,20 @@ struct FitOptions {
 struct CoefficientEstimate {
   bool asked = false;   // in options.terms
   bool fitted = false;  // asked, kept by term selection and not stuck at zero
-  bool dropped = false;  // asked but removed by term selection (see note for the test value)
+  bool dropped = false;  // asked but left out by term selection (note and upper limit say more)
   double value_si = 0.0;
   double sigma_si = 0.0;  // standard uncertainty (0 when not fitted)
   double covariance_sigma_si = 0.0;  // the covariance sigma (= sigma_si unless bootstrapped)
   double bootstrap_bias_si = 0.0;    // mean of the replicates' values - value_si (bootstrap)
+  // Profile-likelihood ranges (linear_profile.h), SI; the fits, not the slope method: the 68.3 %
+  // and 95 % intervals (lower end 0 when the profile reaches the c^2 = 0 boundary first). A term
+  // the data do not determine (left out by selection, or at zero) is not fitted (value and sigma
+  // 0) and has its one-sided 95 % upper limit as well.
+  bool has_intervals = false;
+  std::array<double, 2> interval68_si{};
+  std::array<double, 2> interval95_si{};
+  bool has_upper_limit = false;
+  double upper_limit_si = 0.0;
   std::string note;
 };
 

@@ -1,5 +1,9 @@
 #include "estimators/fit/fit_model.h"
 
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
 namespace allanlab::estimators {
 
 bool ModelFitOptions::IsValid(std::string* why) const {
@@ -11,6 +15,10 @@ bool ModelFitOptions::IsValid(std::string* why) const {
     if (why) *why = "fit: parametric terms need a fit method (gls, wls or logwls), not slope";
     return false;
   }
+  if (!(poor_fit_p > 0.0 && poor_fit_p < 1.0)) {
+    if (why) *why = "fit: the poor-fit level must be in (0, 1)";
+    return false;
+  }
   if (bw_oversampling < 1 || bw_oversampling > 256) {
     if (why) *why = "fit: band-limit oversampling must be an integer in [1, 256]";
     return false;
@@ -19,13 +27,10 @@ bool ModelFitOptions::IsValid(std::string* why) const {
   return true;
 }
 
-bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSummary* summary) {
-  *summary = ModelFitSummary{};
-  std::string why;
-  if (!options.IsValid(&why)) {
-    summary->fit.message = why;
-    return false;
-  }
+namespace {
+
+// The route of the header's list: one fit, no poor-fit handling.
+bool FitRoute(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSummary* summary) {
   if (!options.extra.empty()) {
     ParametricFitOptions p;
     p.method = options.method;
@@ -52,7 +57,6 @@ bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
   b.fit.method = options.method;
   b.fit.terms = options.terms;
   b.fit.select_terms = options.select_terms;
-  b.fit.selection_level = options.selection_level;
   b.fit.uncertainty = options.uncertainty;
   b.fit.bootstrap = options.bootstrap;
   b.fit.covariance = options.covariance;
@@ -74,6 +78,103 @@ bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
   summary->plain_chi2 = s.plain_chi2;
   summary->plain_dof = s.plain_dof;
   summary->ok = true;
+  return true;
+}
+
+int FittedParameters(const FitSummary& fit) { return fit.taus_used - fit.dof; }
+
+void TryExtended(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSummary* summary) {
+  std::vector<std::pair<std::string, std::vector<std::shared_ptr<const ParametricTerm>>>> candidates;
+  const std::vector<std::shared_ptr<const ParametricTerm>> kept = summary->extra_terms;  // the band-limit found
+  std::string kept_name;
+  for (const auto& t : kept) kept_name.append("+").append(t->short_name());
+  for (const char* id : {"GM", "H"}) {
+    std::vector<std::shared_ptr<const ParametricTerm>> terms = {MakeParametricTerm(id)};
+    terms.insert(terms.end(), kept.begin(), kept.end());
+    candidates.emplace_back(std::string(id).append(kept_name), terms);
+  }
+  if (kept.empty()) {
+    for (sim::LowPassKind kind : {sim::LowPassKind::kFirstOrder, sim::LowPassKind::kButterworth2}) {
+      candidates.emplace_back(kind == sim::LowPassKind::kFirstOrder ? "BW" : "BW2",
+                              std::vector<std::shared_ptr<const ParametricTerm>>{
+                                  MakeBandLimitTerm(kind, options.bw_sampling, options.bw_oversampling)});
+    }
+  }
+  for (auto& [name, terms] : candidates) {
+    ModelFitOptions o = options;
+    o.extra = terms;
+    o.uncertainty = FitUncertainty::kCovariance;
+    ModelFitSummary s;
+    if (!FitRoute(o, curve, &s)) continue;
+    bool all = true;
+    for (const ParametricEstimate& e : s.extra) all = all && e.fitted;
+    if (!all) continue;
+    ExtendedFit x;
+    x.name = name;
+    x.fit = s.fit;
+    x.extra_terms = terms;
+    x.extra = s.extra;
+    x.aic = s.fit.chi2 + 2.0 * FittedParameters(s.fit);
+    x.fits = s.fit.dof > 0 && s.fit.p_value >= options.poor_fit_p;
+    summary->extended.push_back(x);
+    if (summary->best_extended < 0 || x.aic < summary->extended[summary->best_extended].aic) {
+      summary->best_extended = static_cast<int>(summary->extended.size()) - 1;
+    }
+  }
+}
+
+void CrossCheck(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSummary* summary) {
+  ModelFitOptions o = options;
+  o.method = FitMethod::kLogWls;
+  o.uncertainty = FitUncertainty::kCovariance;
+  o.extra = summary->extra_terms;  // the same model, band-limit included
+  ModelFitSummary s;
+  if (!FitRoute(o, curve, &s)) return;
+  std::ostringstream os;
+  for (Coefficient c : kAllCoefficients) {
+    const CoefficientEstimate& g = summary->fit.at(c);
+    const CoefficientEstimate& l = s.fit.at(c);
+    if (!g.fitted || !l.fitted || !(g.sigma_si > 0.0)) continue;
+    const double z = std::abs(g.value_si - l.value_si) / g.sigma_si;
+    if (z <= 3.0) continue;
+    char line[160];
+    std::snprintf(line, sizeof line, "%s%s: GLS %.4g, log-WLS %.4g %s (%.1f sigma)",
+                  os.tellp() > 0 ? "; " : "", std::string(CoefficientId(c)).c_str(),
+                  ToDatasheetUnit(c, g.value_si), ToDatasheetUnit(c, l.value_si),
+                  std::string(DatasheetUnit(c)).c_str(), z);
+    os << line;
+  }
+  summary->method_disagreement = os.str();
+}
+
+}  // namespace
+
+bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSummary* summary) {
+  *summary = ModelFitSummary{};
+  std::string why;
+  if (!options.IsValid(&why)) {
+    summary->fit.message = why;
+    return false;
+  }
+  if (!FitRoute(options, curve, summary)) return false;
+  if (options.method == FitMethod::kSlope) return true;
+  summary->poor_fit = summary->fit.dof > 0 && summary->fit.p_value < options.poor_fit_p;
+  if (summary->poor_fit) {
+    summary->poor_chi2 = summary->fit.chi2;
+    summary->poor_dof = summary->fit.dof;
+  }
+  if (summary->poor_fit && options.try_extended_on_poor_fit && options.extra.empty()) {
+    TryExtended(options, curve, summary);
+    // A model that fits is the one to report: the IEEE coefficients of a wrong model are not
+    // (MTi-G: B = 45 deg/h with the curve's floor at 6; with a Gauss-Markov term chi2 42 on 47).
+    if (summary->best_extended >= 0 && summary->extended[summary->best_extended].fits) {
+      const ExtendedFit& x = summary->extended[summary->best_extended];
+      summary->fit = x.fit;
+      summary->extra_terms = x.extra_terms;
+      summary->extra = x.extra;
+    }
+  }
+  if (options.cross_check_log_wls && options.method == FitMethod::kGls) CrossCheck(options, curve, summary);
   return true;
 }
 

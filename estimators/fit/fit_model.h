@@ -39,13 +39,33 @@ struct ModelFitOptions {
   sim::OutputSampling bw_sampling = sim::OutputSampling::kAverage;
   int bw_oversampling = 8;
   double bw_detection_level = 1e-3;
-  bool select_terms = true;  // fit_avar_model.h
-  double selection_level = 0.05;
+  bool select_terms = true;  // every subset scored by AIC (fit_avar_model.h, linear_profile.h)
   FitUncertainty uncertainty = FitUncertainty::kCovariance;
   BootstrapOptions bootstrap;
   // Optional, GLS: the covariance model of this curve built with every term of `terms`.
   std::shared_ptr<const AvarCovarianceModel> covariance;
+  // A poor fit: chi2 above the (1 - poor_fit_p) quantile of chi2 on its dof, i.e. p < poor_fit_p
+  // (a right model is called poor in 1 record of 1000 at 1e-3).
+  double poor_fit_p = 1e-3;
+  // On a poor fit without parametric terms: also fit the terms with each of GM, H, BW and BW2
+  // (RTS has GM's Allan variance, so it is not tried apart; the band-limit found, if any, kept)
+  // and report the best by AIC in ModelFitSummary::extended; when it fits, it becomes the
+  // reported fit (poor_fit stays true: it is about the terms alone).
+  bool try_extended_on_poor_fit = false;
+  // GLS: also fit by log-WLS (same terms, same selection) and name the coefficients where the
+  // two differ by more than 3 GLS sigmas, in ModelFitSummary::method_disagreement.
+  bool cross_check_log_wls = false;
   bool IsValid(std::string* why) const;
+};
+
+// A fit with parametric terms tried because the linear terms alone fit poorly.
+struct ExtendedFit {
+  std::string name;  // "GM", "H", "BW", "BW2" (with "+BW"/"+BW2" when the band-limit was kept)
+  FitSummary fit;
+  std::vector<std::shared_ptr<const ParametricTerm>> extra_terms;
+  std::vector<ParametricEstimate> extra;
+  double aic = 0.0;   // chi2 + 2 (fitted parameters)
+  bool fits = false;  // its p >= poor_fit_p
 };
 
 struct ModelFitSummary {
@@ -58,6 +78,15 @@ struct ModelFitSummary {
   bool band_limited = false;  // the reported fit includes a band-limit the detection found
   double plain_chi2 = 0.0;    // band-limit detection: chi2 and dof of the fit without it
   int plain_dof = 0;
+  bool poor_fit = false;      // the fit of the listed terms had p < poor_fit_p
+  double poor_chi2 = 0.0;     // poor fit: that fit's chi2 and dof
+  int poor_dof = 0;
+  // try_extended_on_poor_fit: every extended model tried (failed fits left out), and the index
+  // of the best by AIC (-1: none).
+  std::vector<ExtendedFit> extended;
+  int best_extended = -1;
+  // cross_check_log_wls: "" or e.g. "N: GLS 2.956, log-WLS 2.485 (4.8 sigma)" per coefficient.
+  std::string method_disagreement;
   bool ok = false;
 };
 

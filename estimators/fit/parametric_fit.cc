@@ -12,6 +12,7 @@
 #include "estimators/fit/additive_term_avar.h"
 #include "estimators/fit/avar_covariance.h"
 #include "estimators/fit/ceres_solver_options.h"
+#include "estimators/fit/linear_profile.h"
 #include "estimators/fit/model_avar_residuals.h"
 #include "sim/band_limited_avar.h"
 
@@ -538,20 +539,26 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   const Eigen::MatrixXd cov = (j.transpose() * j).completeOrthogonalDecomposition().pseudoInverse();
 
   int fitted = 0;
+  // Profile ranges of the linear terms with the parametric parameters held at their fit
+  // (linear_profile.h: the cost's expansion in theta', A = -d res / d theta').
+  LinearProblem lp;
+  lp.a = -jl.leftCols(static_cast<Eigen::Index>(linear.size()));
+  lp.y = res + lp.a * Eigen::Map<const Eigen::VectorXd>(theta.data(), static_cast<Eigen::Index>(theta.size()));
   for (std::size_t q = 0; q < linear.size(); ++q) {
     CoefficientEstimate& ce = base.coefficients[linear[q]];
     const double theta_si = theta[q] * scale[q];
     const double sigma_theta = std::sqrt(std::max(cov(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(q)), 0.0)) * scale[q];
     if (theta[q] <= 1e-12) {
       ce.fitted = false;
-      ce.sigma_si = std::sqrt(sigma_theta);
-      ce.note = "at zero: not supported by the data (sigma is the coefficient whose square is 1 sigma)";
-      continue;
+      ce.sigma_si = std::sqrt(sigma_theta);  // the coefficient whose square is 1 sigma
+      ce.note = "at zero: the data do not determine it; 95 % upper limit given";
+    } else {
+      ++fitted;
+      ce.fitted = true;
+      ce.value_si = std::sqrt(theta_si);
+      ce.sigma_si = sigma_theta / (2.0 * ce.value_si);
     }
-    ++fitted;
-    ce.fitted = true;
-    ce.value_si = std::sqrt(theta_si);
-    ce.sigma_si = sigma_theta / (2.0 * ce.value_si);
+    SetProfileRanges(lp, (1u << linear.size()) - 1u, static_cast<int>(q), scale[q], &ce);
   }
   for (std::size_t t = 0; t < active.size(); ++t) {
     ParametricEstimate& pe = summary->extra[active_index[t]];

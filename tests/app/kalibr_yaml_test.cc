@@ -13,8 +13,8 @@ namespace {
 TEST(KalibrYaml, WritesDensitiesInSi) {
   KalibrGyroNoise noise;
   // 0.0267 deg/sqrt(h) = 7.767e-6 rad/s/sqrt(Hz); 0.03 deg/h/sqrt(h) = 2.424e-9 rad/s^2/sqrt(Hz).
-  noise.noise_density_rad_per_s_per_sqrt_hz = units::DegPerSqrtHour(0.0267);
-  noise.random_walk_rad_per_s2_per_sqrt_hz = units::DegPerHourPerSqrtHour(0.03);
+  noise.noise_density.value = units::DegPerSqrtHour(0.0267);
+  noise.random_walk.value = units::DegPerHourPerSqrtHour(0.03);
   noise.update_rate_hz = 400.0;
   Provenance p;
   p.command = "fit";
@@ -27,6 +27,18 @@ TEST(KalibrYaml, WritesDensitiesInSi) {
   EXPECT_NE(yaml.find("gyroscope_random_walk: "), std::string::npos);
   EXPECT_NE(yaml.find("update_rate: 400"), std::string::npos);
   EXPECT_NE(yaml.find("rad/s/sqrt(Hz)"), std::string::npos);
+  EXPECT_EQ(yaml.find("WARNING"), std::string::npos);
+}
+
+TEST(KalibrYaml, UpperBoundsAndWarningSaySo) {
+  KalibrGyroNoise noise;
+  noise.noise_density.value = 1e-5;
+  noise.random_walk = {2e-8, std::nullopt, true};
+  noise.update_rate_hz = 100.0;
+  noise.warning = "poor fit";
+  const std::string yaml = KalibrImuYaml(noise, Provenance{});
+  EXPECT_NE(yaml.find("# WARNING: poor fit"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("gyroscope_random_walk: 2e-08  # 95 % upper bound"), std::string::npos) << yaml;
 }
 
 }  // namespace

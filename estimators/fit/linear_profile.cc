@@ -1,0 +1,160 @@
+#include "estimators/fit/linear_profile.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <vector>
+
+namespace allanlab::estimators {
+
+Eigen::VectorXd NonNegativeLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
+  const Eigen::Index n = a.cols();
+  Eigen::VectorXd norm(n);
+  for (Eigen::Index j = 0; j < n; ++j) norm(j) = a.col(j).norm() > 0.0 ? a.col(j).norm() : 1.0;
+  const Eigen::MatrixXd as = a * norm.cwiseInverse().asDiagonal();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  std::vector<bool> passive(static_cast<std::size_t>(n), false);
+  auto solve_passive = [&](Eigen::VectorXd* z) {
+    std::vector<Eigen::Index> idx;
+    for (Eigen::Index j = 0; j < n; ++j) if (passive[j]) idx.push_back(j);
+    z->setZero(n);
+    if (idx.empty()) return;
+    Eigen::MatrixXd sub(as.rows(), static_cast<Eigen::Index>(idx.size()));
+    for (std::size_t c = 0; c < idx.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = as.col(idx[c]);
+    const Eigen::VectorXd zs = sub.colPivHouseholderQr().solve(y);
+    for (std::size_t c = 0; c < idx.size(); ++c) (*z)(idx[c]) = zs(static_cast<Eigen::Index>(c));
+  };
+  const double tolerance = 1e-12 * std::max(1.0, (as.transpose() * y).cwiseAbs().maxCoeff());
+  for (int outer = 0; outer < 3 * n + 3; ++outer) {
+    const Eigen::VectorXd w = as.transpose() * (y - as * x);
+    Eigen::Index best = -1;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (!passive[j] && w(j) > tolerance && (best < 0 || w(j) > w(best))) best = j;
+    }
+    if (best < 0) break;
+    passive[best] = true;
+    for (int inner = 0; inner < 3 * n + 3; ++inner) {
+      Eigen::VectorXd z;
+      solve_passive(&z);
+      bool feasible = true;
+      for (Eigen::Index j = 0; j < n; ++j) if (passive[j] && z(j) <= 0.0) feasible = false;
+      if (feasible) {
+        x = z;
+        break;
+      }
+      double alpha = 1.0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (passive[j] && z(j) <= 0.0) alpha = std::min(alpha, x(j) / (x(j) - z(j)));
+      }
+      x += alpha * (z - x);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (passive[j] && x(j) <= 1e-14) {
+          passive[j] = false;
+          x(j) = 0.0;
+        }
+      }
+    }
+  }
+  return x.cwiseQuotient(norm);
+}
+
+namespace {
+
+// NNLS over the columns of `mask`, with column `held` (if >= 0) fixed at `held_value`.
+Eigen::VectorXd SolveMasked(const LinearProblem& p, unsigned mask, int held, double held_value) {
+  std::vector<Eigen::Index> cols;
+  for (Eigen::Index j = 0; j < p.a.cols(); ++j) {
+    if ((mask >> j) & 1u && j != held) cols.push_back(j);
+  }
+  Eigen::VectorXd target = p.y;
+  if (held >= 0) target -= held_value * p.a.col(held);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p.a.cols());
+  if (held >= 0) x(held) = held_value;
+  if (cols.empty()) return x;
+  Eigen::MatrixXd sub(p.a.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = p.a.col(cols[c]);
+  const Eigen::VectorXd xs = NonNegativeLeastSquares(sub, target);
+  for (std::size_t c = 0; c < cols.size(); ++c) x(cols[c]) = xs(static_cast<Eigen::Index>(c));
+  return x;
+}
+
+}  // namespace
+
+Eigen::VectorXd SolveSubset(const LinearProblem& p, unsigned free_mask) {
+  return SolveMasked(p, free_mask, -1, 0.0);
+}
+
+SubsetChoice SelectSubsetByAic(const LinearProblem& p) {
+  const auto n = static_cast<unsigned>(p.a.cols());
+  SubsetChoice best;
+  bool have = false;
+  for (unsigned mask = 0; mask < (1u << n); ++mask) {
+    SubsetChoice c;
+    c.mask = mask;
+    c.x = SolveSubset(p, mask);
+    c.chi2 = p.Chi2(c.x);
+    c.score = c.chi2 + 2.0 * std::popcount(mask);
+    const bool better = !have || c.score < best.score - 1e-9 * std::max(1.0, best.score) ||
+                        (std::abs(c.score - best.score) <= 1e-9 * std::max(1.0, best.score) &&
+                         std::popcount(mask) < std::popcount(best.mask));
+    if (better) {
+      best = c;
+      have = true;
+    }
+  }
+  return best;
+}
+
+ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double delta) {
+  const Eigen::VectorXd x_hat = SolveSubset(p, free_mask);
+  const double level = p.Chi2(x_hat) + delta;
+  const double t_hat = x_hat(j);
+  auto profile = [&](double t) { return p.Chi2(SolveMasked(p, free_mask, j, t)); };
+  // The profile is convex in t (a convex quadratic minimised over a convex set), so each end is
+  // one bracketed root.
+  const double column = p.a.col(j).norm();
+  double step = column > 0.0 ? std::sqrt(delta) / column : 1.0;  // the end with the others fixed
+  step = std::max(step, 1e-6 * t_hat);
+  ProfileRange r;
+  double lo = t_hat, hi = t_hat + step;
+  for (int i = 0; i < 200 && profile(hi) <= level; ++i) {
+    lo = hi;
+    step *= 2.0;
+    hi = t_hat + step;
+  }
+  for (int i = 0; i < 60 && hi - lo > 1e-9 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (profile(mid) <= level ? lo : hi) = mid;
+  }
+  r.upper = 0.5 * (lo + hi);
+  if (t_hat <= 0.0 || profile(0.0) <= level) {
+    r.lower = 0.0;
+    return r;
+  }
+  lo = 0.0;
+  hi = t_hat;
+  for (int i = 0; i < 60 && hi - lo > 1e-9 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (profile(mid) <= level ? hi : lo) = mid;
+  }
+  r.lower = 0.5 * (lo + hi);
+  return r;
+}
+
+void SetProfileRanges(const LinearProblem& p, unsigned free_mask, int j, double scale,
+                      CoefficientEstimate* e) {
+  auto root = [scale](double x) { return std::sqrt(std::max(x * scale, 0.0)); };
+  // A term not determined is profiled with it free (its lower ends are then 0).
+  const unsigned mask = e->fitted ? free_mask : free_mask | (1u << j);
+  const ProfileRange r68 = ProfileInterval(p, mask, j, kProfileDelta68);
+  const ProfileRange r95 = ProfileInterval(p, mask, j, kProfileDelta95);
+  e->has_intervals = true;
+  e->interval68_si = {root(r68.lower), root(r68.upper)};
+  e->interval95_si = {root(r95.lower), root(r95.upper)};
+  if (!e->fitted) {
+    e->has_upper_limit = true;
+    e->upper_limit_si = root(ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);
+  }
+}
+
+}  // namespace allanlab::estimators

@@ -1,0 +1,72 @@
+#pragma once
+// The linear part of a fit as a non-negative least-squares problem, and what is read off it:
+// which subset of terms the curve supports, and profile-likelihood intervals and upper limits.
+//
+// chi2(x) = |y - A x|^2 over x >= 0, x_j the j-th term's squared coefficient (scaled), A the
+// whitened design. For WLS and GLS with the weights held at the fit's (GLS: Omega fixed at the
+// pilot) this is the fit's own cost exactly; for log-WLS and for the linear terms of a parametric
+// fit (the nonlinear parameters held at their fit) it is the Gauss-Newton expansion of the cost
+// at the solution: y = r + A x_hat with r the whitened residuals and A = -dr/dx.
+//
+// Term selection: every subset of the terms is fitted (2^p small NNLS, 32 for Q,N,B,K,R) and
+// scored by Akaike's criterion chi2 + 2 (terms in the subset); the lowest score wins, ties to the
+// smaller subset. Scoring all subsets cannot lose a term because another took its place first, as
+// backward elimination did (with Q,N,B,K,R on 2 h of N + B + K the ramp R absorbed K, K went to
+// the boundary and was dropped, then R too). AIC rather than a likelihood-ratio test at 5 %: the
+// subsets are not nested in one chain, and AIC scores them all on one scale; between two nested
+// subsets one term apart it keeps the term when chi2 falls by more than 2, a test at level
+// 0.5 P(chi2_1 > 2) = 7.9 % under the null (the term's c^2 sits on the c^2 >= 0 boundary).
+//
+// Profile likelihood: the profile of x_j is min chi2 over the other free terms with x_j held; its
+// rise above the minimum, Delta, gives two-sided intervals at Delta = 1 (68.3 %) and 3.841 (95 %),
+// and the one-sided 95 % upper limit at Delta = 2.706 (the boundary makes the lower end 0: the
+// 50:50 mixture of chi2_0 and chi2_1 puts 5 % above 2.706). The interval of c = sqrt(x) is the
+// square root of x's: no first-order propagation, which fails near the boundary.
+#include <Eigen/Dense>
+
+#include "estimators/fit/fit_avar_model.h"
+
+namespace allanlab::estimators {
+
+struct LinearProblem {
+  Eigen::MatrixXd a;  // whitened design, one column per term
+  Eigen::VectorXd y;  // whitened target
+  double Chi2(const Eigen::VectorXd& x) const { return (y - a * x).squaredNorm(); }
+};
+
+// min |A x - y|^2 over x >= 0 (Lawson-Hanson active set on column-normalised A: exact for these
+// small, badly scaled designs, where a bounded iterative solver stops short).
+Eigen::VectorXd NonNegativeLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& y);
+
+// The NNLS solution with only the terms in `free_mask` (bit j: column j) free, the others 0.
+Eigen::VectorXd SolveSubset(const LinearProblem& p, unsigned free_mask);
+
+struct SubsetChoice {
+  unsigned mask = 0;  // the terms kept
+  Eigen::VectorXd x;  // their NNLS solution (0 outside the mask)
+  double chi2 = 0.0;
+  double score = 0.0;  // chi2 + 2 popcount(mask)
+};
+// Every subset of the columns, scored by AIC (header). Precondition: a.cols() <= 16.
+SubsetChoice SelectSubsetByAic(const LinearProblem& p);
+
+// Delta chi2 of the profile levels.
+inline constexpr double kProfileDelta68 = 1.0;
+inline constexpr double kProfileDelta95 = 3.841458820694124;
+inline constexpr double kProfileDeltaUpper95 = 2.705543454095404;
+
+struct ProfileRange {
+  double lower = 0.0;  // x_j; 0 when the profile stays below the level down to x_j = 0
+  double upper = 0.0;
+};
+// The x_j range where the profile of x_j (the terms of free_mask free, j included) stays within
+// `delta` of its minimum. Precondition: bit j of free_mask set.
+ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double delta);
+
+// The estimate's profile ranges in SI (c_j^2 = scale x_j), free_mask as above: its 68.3 % and
+// 95 % intervals and, when it is not fitted, its 95 % upper limit (profiled with column j added
+// to free_mask; the intervals then start at 0).
+void SetProfileRanges(const LinearProblem& p, unsigned free_mask, int j, double scale,
+                      CoefficientEstimate* e);
+
+}  // namespace allanlab::estimators
