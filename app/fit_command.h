@@ -2,7 +2,8 @@
 // `allanlab fit FILE`: IEEE 952 coefficients (Q, N, B, K, R) of a recorded gyro with standard
 // uncertainties, from its overlapping Allan curve (estimators/fit/fit_avar_model.h), with the
 // slope-method reading beside each and the bandwidth from the short-tau inflection.
-// Input options are those of `avar` (app/avar_command.h); default tau grid dense:10.
+// Input options are those of `avar` (app/avar_command.h); default tau grid dense:10. Or, instead of
+// FILE, a published curve: --curve CSV --record-length S --rate HZ (app/curve_options.h).
 // Outputs: a table on stdout; --json (the issue 4 contract: method, coefficients with value,
 // sigma and unit, bandwidth_hz, fit chi2/dof/converged, provenance); --kalibr (gyroscope noise
 // density and random walk for Kalibr/VINS/OpenVINS); --plot (data with intervals, fitted total and
@@ -17,12 +18,14 @@
 #include <string>
 
 #include "app/avar_command.h"
+#include "app/curve_options.h"
 #include "app/subcommand.h"
 
 namespace allanlab::app {
 
 struct FitCommandOptions {
   AvarCommandOptions curve;  // record and curve (estimator fixed to overlapping)
+  CurveCommandOptions published;  // --curve: a published curve instead of a record
   std::string method = "gls";           // slope, wls, logwls, gls
   std::string terms = "Q,N,B,K,R";      // asked terms
   bool select_terms = true;
