@@ -55,7 +55,11 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
   plan->read.path = o.path;
   plan->read.column = o.column;
   plan->read.drop_nonfinite = o.drop_nonfinite;
-  if (!ParseRecordFormat(o.format, &plan->read.format, &why)) return Usage("--format: " + why);
+  if (o.format.empty()) {
+    plan->read.format_from_sidecar = true;
+  } else if (!ParseRecordFormat(o.format, &plan->read.format, &why)) {
+    return Usage("--format: " + why);
+  }
   if (plan->read.format != RecordFormat::kText && !o.column.empty()) {
     return Usage("--column applies to text records; raw " + o.format + " has one column");
   }
@@ -383,7 +387,8 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
          "IEEE 952; the default with --stream) or none")
       ->type_name("auto|gr|simple|none");
   cmd->add_option("--format", options->format,
-                  "input record format: text (default), f32 or f64 (raw little-endian)")
+                  "input record format: text, f32 or f64 (raw little-endian); default: text, or "
+                  "what the raw record's .json sidecar says")
       ->type_name("text|f32|f64");
   cmd->add_flag("--drop-nonfinite", options->drop_nonfinite,
                 "skip rows whose value is NaN, inf or missing (counted and reported) instead of "

@@ -42,7 +42,7 @@ struct AvarCommandOptions {
   double confidence = 0.683;
   std::optional<std::string> ci;  // unset: gr, or simple with --stream
   std::string json_path, csv_path, plot_path;
-  std::string format = "text";  // text, f32, f64 (the input record)
+  std::string format;  // text, f32, f64 (the input record); empty: text unless a sidecar says raw
   bool drop_nonfinite = false;
   bool stream = false;
   std::int64_t stream_exact_max_m = std::int64_t{1} << 14;

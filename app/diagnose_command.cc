@@ -361,13 +361,16 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   d.seed = o.seed;
   d.false_alarm = o.false_alarm;
   if (!d.IsValid(&why)) return UsageFailure(why);
-  const bool curve_mode = !o.curve_path.empty();
+  const bool curve_mode = !o.curve.path.empty();
   if (curve_mode && !o.record.path.empty()) return UsageFailure("give FILE or --curve, not both");
   if (!curve_mode && o.record.path.empty()) return UsageFailure("FILE (or --curve) is required");
-  if (curve_mode && (!o.record_length_s || !o.record.rate_hz || !(*o.record_length_s > 0) || !(*o.record.rate_hz > 0))) {
-    return UsageFailure("--curve needs --record-length S > 0 and --rate HZ > 0");
+  CurveTable table;
+  if (curve_mode) {
+    if (const int code = ReadCurveFromOptions(o.curve, o.record.rate_hz, &table, &why); code != kExitOk) {
+      return Failure{code, why};
+    }
   }
-  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", curve_mode ? o.curve_path : o.record.path}};
+  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", curve_mode ? o.curve.path : o.record.path}};
   if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
   if (!o.report_path.empty()) outputs.emplace_back("--report", o.report_path);
   if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
@@ -381,19 +384,12 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   Provenance p = MakeProvenance(kCommand, command_line);
   DiagnosisSummary s;
   if (curve_mode) {
-    CurveTableOptions read{o.curve_path, o.curve_column, RateUnit::kDegPerHour, *o.record_length_s,
-                           *o.record.rate_hz};
-    if (!ParseRateUnit(o.curve_units, &read.unit, &why)) return UsageFailure("--curve-units: " + why);
-    CurveTable table;
-    CurveTableError error;
-    if (!ReadCurveTable(read, &table, &error)) return Failure{error.exit_code, error.message};
-    if (!DiagnoseCurve(d, table.curve, &s)) return RuntimeFailure(o.curve_path + ": " + s.message);
+    if (!DiagnoseCurve(d, table.curve, &s)) return RuntimeFailure(o.curve.path + ": " + s.message);
     if (!table.skipped.empty()) {
       s.notes.push_back("curve: " + std::to_string(table.skipped.size()) + " row(s) not used, e.g. " +
                         table.skipped.front());
     }
-    p.Add("curve", o.curve_path + " column " + o.curve_column + " (" + o.curve_units + ")");
-    p.Add("record_length", ShortestDecimal(*o.record_length_s) + " s");
+    p.Add("curve", DescribeCurve(o.curve, *o.record.rate_hz));
   } else {
     std::vector<double> rate;
     RecordInfo info;
@@ -445,7 +441,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     for (const auto& [k, v] : p.fields) report.stream() << "- " << k << ": " << v << "\n";
     report.stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
   }
-  if (png.is_open() && !RenderAllanPlot(DiagnosePlot(s, "allanlab diagnose: " + (curve_mode ? o.curve_path : o.record.path)), &png, &why)) {
+  if (png.is_open() && !RenderAllanPlot(DiagnosePlot(s, "allanlab diagnose: " + (curve_mode ? o.curve.path : o.record.path)), &png, &why)) {
     return RuntimeFailure(why);
   }
   for (AtomicFile* file : {&json, &report, &png}) {
@@ -483,10 +479,7 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_option("--report", options->report_path, "write a Markdown report")->type_name("OUT.md");
   cmd->add_option("--plot", options->plot_path, "draw record, baseline and verdict model (PNG, gnuplot)")->type_name("OUT.png");
   cmd->add_option("--validate-on", options->validate_path, "score the verdict's model on a second recording of the same sensor")->type_name("FILE2");
-  cmd->add_option("--curve", options->curve_path, "curve mode: an Allan-deviation CSV (tau_s + deviation columns) instead of FILE")->type_name("CSV");
-  cmd->add_option("--curve-column", options->curve_column, "deviation column of --curve (default adev_x)")->type_name("NAME");
-  cmd->add_option("--curve-units", options->curve_units, "unit of the --curve deviations (default deg/h)")->type_name("UNIT");
-  cmd->add_option("--record-length", options->record_length_s, "curve mode: length of the record the curve came from [s]")->type_name("S");
+  AddCurveOptions(cmd, &options->curve);
   cmd->footer("Verdict: none (no significant gap), an effect id (bandwidth, gauss_markov, random_telegraph, harmonic,\n"
               "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers) or unexplained.\n"
               "Exit status: 0 ok (any verdict), 1 bad file or unusable record, 2 usage error.");

@@ -29,6 +29,7 @@
 #include <string>
 
 #include "app/avar_command.h"
+#include "app/curve_options.h"
 #include "app/subcommand.h"
 
 namespace allanlab::app {
@@ -41,8 +42,7 @@ struct DiagnoseCommandOptions {
   std::uint64_t seed = 1;
   double false_alarm = 0.05;
   std::string json_path, report_path, plot_path, validate_path;
-  std::string curve_path, curve_column = "adev_x", curve_units = "deg/h";
-  std::optional<double> record_length_s;
+  CurveCommandOptions curve;  // --curve mode (app/curve_options.h)
 };
 
 Subcommand AddDiagnoseCommand(CLI::App* parent);

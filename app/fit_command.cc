@@ -402,8 +402,26 @@ KalibrGyroNoise KalibrNoise(const estimators::ModelFitSummary& m, double rate_hz
   return noise;
 }
 
+// The curve to fit: the record's, computed as `avar` does, or a published one (--curve).
+int FitInput(const FitCommandOptions& o, const AvarCommandOptions& curve_options, AvarReport* report,
+             std::string* why) {
+  if (o.published.path.empty()) return ComputeCurveFromFile(curve_options, kCommand, report, why);
+  CurveTable table;
+  if (const int code = ReadCurveFromOptions(o.published, o.curve.rate_hz, &table, why); code != kExitOk) {
+    return code;
+  }
+  *report = ReportOfCurve(o.published, table);
+  for (const std::string& s : table.skipped) {
+    std::cerr << "allanlab fit: warning: " << report->record.path << ": " << s << "; row not used\n";
+  }
+  return kExitOk;
+}
+
 std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& command_line) {
   std::string why;
+  if (o.published.path.empty() == o.curve.path.empty()) {
+    return Failure{kExitUsageError, "give FILE or --curve CSV (with --record-length and --rate), one of them"};
+  }
   estimators::ModelFitOptions fit;
   if (!ParseMethod(o.method, &fit.method)) {
     return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
@@ -450,7 +468,8 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     return Failure{kExitUsageError, "--bootstrap-trials: " + why};
   }
 
-  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.curve.path}};
+  std::vector<std::pair<std::string, std::string>> outputs = {
+      {"FILE", o.published.path.empty() ? o.curve.path : o.published.path}};
   if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
   if (!o.kalibr_path.empty()) outputs.emplace_back("--kalibr", o.kalibr_path);
   if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
@@ -468,9 +487,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   // (results/benchmarks/fit.md: the CPU it spares, and that the fitted values do not move).
   curve_options.identification_max_averages = kIdentificationMaxAverages;
   AvarReport report;
-  if (const int code = ComputeCurveFromFile(curve_options, kCommand, &report, &why); code != kExitOk) {
-    return Failure{code, why};
-  }
+  if (const int code = FitInput(o, curve_options, &report, &why); code != kExitOk) return Failure{code, why};
   int parameters = static_cast<int>(fit.terms.size());
   for (const auto& t : fit.extra) parameters += static_cast<int>(t->parameters().size());
   if (!CheckRecordSupportsFit(report.summary.num_samples, report.record.sample_rate_hz, parameters, &why)) {
@@ -478,21 +495,21 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   }
   const estimators::AvarCurve full_curve = CurveOf(report);
   if (full_curve.size() < 2) {
-    return Failure{kExitRuntimeError, o.curve.path + ": the record gives " +
+    return Failure{kExitRuntimeError, report.record.path + ": the record gives " +
                                           std::to_string(full_curve.size()) +
                                           " usable taus (constant or too short): nothing to fit"};
   }
   const estimators::AvarCurve curve = estimators::TauRange(full_curve, o.min_tau_s, max_tau);
   if (curve.size() < 2) {
     std::ostringstream os;
-    os << o.curve.path << ": " << curve.size() << " of the curve's " << full_curve.size()
+    os << report.record.path << ": " << curve.size() << " of the curve's " << full_curve.size()
        << " taus (" << full_curve.tau_s.front() << " s to " << full_curve.tau_s.back()
        << " s) lie in the --min-tau/--max-tau range: nothing to fit";
     return Failure{kExitRuntimeError, os.str()};
   }
   estimators::ModelFitSummary fitted;
   if (!estimators::FitModel(fit, curve, &fitted)) {
-    return Failure{kExitRuntimeError, o.curve.path + ": " + fitted.fit.message};
+    return Failure{kExitRuntimeError, report.record.path + ": " + fitted.fit.message};
   }
   const estimators::FitSummary& summary = fitted.fit;
   std::optional<sim::SensorModel> fitted_model;
@@ -515,9 +532,10 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   p.Add("input", report.record.path);
   p.Add("column", report.record.column);
   p.Add("units", report.input_units + " (" + report.record.units_source + ")");
+  if (!o.published.path.empty()) p.Add("curve", DescribeCurve(o.published, report.record.sample_rate_hz));
   p.Add("sample_rate", ShortestDecimal(report.record.sample_rate_hz) + " Hz (" + report.record.rate_source + ")");
   p.Add("samples", std::to_string(report.summary.num_samples));
-  p.Add("taus", o.curve.taus);
+  p.Add("taus", o.published.path.empty() ? o.curve.taus : "the curve's own");
   p.Add("noise_identification", "per tau, from at most " + std::to_string(kIdentificationMaxAverages) +
                                     " averages (the middle of the record; EDFs of the pilot fit)");
   p.Add("method", o.method);
@@ -556,6 +574,9 @@ Subcommand AddFitCommand(CLI::App* parent) {
       "IEEE 952 coefficients (Q, N, B, K, R) of a recorded gyro with uncertainties, from its "
       "overlapping Allan curve; the slope-method reading beside each, and the bandwidth.");
   AddRecordCurveOptions(cmd, &options->curve);
+  // FILE is optional here: --curve replaces it.
+  cmd->get_option("FILE")->required(false);
+  AddCurveOptions(cmd, &options->published);
   cmd->add_option("--method", options->method,
                   "gls (default: generalised least squares with the model covariance), wls, "
                   "logwls or slope (the graphical method, no uncertainty)")

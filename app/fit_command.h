@@ -2,7 +2,8 @@
 // `allanlab fit FILE`: IEEE 952 coefficients (Q, N, B, K, R) of a recorded gyro with standard
 // uncertainties, from its overlapping Allan curve (estimators/fit/fit_avar_model.h), with the
 // slope-method reading beside each and the bandwidth from the short-tau inflection.
-// Input options are those of `avar` (app/avar_command.h); default tau grid dense:10.
+// Input options are those of `avar` (app/avar_command.h); default tau grid dense:10. Or, instead of
+// FILE, a published curve: --curve CSV --record-length S --rate HZ (app/curve_options.h).
 // One call of estimators::FitModel (estimators/fit/fit_model.h) does the fit.
 // Outputs: a table on stdout; --json (method, coefficients with value, sigma, unit and
 // profile-likelihood intervals, or an upper limit for a term the data do not determine;
@@ -20,12 +21,14 @@
 #include <string>
 
 #include "app/avar_command.h"
+#include "app/curve_options.h"
 #include "app/subcommand.h"
 
 namespace allanlab::app {
 
 struct FitCommandOptions {
   AvarCommandOptions curve;  // record and curve (estimator fixed to overlapping)
+  CurveCommandOptions published;  // --curve: a published curve instead of a record
   std::string method = "gls";           // slope, wls, logwls, gls
   std::string terms = "Q,N,B,K,R";      // asked terms
   bool select_terms = true;

@@ -67,15 +67,28 @@ class Reader {
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
     info_->path = o_.path == "-" ? "stdin" : o_.path;
-    info_->format = o_.format;
     std::string why;
-    if (o_.format != RecordFormat::kText) {
+    format_ = o_.format;
+    if (o_.format_from_sidecar && o_.path != "-") {
+      // No --format: a sidecar that describes raw samples says how to read the file.
+      std::optional<RawSidecar> side;
+      if (!ReadRawSidecar(o_.path, &side, &why)) return Runtime(error, In() + why);
+      if (side && side->dtype == "<f8") format_ = RecordFormat::kFloat64;
+      if (side && side->dtype == "<f4") format_ = RecordFormat::kFloat32;
+      if (format_ != RecordFormat::kText && !o_.column.empty()) {
+        return Usage(error, In() + "the sidecar " + side->path + " describes raw " +
+                                std::string(RecordFormatName(format_)) +
+                                " samples, one column: drop --column");
+      }
+    }
+    info_->format = format_;
+    if (format_ != RecordFormat::kText) {
       if (o_.path != "-" && !ReadRawSidecar(o_.path, &sidecar_, &why)) {
         return Runtime(error, In() + why);
       }
       if (!CheckSidecar(error)) return false;
       if (!o_.rate_hz && !(sidecar_ && sidecar_->sample_rate_hz)) {
-        return Usage(error, In() + "raw " + std::string(RecordFormatName(o_.format)) +
+        return Usage(error, In() + "raw " + std::string(RecordFormatName(format_)) +
                                 " samples carry no time" +
                                 (o_.path == "-" ? std::string()
                                                 : " and no sidecar " + o_.path +
@@ -95,7 +108,7 @@ class Reader {
     std::unique_ptr<ByteSource> source;
     if (!OpenByteSource(o_.path, &source, &why)) return Runtime(error, why);
     info_->compression = source->compression();
-    const bool ok = o_.format == RecordFormat::kText ? ReadText(source.get(), error)
+    const bool ok = format_ == RecordFormat::kText ? ReadText(source.get(), error)
                                                      : ReadRaw(source.get(), error);
     if (!ok) return false;
     return Conclude(error);
@@ -106,11 +119,11 @@ class Reader {
   bool CheckSidecar(RecordError* error) {
     if (!sidecar_) return true;
     const std::string name = "the sidecar " + sidecar_->path;
-    const std::string_view expected = o_.format == RecordFormat::kFloat32 ? "<f4" : "<f8";
+    const std::string_view expected = format_ == RecordFormat::kFloat32 ? "<f4" : "<f8";
     if (sidecar_->dtype && *sidecar_->dtype != expected) {
       return Usage(error, In() + name + " says dtype " + *sidecar_->dtype + ", not " +
                               std::string(expected) + " as --format " +
-                              std::string(RecordFormatName(o_.format)) + " reads: fix --format");
+                              std::string(RecordFormatName(format_)) + " reads: fix --format");
     }
     const std::optional<double>& side = sidecar_->sample_rate_hz;
     if (side && o_.rate_hz && std::abs(*o_.rate_hz - *side) > kRateTolerance * *side) {
@@ -261,7 +274,7 @@ class Reader {
 
   bool ReadRaw(ByteSource* source, RecordError* error) {
     const RawSampleType type =
-        o_.format == RecordFormat::kFloat32 ? RawSampleType::kFloat32 : RawSampleType::kFloat64;
+        format_ == RecordFormat::kFloat32 ? RawSampleType::kFloat32 : RawSampleType::kFloat64;
     RawSampleDecoder decoder(
         type,
         [&](std::span<const double> values, std::int64_t first) {
@@ -407,6 +420,7 @@ class Reader {
   bool unit_is_guess_ = false;
   RecordInfo* info_;
   std::optional<RawSidecar> sidecar_;
+  RecordFormat format_ = RecordFormat::kText;  // o_.format, or the sidecar's dtype
   NonFiniteLog nonfinite_;
   TimeSteps steps_;
   ConstantStretchTracker stretch_;

@@ -54,6 +54,9 @@ inline constexpr int kListedNonFinite = 5;
 struct RecordReaderOptions {
   std::string path;
   RecordFormat format = RecordFormat::kText;
+  // --format not given: when a sidecar (app/raw_sidecar.h) gives dtype <f8 or <f4, the file is
+  // read as raw float64 / float32 (`allanlab avar r.f64` after `simulate --format f64 -o r.f64`).
+  bool format_from_sidecar = false;
   std::string column;             // text only: header name or 0-based index; empty = first data
   std::optional<double> rate_hz;  // --rate [Hz], finite and > 0 (checked by the caller)
   // --time-units: seconds per unit of the time column, overriding the unit its name implies

@@ -313,7 +313,8 @@ TEST_F(AvarCommandTest, SimulatedRecordsAreReadInTheUnitsTheyState) {
   ASSERT_EQ(Run("avar deg.csv --ci none --json deg.json").exit_code, 0);
   const nlohmann::json reference = Json("deg.json");
   ASSERT_GE(reference["points"].size(), 8u);
-  for (const std::string args : {"rad.csv", "degh.csv", "rad.f64 --format f64"}) {
+  // A raw record with its sidecar needs no --format either.
+  for (const std::string args : {"rad.csv", "degh.csv", "rad.f64 --format f64", "rad.f64"}) {
     const RunResult r = Run("avar " + args + " --ci none --json other.json");
     ASSERT_EQ(r.exit_code, 0) << args << ": " << r.err;
     const nlohmann::json j = Json("other.json");

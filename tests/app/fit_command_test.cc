@@ -164,5 +164,48 @@ TEST_F(FitCommandTest, RefusesRecordsTooShortForTheTerms) {
   EXPECT_EQ(Run("fit " + Path("one.csv") + " --terms N --band-limit off"), 0) << Read("err.txt");
 }
 
+// fit --curve: a published curve, here the closed-form white-noise ADEV N / sqrt(tau) (N = 0.3
+// deg/sqrt(h) = 18 deg/h at 1 s) as deviations in deg/h and as variances in (rad/s)^2; the fit
+// gives N back. Noise-free, so only the fit's convergence limits the agreement.
+TEST_F(FitCommandTest, FitsAPublishedCurve) {
+  std::ofstream table(dir_ / "curve.csv");
+  table << "# published curve\ntau_s,adev_x,avar\n";
+  for (double tau = 0.01; tau < 10000; tau *= 2) {
+    const double adev_deg_h = 18.0 / std::sqrt(tau);
+    const double adev_rad_s = adev_deg_h * M_PI / 180.0 / 3600.0;
+    char row[128];
+    std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g\n", tau, adev_deg_h, adev_rad_s * adev_rad_s);
+    table << row;
+  }
+  table.close();
+  const std::string common = " --record-length 7200 --rate 100 --terms N,B --no-select --band-limit off --json ";
+  ASSERT_EQ(Run("fit --curve " + Path("curve.csv") + common + Path("dev.json")), 0) << Read("err.txt");
+  // Rows from 5242.88 s on lie beyond half the 7200 s record: named, not used.
+  EXPECT_NE(Read("err.txt").find(" s is beyond half the record (7200 s); row not used"),
+            std::string::npos)
+      << Read("err.txt");
+  ASSERT_EQ(Run("fit --curve " + Path("curve.csv") + " --curve-column avar --curve-units rad/s" +
+                common + Path("var.json")),
+            0)
+      << Read("err.txt");
+  for (const char* name : {"dev.json", "var.json"}) {
+    const auto j = nlohmann::json::parse(Read(name));
+    EXPECT_NEAR(j["coefficients"]["N"]["value"].get<double>(), 0.3, 1e-6) << name;
+    EXPECT_NE(j["provenance"]["curve"].get<std::string>().find("record 7200 s at 100 Hz"),
+              std::string::npos);
+  }
+  EXPECT_EQ(Run("fit --curve " + Path("curve.csv") + " --rate 100"), 2);
+  EXPECT_NE(Read("err.txt").find("--curve needs --record-length S > 0 and --rate HZ > 0"),
+            std::string::npos);
+  EXPECT_EQ(Run("fit " + Path("curve.csv") + " --curve " + Path("curve.csv") +
+                " --record-length 7200 --rate 100"),
+            2);
+  EXPECT_EQ(Run("fit"), 2);
+  EXPECT_EQ(Run("fit --curve " + Path("curve.csv") + " --curve-column adev_q --record-length 7200 --rate 100"), 2);
+  EXPECT_NE(Read("err.txt").find("the header needs a tau column (tau_s or tau) and adev_q"),
+            std::string::npos)
+      << Read("err.txt");
+}
+
 }  // namespace
 }  // namespace allanlab::app
