@@ -199,7 +199,7 @@ std::optional<CommandFailure> Validate(const ValidateCommandOptions& options,
       options.specs_dir.empty() ? std::string(ALLANLAB_SOURCE_DIR) + "/experiments/specs/validate"
                                 : options.specs_dir;
   const std::string golden_dir =
-      options.golden_dir.empty() ? std::string(ALLANLAB_SOURCE_DIR) + "/results/validation/golden"
+      options.golden_dir.empty() ? std::string(ALLANLAB_SOURCE_DIR) + "/tests/data/validate_quick"
                                  : options.golden_dir;
   std::string why;
   const std::vector<fs::path> files = SpecFiles(specs_dir, options.quick, &why);
