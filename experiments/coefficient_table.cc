@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "estimators/tau_grid.h"
 #include "experiments/coefficient_trial.h"
@@ -149,21 +150,31 @@ std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const S
   }
   std::ostringstream taus;
   for (const SweepPoint& p : spec.points) {
-    estimators::TauGridOptions grid;
-    std::string why;
-    if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) continue;
+    FitAveragingWindow window;
+    try {
+      window = FitWindowOf(spec, p);
+    } catch (const std::invalid_argument&) {
+      continue;
+    }
     const double tau0 = 1.0 / p.sample_rate_hz;
-    const std::int64_t m = SmallestFitAveragingFactor(
-        p.model, p.sample_rate_hz, p.num_samples,
-        estimators::CandidateAveragingFactors(grid, tau0, p.num_samples / 2));
     taus << (taus.tellp() > 0 ? "; " : "") << p.model.name << " " << DurationText(p.num_samples * tau0)
-         << " at " << Cell(p.sample_rate_hz) << " Hz: tau >= " << Cell(m * tau0, 3) << " s";
+         << " at " << Cell(p.sample_rate_hz) << " Hz: " << Cell(window.min_m * tau0, 3) << " .. "
+         << Cell(window.max_m * tau0, 3) << " s";
   }
   std::ostringstream rule;
-  rule << "fits use taus whose white-noise AVAR deficit from the band-limit is <= "
-       << Cell(kMaxBandLimitDeficit * 100) << " % and <= " << Cell(kMaxBandLimitDeficitInSd)
-       << " of the relative sd sqrt(4m/3N) of a white-noise OAVAR estimate there ("
-       << taus.str() << ")";
+  if (spec.fit_tau_max_s > 0.0) {
+    rule << "fixed by the spec (fit.tau_range " << Cell(spec.fit_tau_min_s, 4) << " .. "
+         << Cell(spec.fit_tau_max_s, 4) << " s), the same at every record length; it keeps the "
+            "band-limit's white-noise AVAR deficit <= "
+         << Cell(kMaxBandLimitDeficit * 100) << " % and <= " << Cell(kMaxBandLimitDeficitInSd)
+         << " of the estimate's relative sd at every point (" << taus.str() << ")";
+  } else {
+    rule << "fits use taus whose white-noise AVAR deficit from the band-limit is <= "
+         << Cell(kMaxBandLimitDeficit * 100) << " % and <= " << Cell(kMaxBandLimitDeficitInSd)
+         << " of the relative sd sqrt(4m/3N) of a white-noise OAVAR estimate there, up to the "
+            "grid's longest ("
+         << taus.str() << ")";
+  }
   f.emplace_back("fit taus", rule.str());
   f.emplace_back("slope method curve", "the same taus up to m = N/" +
                                            std::to_string(kSlopeMethodMaxFraction) +

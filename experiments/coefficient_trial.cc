@@ -48,6 +48,7 @@ bool ParseMethod(const std::string& name, estimators::FitMethod* method) {
 struct PointPlan {
   estimators::TauGridOptions grid;
   std::int64_t min_m = 1;
+  std::int64_t max_m = 0;
   TrueCoefficients truth;
   std::vector<Coefficient> fit_terms;  // what the fits are asked for
   std::vector<Coefficient> compared;   // fit_terms present in the truth
@@ -82,9 +83,9 @@ PointPlan MakePlan(const SweepSpec& spec, const SweepPoint& point) {
   for (double level : spec.confidence_levels) {
     plan.z.push_back(std::sqrt(2.0) * boost::math::erf_inv(level));
   }
-  const std::vector<std::int64_t> candidates =
-      estimators::CandidateAveragingFactors(plan.grid, 1.0 / point.sample_rate_hz, point.num_samples / 2);
-  plan.min_m = SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, candidates);
+  const FitAveragingWindow window = FitWindowOf(spec, point);
+  plan.min_m = window.min_m;
+  plan.max_m = window.max_m;
   plan.slope_read_target = plan.truth.has(Coefficient::kN) && plan.truth.has(Coefficient::kB) &&
                            plan.truth.has(Coefficient::kK);
 
@@ -244,6 +245,43 @@ std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sa
   return candidates.back() + 1;  // no tau qualifies: the fits see an empty curve and fail
 }
 
+FitAveragingWindow FitWindowOf(const SweepSpec& spec, const SweepPoint& point) {
+  estimators::TauGridOptions grid;
+  std::string why;
+  if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) {
+    throw std::invalid_argument("taus: " + why);
+  }
+  const double tau0 = 1.0 / point.sample_rate_hz;
+  const std::vector<std::int64_t> candidates =
+      estimators::CandidateAveragingFactors(grid, tau0, point.num_samples / 2);
+  FitAveragingWindow window;
+  window.min_m = SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, candidates);
+  window.max_m = candidates.empty() ? 0 : candidates.back();
+  if (!(spec.fit_tau_max_s > 0.0)) return window;
+  // A fixed window: the candidates inside [tau_min, tau_max] (a relative 1e-9 for rounding).
+  std::int64_t lo = 0, hi = 0;
+  for (std::int64_t m : candidates) {
+    const double tau = static_cast<double>(m) * tau0;
+    if (tau < spec.fit_tau_min_s * (1.0 - 1e-9) || tau > spec.fit_tau_max_s * (1.0 + 1e-9)) continue;
+    if (lo == 0) lo = m;
+    hi = m;
+  }
+  const std::string where = point.model.name + " at " + std::to_string(point.num_samples) + " samples";
+  if (lo == 0) throw std::invalid_argument("fit.tau_range holds no tau of the grid (" + where + ")");
+  if (lo < window.min_m) {
+    throw std::invalid_argument("fit.tau_range starts at " + std::to_string(lo * tau0) +
+                                " s, below the shortest tau the band-limit leaves unbiased at " +
+                                where + " (" + std::to_string(window.min_m * tau0) + " s)");
+  }
+  if (hi > point.num_samples / 8) {
+    throw std::invalid_argument("fit.tau_range ends at " + std::to_string(hi * tau0) +
+                                " s, which leaves fewer than 8 clusters at " + where);
+  }
+  window.min_m = lo;
+  window.max_m = hi;
+  return window;
+}
+
 std::vector<std::string> MethodsOf(const SweepSpec& spec) {
   if (!spec.fit_methods.empty()) return spec.fit_methods;
   return {std::begin(kFitMethodNames), std::end(kFitMethodNames)};
@@ -283,7 +321,7 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
   curve.num_samples = avar.num_samples;
   curve.estimator = sim::AvarEstimatorKind::kOverlapping;
   for (const auto& p : avar.points) {
-    if (p.m < plan.min_m || !(p.value > 0.0)) continue;
+    if (p.m < plan.min_m || p.m > plan.max_m || !(p.value > 0.0)) continue;
     curve.m.push_back(p.m);
     curve.tau_s.push_back(p.tau_s);
     curve.avar.push_back(p.value);

@@ -16,6 +16,10 @@
 //    (GLS; WLS -0.10 %) = 3.9 of its sigmas, and the 68 % intervals covered 0 of 16 trials. The
 //    fit of the exact expected curve reproduces that bias and shows it halves with each octave
 //    dropped; at deficit <= sd / 4 it stays below ~0.2 sigma. Every method gets the same curve.
+//  * A spec with fit.tau_range fixes the fitted taus instead: the same window at every point (so
+//    a sweep of the record length changes only how many clusters each tau has). The window must
+//    satisfy the band-limit rule above at every point, and its longest tau must leave >= 8
+//    clusters; a spec that breaks either is rejected (std::invalid_argument) before any trial.
 //  * The slope method reads the same curve cut at m <= N / kSlopeMethodMaxFraction, the
 //    plotted diagram a practitioner reads (the fits weigh the last, EDF ~ 1, taus themselves).
 //  * Terms fitted: spec.fit_terms, or the truth's terms when it is empty; no term selection
@@ -77,6 +81,15 @@ double SlopeMethodBTarget(const TrueCoefficients& truth);
 std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sample_rate_hz,
                                         std::int64_t num_samples,
                                         const std::vector<std::int64_t>& candidates);
+
+// The averaging factors the fits of a point use: [min_m, max_m] (max_m: the grid's last one
+// when the spec fixes no tau range). Throws std::invalid_argument on a bad grid or a fixed range
+// the point cannot honour (see above).
+struct FitAveragingWindow {
+  std::int64_t min_m = 1;
+  std::int64_t max_m = 0;
+};
+FitAveragingWindow FitWindowOf(const SweepSpec& spec, const SweepPoint& point);
 
 // The method names the spec may list, in table order.
 inline constexpr const char* kFitMethodNames[] = {"slope", "wls", "log_wls", "gls"};  // "default" on request

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "estimators/tau_grid.h"
+#include "experiments/aggregate.h"
 #include "experiments/coefficient_table.h"
 #include "experiments/report_files.h"
 
@@ -14,61 +15,19 @@ namespace {
 
 using estimators::Coefficient;
 
-// Log-log slope of each coefficient's IEEE 952 AVAR shape (Q tau^-2 ... R tau^2).
-double Exponent(Coefficient c) { return static_cast<double>(static_cast<int>(c)) - 2.0; }
-
-double TermAvar(const TrueCoefficients& truth, Coefficient c, double tau) {
-  const double v = truth.at(c);
-  return v * v * estimators::AsymptoteShape(c, tau);
-}
-
-// The present term with the largest asymptotic AVAR at tau.
-Coefficient Dominant(const TrueCoefficients& truth, double tau) {
-  Coefficient best = Coefficient::kN;
-  double best_value = -1.0;
-  for (Coefficient c : estimators::kAllCoefficients) {
-    if (!truth.has(c)) continue;
-    const double v = TermAvar(truth, c, tau);
-    if (v > best_value) {
-      best_value = v;
-      best = c;
-    }
-  }
-  return best;
-}
-
-double FitTauMin(const SweepSpec& spec, const SweepPoint& p) {
-  estimators::TauGridOptions grid;
-  std::string why;
-  if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) return 1.0 / p.sample_rate_hz;
-  const double tau0 = 1.0 / p.sample_rate_hz;
-  return tau0 * static_cast<double>(SmallestFitAveragingFactor(
-                    p.model, p.sample_rate_hz, p.num_samples,
-                    estimators::CandidateAveragingFactors(grid, tau0, p.num_samples / 2)));
-}
-
 std::string Slope(double value) {
   if (std::isnan(value)) return "";
   return Cell(value, 3);
 }
 
-}  // namespace
-
-double PredictedErrorSlope(const TrueCoefficients& truth, Coefficient c, double tau_min_s,
-                           double tau_max_s) {
-  if (!truth.has(c) || !(tau_max_s > tau_min_s)) return -0.5;
-  // Dominant somewhere on a fine log grid of the fitted taus: its own EDF ~ T/tau decides.
-  const int steps = 64;
-  for (int i = 0; i <= steps; ++i) {
-    const double tau = tau_min_s * std::pow(tau_max_s / tau_min_s, static_cast<double>(i) / steps);
-    if (Dominant(truth, tau) == c) return -0.5;
-  }
-  // Short-tau terms are read at tau_min, whose EDF ~ T/tau_min: still T^-1/2.
-  const Coefficient d = Dominant(truth, tau_max_s);
-  const double mu = Exponent(c), nu = Exponent(d);
-  if (mu <= nu) return -0.5;
-  return -(mu - nu);
+// The fitted tau window of a point, as text ("0.64 .. 80 s").
+std::string WindowText(const SweepSpec& spec, const SweepPoint& p) {
+  const FitAveragingWindow w = FitWindowOf(spec, p);
+  const double tau0 = 1.0 / p.sample_rate_hz;
+  return Cell(w.min_m * tau0, 3) + " .. " + Cell(w.max_m * tau0, 3) + " s";
 }
+
+}  // namespace
 
 bool FitLine(const std::vector<double>& x, const std::vector<double>& y,
              const std::vector<double>& sigma, LogLogSlope* line) {
@@ -104,18 +63,15 @@ bool FitLine(const std::vector<double>& x, const std::vector<double>& y,
 
 std::string RecordLengthExperiment::Question() const {
   return "How does the error of each IEEE 952 coefficient shrink with the record length T, per "
-         "method (slope, WLS, log-WLS, GLS), and does it follow the theory? Method: the "
-         "coefficient_recovery trials on a sweep of T; per sensor, method and coefficient a "
-         "weighted least-squares line through ln(relative RMSE) vs ln T (weights from the Monte "
-         "Carlo error of each RMSE; its error scaled by sqrt(chi2/dof) when the points scatter "
-         "more than their errors). Reference: a coefficient read where its own term dominates has "
-         "a relative error ~ 1/sqrt(EDF), EDF ~ T/tau (docs/theory.md §3.2): slope -1/2 (Q, N always; "
-         "B, K once their region is inside the record); a long-tau term that never dominates "
-         "(AVAR ~ tau^mu under a dominant tau^nu) is a perturbation at the longest taus whose "
-         "relative error goes as T^-(mu-nu): -1 for B under white noise or K under flicker. A "
-         "method with a bias floor (the slope method where terms overlap, docs/theory.md §4.5) "
-         "flattens towards 0. Read: the fits' slopes should match the theory within ~2 standard "
-         "errors.";
+         "method (slope, WLS, log-WLS, GLS)? Method: the coefficient_recovery trials on a sweep "
+         "of T; per sensor, method and coefficient a weighted least-squares line through "
+         "ln(relative RMSE) vs ln T over the lengths where the coefficient is identifiable "
+         "(relative RMSE <= 0.3), its error scaled by sqrt(chi2/dof) when the points scatter more "
+         "than their errors. With a fixed tau range (fit.tau_range) T changes only the number of "
+         "clusters at each fitted tau, so a consistent fit's error goes as T^-1/2 (EDF ~ T/tau, "
+         "docs/theory.md §3.2): reference slope -1/2, met when the slope's 95 % interval lies "
+         "within -1/2 +- 0.1. Without one the fitted taus grow with T and the slope also holds the "
+         "effect of the moved tau range (no reference; compare with the fixed-range table).";
 }
 
 bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary& run,
@@ -123,13 +79,20 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
                                          const ReportContext& context, std::string* why) const {
   const std::vector<CoefficientRow> rows = CoefficientRows(spec, stats);
   const auto choices = CoefficientTrialChoices(spec, run);
+  const bool fixed = spec.fit_tau_max_s > 0.0;
+  constexpr double kReference = -0.5;
 
   struct Line {
     std::string sensor, method;
     Coefficient coefficient;
     LogLogSlope fit;
     bool ok = false;
-    double t_lo = 0, t_hi = 0, rmse_lo = 0, rmse_hi = 0, theory_lo = 0, theory_hi = 0;
+    int lengths = 0, identifiable = 0;
+    double t_lo = 0, t_hi = 0, rmse_lo = 0, rmse_hi = 0;  // over the identifiable lengths
+    double rmse_lo_se = 0, rmse_hi_se = 0;
+    std::string window_lo, window_hi;                    // fitted taus at t_lo, t_hi
+    RateInterval slope95{std::nan(""), std::nan("")};
+    std::string verdict;
   };
   std::vector<Line> lines;
   std::set<std::string> seen_keys;
@@ -145,76 +108,100 @@ bool RecordLengthExperiment::WriteReport(const SweepSpec& spec, const RunSummary
     line.t_lo = 1e300;
     for (const CoefficientRow& r : rows) {
       if (r.sensor != first.sensor || r.method != first.method || r.coefficient != first.coefficient) continue;
+      ++line.lengths;
+      if (!(r.rmse <= kIdentifiableRmse) || r.failure_rate > 0.5) continue;
+      ++line.identifiable;
       x.push_back(std::log(r.duration_s));
       y.push_back(std::log(r.rmse));
       sigma.push_back(r.rmse_se / r.rmse);
       const SweepPoint& p = spec.points[r.point];
-      const double theory = PredictedErrorSlope(TrueCoefficientsOf(p.model), r.coefficient,
-                                                FitTauMin(spec, p), r.duration_s / 4.0);
       if (r.duration_s < line.t_lo) {
         line.t_lo = r.duration_s;
         line.rmse_lo = r.rmse;
-        line.theory_lo = theory;
+        line.rmse_lo_se = r.rmse_se;
+        line.window_lo = WindowText(spec, p);
       }
       if (r.duration_s > line.t_hi) {
         line.t_hi = r.duration_s;
         line.rmse_hi = r.rmse;
-        line.theory_hi = theory;
+        line.rmse_hi_se = r.rmse_se;
+        line.window_hi = WindowText(spec, p);
       }
     }
-    line.ok = FitLine(x, y, sigma, &line.fit);
+    line.ok = line.identifiable >= 3 && FitLine(x, y, sigma, &line.fit);
+    if (line.ok) {
+      line.slope95 = {line.fit.slope - 1.96 * line.fit.slope_se, line.fit.slope + 1.96 * line.fit.slope_se};
+      if (fixed) line.verdict = TargetVerdict(line.slope95, kReference - kSlopeTolerance, kReference + kSlopeTolerance);
+    } else {
+      line.verdict = line.identifiable == 0 ? "not identifiable" : "identifiable at < 3 lengths";
+    }
     lines.push_back(line);
   }
 
   std::ostringstream csv;
   csv << ProvenanceBlock(spec, context, choices, "# ")
-      << "sensor,method,coefficient,T_min_s,T_max_s,points,slope,slope_se,chi2,dof,"
-         "theory_slope_at_T_min,theory_slope_at_T_max,rmse_at_T_min,rmse_at_T_max\n";
+      << "sensor,method,coefficient,lengths,identifiable_lengths,T_min_s,T_max_s,taus_at_T_min,"
+         "taus_at_T_max,slope,slope_se,slope_low95,slope_high95,chi2,dof,reference_slope,verdict,"
+         "rmse_at_T_min,rmse_at_T_max\n";
   for (const Line& l : lines) {
+    const bool has = l.identifiable > 0;
     csv << CsvField(l.sensor) << "," << l.method << "," << estimators::CoefficientId(l.coefficient)
-        << "," << Cell(l.t_lo) << "," << Cell(l.t_hi) << "," << (l.ok ? l.fit.points : 0) << ","
-        << (l.ok ? Cell(l.fit.slope) : "") << "," << (l.ok ? Cell(l.fit.slope_se) : "") << ","
+        << "," << l.lengths << "," << l.identifiable << "," << (has ? Cell(l.t_lo) : "") << ","
+        << (has ? Cell(l.t_hi) : "") << "," << CsvField(l.window_lo) << "," << CsvField(l.window_hi)
+        << "," << (l.ok ? Cell(l.fit.slope) : "") << "," << (l.ok ? Cell(l.fit.slope_se) : "") << ","
+        << (l.ok ? Cell(l.slope95.low) : "") << "," << (l.ok ? Cell(l.slope95.high) : "") << ","
         << (l.ok ? Cell(l.fit.chi2) : "") << "," << (l.ok ? std::to_string(l.fit.dof) : "") << ","
-        << Cell(l.theory_lo) << "," << Cell(l.theory_hi) << "," << Cell(l.rmse_lo) << ","
-        << Cell(l.rmse_hi) << "\n";
+        << (fixed ? Cell(kReference) : "") << "," << CsvField(l.verdict) << ","
+        << (has ? Cell(l.rmse_lo) : "") << "," << (has ? Cell(l.rmse_hi) : "") << "\n";
   }
 
   std::ostringstream md;
   md << "# " << spec.name << "\n\n" << Question() << "\n\n## Provenance\n\n"
      << ProvenanceBlock(spec, context, choices, "    ")
      << "\nRMSE is relative (of estimate / truth - 1). slope = d ln RMSE / d ln T +- its standard "
-        "error; theory at the shortest and the longest T (they differ where a term's region "
-        "enters the record).\n";
+        "error [95 % interval] (RMSE ± its Monte Carlo standard error), over the record lengths where the coefficient is identifiable "
+        "(relative RMSE <= "
+     << Cell(kIdentifiableRmse) << "; a slope needs 3 of them). "
+     << (fixed ? "The fitted taus are the same at every T (fit.tau_range): reference -1/2; met "
+                 "when the 95 % interval lies within -1/2 +- " + Cell(kSlopeTolerance) +
+                     ", not met when it lies outside, else undecided.\n"
+               : "The fitted taus grow with T (columns 'taus'): the slope holds both the extra "
+                 "clusters and the moved tau range, so no reference slope is printed; the table "
+                 "of the same sensor at a fixed tau range separates the two.\n");
   std::set<std::string> sensors;
   for (const Line& first : lines) {
     if (!sensors.insert(first.sensor).second) continue;
-    md << "\n## " << first.sensor << "\n\n| method | coef | T | RMSE (shortest T) | RMSE (longest "
-          "T) | slope | chi2 / dof | theory (shortest T) | theory (longest T) |\n"
-          "|---|---|---|---|---|---|---|---|---|\n";
+    md << "\n## " << first.sensor << "\n\n| method | coef | identifiable at | T | taus (shortest T) "
+          "| taus (longest T) | RMSE (shortest T) | RMSE (longest T) | slope [95 %] | chi2 / dof |"
+       << (fixed ? " verdict (-1/2 +- " + Cell(kSlopeTolerance) + ") |" : "") << "\n"
+       << "|---|---|---|---|---|---|---|---|---|---|" << (fixed ? "---|" : "") << "\n";
     for (const Line& l : lines) {
       if (l.sensor != first.sensor) continue;
+      const bool has = l.identifiable > 0;
       md << "| " << l.method << " | " << estimators::CoefficientId(l.coefficient) << " | "
-         << DurationText(l.t_lo) << " .. " << DurationText(l.t_hi) << " | " << Cell(l.rmse_lo, 3)
-         << " | " << Cell(l.rmse_hi, 3) << " | "
-         << (l.ok ? Slope(l.fit.slope) + " +- " + Cell(l.fit.slope_se, 2) : "") << " | "
+         << l.identifiable << " of " << l.lengths << " | "
+         << (has ? DurationText(l.t_lo) + " .. " + DurationText(l.t_hi) : "") << " | "
+         << l.window_lo << " | " << l.window_hi << " | "
+         << (has ? Cell(l.rmse_lo, 3) + " ± " + Cell(l.rmse_lo_se, 2) : "") << " | "
+         << (has ? Cell(l.rmse_hi, 3) + " ± " + Cell(l.rmse_hi_se, 2) : "") << " | "
+         << (l.ok ? Slope(l.fit.slope) + " +- " + Cell(l.fit.slope_se, 2) + " [" +
+                        Cell(l.slope95.low, 3) + ", " + Cell(l.slope95.high, 3) + "]"
+                  : (l.identifiable == 0 ? "not identifiable" : "too few lengths"))
+         << " | "
          << (l.ok && l.fit.dof > 0 ? Cell(l.fit.chi2, 3) + " / " + std::to_string(l.fit.dof) : "")
-         << " | " << Slope(l.theory_lo) << " | " << Slope(l.theory_hi) << " |\n";
+         << " |" << (fixed ? " " + (l.ok ? l.verdict : std::string()) + " |" : "") << "\n";
     }
   }
 
-  // Theory slopes through GLS's RMSE at the shortest and the longest T.
+  // The T^-1/2 reference through GLS's RMSE at the shortest identifiable T (fixed taus only).
   std::vector<GuideLine> guides;
   for (const Line& l : lines) {
-    if (l.method != "gls") continue;
-    guides.push_back({l.sensor, l.coefficient, l.theory_lo, l.t_lo, l.rmse_lo,
-                      "theory T^" + Cell(l.theory_lo, 3)});
-    if (l.theory_hi != l.theory_lo) {
-      guides.push_back({l.sensor, l.coefficient, l.theory_hi, l.t_hi, l.rmse_hi,
-                        "theory T^" + Cell(l.theory_hi, 3)});
-    }
+    if (!fixed || l.method != "gls" || !l.ok) continue;
+    guides.push_back({l.sensor, l.coefficient, kReference, l.t_lo, l.rmse_lo, "T^-1/2"});
   }
   return WriteCoefficientReport(rows, context.output_dir + "/" + spec.name,
-                                spec.name + " (theory slopes through GLS)", guides, csv.str(), md.str(), why);
+                                spec.name + (fixed ? " (T^-1/2 through GLS)" : ""), guides, csv.str(),
+                                md.str(), why);
 }
 
 }  // namespace allanlab::experiments

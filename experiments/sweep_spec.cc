@@ -453,7 +453,7 @@ void Parse(const YAML::Node& root, const std::string& origin, SweepSpec* spec) {
   spec->fit_methods.clear();
   spec->fit_terms.clear();
   if (root["fit"]) {
-    const YAML::Node fit = CheckMap(root["fit"], "fit", {"methods", "terms"});
+    const YAML::Node fit = CheckMap(root["fit"], "fit", {"methods", "terms", "tau_range"});
     if (!fit["methods"]) Fail("fit.methods", "missing (slope, wls, log_wls, gls, default)");
     const auto methods = ListOrScalar(fit["methods"], "fit.methods");
     for (std::size_t i = 0; i < methods.size(); ++i) {
@@ -475,6 +475,24 @@ void Parse(const YAML::Node& root, const std::string& origin, SweepSpec* spec) {
       }
     } else {
       spec->fit_terms = {"Q", "N", "B", "K", "R"};
+    }
+    if (fit["tau_range"]) {
+      const YAML::Node& range = fit["tau_range"];
+      if (!range.IsSequence() || range.size() != 2) {
+        Fail("fit.tau_range", "expected [shortest tau, longest tau], e.g. [2.56 s, 80 s]");
+      }
+      double ends[2];
+      for (std::size_t i = 0; i < 2; ++i) {
+        const std::string text = Scalar(range[i], Index("fit.tau_range", i));
+        std::string why;
+        if (!sim::ParseQuantity(text, sim::Dimension::kTime, &ends[i], &why)) {
+          Fail(Index("fit.tau_range", i), why);
+        }
+        if (!(ends[i] > 0.0) || !std::isfinite(ends[i])) Fail(Index("fit.tau_range", i), "must be > 0");
+      }
+      if (!(ends[1] > ends[0])) Fail("fit.tau_range", "the longest tau must exceed the shortest");
+      spec->fit_tau_min_s = ends[0];
+      spec->fit_tau_max_s = ends[1];
     }
   }
 
@@ -564,6 +582,9 @@ void Parse(const YAML::Node& root, const std::string& origin, SweepSpec* spec) {
   for (const std::string& m : spec->fit_methods) canonical << ' ' << m;
   canonical << "\nfit_terms:";
   for (const std::string& t : spec->fit_terms) canonical << ' ' << t;
+  if (spec->fit_tau_max_s > 0.0) {
+    canonical << "\nfit_tau_range: " << spec->fit_tau_min_s << ' ' << spec->fit_tau_max_s;
+  }
   canonical << "\nconfidence:";
   for (double c : spec->confidence_levels) canonical << ' ' << c;
   canonical << '\n';

@@ -13,7 +13,8 @@
 //   estimators: [overlapping, nonoverlapping, modified, hadamard, total]   # statistic ids
 //   taus: octave                      # octave | decade | dense:K | all | [0.01, 1, 10 s]
 //                                     #   (a list of taus: seconds, or quantities with a unit)
-//   fit: {methods: [slope, wls, log_wls, gls], terms: [Q, N, B, K, R]}   # optional
+//   fit: {methods: [slope, wls, log_wls, gls], terms: [Q, N, B, K, R]}   # optional; also
+//        tau_range: [2.56 s, 80 s]   # the fits see only these taus, the same at every point
 //   confidence: [0.683, 0.95]
 //   sweep:                            # any parameter of the sensor or the record; values carry
 //     mode: product                   #   units exactly as the sensor YAML does; product | zip
@@ -73,6 +74,10 @@ struct SweepSpec {
   std::string taus = "octave";  // tau-grid spec as `allanlab avar --taus` (list: seconds, commas)
   std::vector<std::string> fit_methods;            // "slope", "wls", "log_wls", "gls", "default"
   std::vector<std::string> fit_terms;              // "Q", "N", ...
+  // fit.tau_range: the fits use only taus in [fit_tau_min_s, fit_tau_max_s] (both 0 when the spec
+  // gives none: then the driver's own rule decides, coefficient_trial.h).
+  double fit_tau_min_s = 0.0;
+  double fit_tau_max_s = 0.0;
   std::vector<double> confidence_levels = {0.683, 0.95};
   std::vector<SweepPoint> points;  // expanded and validated
   std::string canonical_text;      // normalised spec text: its hash names the checkpoint store

@@ -3,6 +3,7 @@
 #include "experiments/record_length.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
@@ -25,26 +26,28 @@ using estimators::Coefficient;
 using testing_support::PresetPoint;
 using testing_support::RunSweepInline;
 
-TrueCoefficients PresetTruth(const std::string& name) {
-  sim::SensorModel model;
-  std::string why;
-  EXPECT_TRUE(sim::LoadPreset(name, &model, &why)) << why;
-  return TrueCoefficientsOf(model);
-}
-
-TEST(RecordLength, PredictedSlopes) {
-  // mg25_mems, 1 h record (taus 0.5 .. 900 s): white up to ~180 s, then the flicker floor; RRW
-  // (crossing the floor at ~48 h) is only a perturbation under flicker: K ~ T^-1.
-  const TrueCoefficients mg25 = PresetTruth("mg25_mems");
-  EXPECT_EQ(PredictedErrorSlope(mg25, Coefficient::kQ, 0.5, 900.0), -0.5);
-  EXPECT_EQ(PredictedErrorSlope(mg25, Coefficient::kN, 0.5, 900.0), -0.5);
-  EXPECT_EQ(PredictedErrorSlope(mg25, Coefficient::kB, 0.5, 900.0), -0.5);
-  EXPECT_EQ(PredictedErrorSlope(mg25, Coefficient::kK, 0.5, 900.0), -1.0);
-  // A 5 min record (taus up to 75 s) does not reach the floor: B is a perturbation on white.
-  EXPECT_EQ(PredictedErrorSlope(mg25, Coefficient::kB, 0.5, 75.0), -1.0);
-  // consumer_mems: RRW crosses the floor at ~2.5 h, inside a 24 h record.
-  const TrueCoefficients consumer = PresetTruth("consumer_mems");
-  EXPECT_EQ(PredictedErrorSlope(consumer, Coefficient::kK, 0.5, 6.0 * 3600.0), -0.5);
+TEST(RecordLength, AFixedTauRangeIsTheSameAtEveryLengthAndHonoursTheBandLimit) {
+  SweepSpec spec;
+  spec.taus = "octave";
+  spec.fit_tau_min_s = 2.56;
+  spec.fit_tau_max_s = 40.96;
+  for (double seconds : {600.0, 86400.0}) {
+    const SweepPoint p = PresetPoint("tg100", 50.0, seconds, 0);
+    const FitAveragingWindow w = FitWindowOf(spec, p);
+    EXPECT_EQ(w.min_m, 128) << seconds;  // 2.56 s at 50 Hz
+    EXPECT_EQ(w.max_m, 2048) << seconds;
+  }
+  // Without a fixed range the shortest tau grows with T (the band-limit rule): the old design.
+  SweepSpec growing;
+  growing.taus = "octave";
+  EXPECT_LT(FitWindowOf(growing, PresetPoint("tg100", 50.0, 600.0, 0)).min_m,
+            FitWindowOf(growing, PresetPoint("tg100", 50.0, 86400.0, 0)).min_m);
+  // A range starting below what the band-limit allows on 24 h, or leaving < 8 clusters, is refused.
+  spec.fit_tau_min_s = 0.32;
+  EXPECT_THROW(FitWindowOf(spec, PresetPoint("tg100", 50.0, 86400.0, 0)), std::invalid_argument);
+  spec.fit_tau_min_s = 2.56;
+  spec.fit_tau_max_s = 163.84;
+  EXPECT_THROW(FitWindowOf(spec, PresetPoint("tg100", 50.0, 600.0, 0)), std::invalid_argument);
 }
 
 TEST(RecordLength, FitLineRecoversAnExactLineAndScalesItsErrorByTheScatter) {
@@ -67,6 +70,8 @@ SweepSpec TwoLengths() {
   spec.seed = 20261123;
   spec.trials = 40;
   spec.fit_methods = {"slope", "gls"};
+  spec.fit_tau_min_s = 0.64;   // the same fitted taus at both lengths
+  spec.fit_tau_max_s = 10.24;
   spec.points.push_back(PresetPoint("tg100", 50.0, 150.0, 0));
   spec.points.push_back(PresetPoint("tg100", 50.0, 2400.0, 1));
   return spec;
@@ -88,7 +93,7 @@ TEST(RecordLength, GlsErrorOfNShrinksAsTheSquareRootOfT) {
   ASSERT_EQ(x.size(), 2u);
   LogLogSlope line;
   ASSERT_TRUE(FitLine(x, y, sigma, &line));
-  // N is read on the white region (0.5 .. ~4 s) at both lengths, EDF ~ T/tau: slope -1/2.
+  // The same taus (0.64 .. 10.24 s) at both lengths, EDF ~ T/tau: slope -1/2.
   EXPECT_LE(std::abs(line.slope + 0.5), testing_support::kZ * line.slope_se)
       << "slope " << line.slope << " +- " << line.slope_se;
   EXPECT_LT(line.slope_se, 0.15);

@@ -137,6 +137,10 @@ TEST(SweepSpec, EveryErrorNamesItsKey) {
       {b + "fit: {methods: [wls, lsq]}\n", "fit.methods[1]: unknown fit method \"lsq\""},
       {b + "fit: {methods: [wls], terms: [N, X]}\n", "fit.terms[1]: unknown coefficient"},
       {b + "fit: {method: wls}\n", "fit.method: unknown key"},
+      {b + "fit: {methods: [gls], tau_range: [1 s]}\n", "fit.tau_range: expected [shortest tau, longest tau]"},
+      {b + "fit: {methods: [gls], tau_range: [1 s, 2 Hz]}\n", "fit.tau_range[1]:"},
+      {b + "fit: {methods: [gls], tau_range: [0 s, 2 s]}\n", "fit.tau_range[0]: must be > 0"},
+      {b + "fit: {methods: [gls], tau_range: [4 s, 2 s]}\n", "fit.tau_range: the longest tau must exceed"},
       {b + "confidence: [0.5, 1.5]\n", "confidence[1]: expected a level in (0, 1)"},
       {b + "sweep: {mode: cross, parameters: [{path: record.duration, values: [1 s]}]}\n",
        "sweep.mode: expected product or zip"},
@@ -167,6 +171,15 @@ TEST(SweepSpec, EveryErrorNamesItsKey) {
     EXPECT_EQ(why.rfind("spec.yaml", 0), 0u) << why;
     EXPECT_EQ(why.find('\n'), std::string::npos) << why;
   }
+}
+
+TEST(SweepSpec, FitTauRangeIsReadInSecondsAndNamesTheCheckpoint) {
+  const SweepSpec plain = MustLoad(std::string(kBase) + "fit: {methods: [gls]}\n");
+  EXPECT_EQ(plain.fit_tau_max_s, 0.0);
+  const SweepSpec fixed = MustLoad(std::string(kBase) + "fit: {methods: [gls], tau_range: [2.56 s, 1 min]}\n");
+  EXPECT_DOUBLE_EQ(fixed.fit_tau_min_s, 2.56);
+  EXPECT_DOUBLE_EQ(fixed.fit_tau_max_s, 60.0);
+  EXPECT_NE(plain.Hash(), fixed.Hash());
 }
 
 TEST(SweepSpec, MissingFileIsAnError) {
