@@ -12,9 +12,11 @@
 #include "estimators/confidence.h"
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/bandwidth_estimate.h"
+#include "estimators/fit/fit_model.h"
 #include "estimators/fit/noise_coefficient.h"
 #include "estimators/fit/slope_method.h"
 #include "estimators/tau_grid.h"
+#include "experiments/coefficient_trial.h"
 #include "experiments/report_files.h"
 
 namespace allanlab::experiments {
@@ -44,12 +46,56 @@ const char* const kScalarColumns[] = {
     "fc_paper_rule/inflection",   // 1 / (2 pi tau_peak) [Hz]: "inflection tau = time constant"
     "peak_tau/inflection",        // [s]
     "fc_found/inflection",
+    // The paper's own procedure (its eqs. 1-2): non-overlapping clusters, L = T/M of them,
+    // M = 1, 2, 4, ... while L >= 2, B from the lowest point of that curve.
+    "B_min/paper_procedure",         // [deg/h]
+    "B_min_ratio/paper_procedure",
+    "tau_min/paper_procedure",       // [s]
+    // The same with L >= 9 clusters (the paper's error formula 100/sqrt(2(L-1)) <= 25 %).
+    "B_min_ratio/paper_procedure_9_clusters",
+    "fc_paper_literal/inflection",   // 1 / tau_peak [Hz]: "100 Hz, time constant 10 ms"
+    // The correct estimate: `allanlab fit`'s defaults on the octave OAVAR curve at the taus the
+    // band-limit leaves unbiased (coefficient_trial.h), with its profile-likelihood intervals.
+    "N_fit_ratio/fit", "N_fit_in_ci68.3/fit", "N_fit_in_ci95/fit",
+    "B_fit_ratio/fit", "B_fit_in_ci68.3/fit", "B_fit_in_ci95/fit",
+    "fit_failed/fit",
 };
 
 std::string MColumn(std::string_view prefix, std::int64_t m) {
   std::ostringstream out;
   out << prefix << "/overlapping/m=" << m;
   return out.str();
+}
+
+// The paper's Allan deviation (its eq. 2: non-overlapping cluster means, L = floor(N/M)), in the
+// record's unit; NaN with fewer than 2 clusters.
+double PaperAllanDeviation(const std::vector<double>& rate, std::int64_t m) {
+  const std::int64_t clusters = static_cast<std::int64_t>(rate.size()) / m;
+  if (clusters < 2) return kNaN;
+  double previous = 0.0, sum = 0.0;
+  for (std::int64_t l = 0; l < clusters; ++l) {
+    double mean = 0.0;
+    for (std::int64_t i = 0; i < m; ++i) mean += rate[static_cast<std::size_t>(l * m + i)];
+    mean /= static_cast<double>(m);
+    if (l > 0) sum += (mean - previous) * (mean - previous);
+    previous = mean;
+  }
+  return std::sqrt(sum / (2.0 * static_cast<double>(clusters - 1)));
+}
+
+// The lowest paper Allan deviation [deg/h] and its tau over M = 2^k with >= min_clusters.
+void PaperMinimum(const std::vector<double>& rate, double tau0, std::int64_t min_clusters,
+                  double* sigma_deg_per_h, double* tau_s) {
+  *sigma_deg_per_h = kNaN;
+  *tau_s = kNaN;
+  const auto n = static_cast<std::int64_t>(rate.size());
+  for (std::int64_t m = 1; n / m >= min_clusters; m *= 2) {
+    const double sigma = PaperAllanDeviation(rate, m) * kRadPerSToDegPerH;
+    if (!(sigma >= *sigma_deg_per_h)) {
+      *sigma_deg_per_h = sigma;
+      *tau_s = static_cast<double>(m) * tau0;
+    }
+  }
 }
 
 struct PointCache {
@@ -63,6 +109,53 @@ class Workspace : public TrialWorkspace {
  public:
   PointCache cache;
 };
+
+// `allanlab fit`'s defaults on the octave OAVAR curve from the shortest tau the band-limit leaves
+// unbiased (coefficient_trial.h): N and B against the truth, with their interval coverage.
+void AppendFitColumns(const SweepPoint& point, const std::vector<double>& rate,
+                      const SeedPaperTruth& truth, double injected, std::vector<double>* row) {
+  const double tau0 = 1.0 / point.sample_rate_hz;
+  estimators::AvarOptions options;
+  options.statistic = estimators::Statistic::kAllanOverlapping;
+  options.sample_period_s = tau0;
+  options.taus.kind = estimators::TauGridKind::kOctave;
+  estimators::AvarSummary summary;
+  if (!estimators::ComputeAvar(options, rate, &summary)) throw std::runtime_error(summary.message);
+  std::vector<std::int64_t> ms;
+  for (const estimators::AvarPoint& p : summary.points) ms.push_back(p.m);
+  const std::int64_t min_m =
+      SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, ms);
+  estimators::AvarCurve curve;
+  curve.sample_period_s = tau0;
+  curve.num_samples = point.num_samples;
+  curve.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const estimators::AvarPoint& p : summary.points) {
+    if (p.m < min_m || !(p.value > 0.0)) continue;
+    curve.m.push_back(p.m);
+    curve.tau_s.push_back(p.tau_s);
+    curve.avar.push_back(p.value);
+    curve.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
+  estimators::ModelFitOptions fit;
+  estimators::ModelFitSummary m;
+  const bool ok = curve.size() >= 2 && estimators::FitModel(fit, curve, &m);
+  const auto append = [&](Coefficient c, double truth_datasheet) {
+    const estimators::CoefficientEstimate& e = m.fit.at(c);
+    const double truth_si = estimators::FromDatasheetUnit(c, truth_datasheet);
+    if (!ok || !(truth_si > 0.0)) {
+      row->insert(row->end(), {kNaN, kNaN, kNaN});
+      return;
+    }
+    const double value = injected * (e.fitted ? e.value_si : 0.0);
+    row->push_back(value / truth_si);
+    for (const auto* r : {&e.interval68_si, &e.interval95_si}) {
+      row->push_back(e.has_intervals ? ((*r)[0] <= truth_si && truth_si <= (*r)[1] ? 1.0 : 0.0) : kNaN);
+    }
+  };
+  append(Coefficient::kN, truth.n_deg_per_sqrt_h);
+  append(Coefficient::kB, truth.b_deg_per_h);
+  row->push_back(ok ? 0.0 : 1.0);
+}
 
 }  // namespace
 
@@ -189,6 +282,11 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
                    : kNaN;
   const double b_min = injected * sigma_min / kFloorFactor;
   const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
+  double paper_sigma = kNaN, paper_tau = kNaN, paper9_sigma = kNaN, paper9_tau = kNaN;
+  PaperMinimum(rate, tau0, 2, &paper_sigma, &paper_tau);
+  PaperMinimum(rate, tau0, 9, &paper9_sigma, &paper9_tau);
+  const double b_paper = injected * paper_sigma / kFloorFactor;
+  const double b_paper9 = injected * paper9_sigma / kFloorFactor;
   const double fc = bandwidth.found ? bandwidth.cutoff_first_order_hz : kNaN;
   const double peak = bandwidth.found ? bandwidth.peak_tau_s : kNaN;
 
@@ -209,7 +307,13 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
       bandwidth.found ? 1.0 / (2.0 * M_PI * peak) : kNaN,
       peak,
       bandwidth.found ? 1.0 : 0.0,
+      b_paper,
+      ratio(b_paper, truth.b_deg_per_h),
+      paper_tau,
+      ratio(b_paper9, truth.b_deg_per_h),
+      bandwidth.found ? 1.0 / peak : kNaN,
   };
+  AppendFitColumns(point, rate, truth, injected, &row);
   for (std::size_t i = 0; i < cache.ms.size(); ++i) {
     const estimators::AvarPoint* p = nullptr;
     for (const auto& candidate : summary.points) {
