@@ -25,6 +25,14 @@ double AvarFromAutocovariance(std::int64_t m, Autocovariance&& r) {
   return static_cast<double>(sum / (2.0L * m * m));
 }
 
+long double FlickerAutocovariance(std::int64_t k) {
+  long double r = 0.0L;
+  for (int j = kFlickerFirst; j <= kFlickerLast; ++j) {
+    r += std::exp(-static_cast<long double>(k) / FlickerCorrelationTime(j));
+  }
+  return r;
+}
+
 }  // namespace
 
 const std::vector<PlainNoise>& PlainNoises() {
@@ -40,6 +48,7 @@ std::string PlainNoiseLabel(PlainNoise noise) {
     case PlainNoise::kFlicker: return "flicker";
     case PlainNoise::kRandomWalk: return "random walk";
     case PlainNoise::kRandomWalkAveraged: return "random walk (averaged)";
+    case PlainNoise::kQuantization: return "quantization";
   }
   return "?";
 }
@@ -50,6 +59,7 @@ std::string PlainNoiseId(PlainNoise noise) {
     case PlainNoise::kFlicker: return "flicker";
     case PlainNoise::kRandomWalk: return "rw";
     case PlainNoise::kRandomWalkAveraged: return "rw_averaged";
+    case PlainNoise::kQuantization: return "quantization";
   }
   return "?";
 }
@@ -84,6 +94,15 @@ std::vector<double> GeneratePlain(PlainNoise noise, std::int64_t n, std::uint64_
       }
       break;
     }
+    case PlainNoise::kQuantization: {
+      double previous = normal(engine);
+      for (double& v : y) {
+        const double theta = normal(engine);
+        v = theta - previous;
+        previous = theta;
+      }
+      break;
+    }
     case PlainNoise::kFlicker:
       for (int j = kFlickerFirst; j <= kFlickerLast; ++j) {
         const double phi = std::exp(-1.0 / FlickerCorrelationTime(j));
@@ -109,16 +128,29 @@ double PlainExpectedAvar(PlainNoise noise, std::int64_t m) {
       return (2.0 * md * md + 1.0) / (6.0 * md);
     case PlainNoise::kRandomWalkAveraged:
       return md / 3.0;
+    case PlainNoise::kQuantization:
+      return 3.0 / (md * md);
     case PlainNoise::kFlicker:
-      return AvarFromAutocovariance(m, [](std::int64_t k) {
-        long double r = 0.0L;
-        for (int j = kFlickerFirst; j <= kFlickerLast; ++j) {
-          r += std::exp(-static_cast<long double>(k) / FlickerCorrelationTime(j));
-        }
-        return r;
-      });
+      return AvarFromAutocovariance(m, [](std::int64_t k) { return FlickerAutocovariance(k); });
   }
   return 0.0;
+}
+
+double PlainAutocovariance(PlainNoise noise, std::int64_t k) {
+  if (k < 0) k = -k;
+  switch (noise) {
+    case PlainNoise::kWhite:
+      return k == 0 ? 1.0 : 0.0;
+    case PlainNoise::kQuantization:
+      return k == 0 ? 2.0 : (k == 1 ? -1.0 : 0.0);
+    case PlainNoise::kRandomWalk:
+      return -0.5 * static_cast<double>(k);
+    case PlainNoise::kFlicker:
+      return static_cast<double>(FlickerAutocovariance(k));
+    case PlainNoise::kRandomWalkAveraged:
+      break;
+  }
+  throw std::invalid_argument("plain noise: no autocovariance for " + PlainNoiseLabel(noise));
 }
 
 }  // namespace allanlab::experiments

@@ -8,6 +8,7 @@
 #include "experiments/avar_error_bars.h"
 #include "experiments/coefficient_recovery.h"
 #include "experiments/default_intervals.h"
+#include "experiments/estimator_coverage.h"
 #include "experiments/record_length.h"
 #include "experiments/seed_paper.h"
 
@@ -36,6 +37,7 @@ constexpr Entry kExperiments[] = {
     {"avar_error_bars", &Make<AvarErrorBarsExperiment>},
     {"coefficient_recovery", &Make<CoefficientRecoveryExperiment>},
     {"default_intervals", &Make<DefaultIntervalsExperiment>},
+    {"estimator_coverage", &Make<EstimatorCoverageExperiment>},
     {"record_length", &Make<RecordLengthExperiment>},
     {"seed_paper", &Make<SeedPaperExperiment>},
 };
