@@ -74,6 +74,7 @@ std::optional<CommandFailure> Sweep(const SweepCommandOptions& options,
   context.date_utc = provenance.utc_date;
   context.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   context.ranks = ranks.size;
+  context.wall_time_s = run.wall_time_s;
   if (!experiment->WriteReport(spec, run, stats, context, &why)) return RuntimeFailure(why);
   std::remove((ranks.size == 1 ? runner.checkpoint_path
                                : runner.checkpoint_path + ".rank0of" + std::to_string(ranks.size))

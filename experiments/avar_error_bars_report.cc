@@ -333,7 +333,6 @@ bool AvarErrorBarsExperiment::WriteReport(const SweepSpec& spec, const RunSummar
       {"estimators", "nonoverlapping, overlapping, modified, hadamard (overlapping), total"},
       {"taus", spec.taus + " (m <= N/4)"},
       {"trials_failed", std::to_string(run.trials_failed)},
-      {"wall_time_s", FormatNumber(run.wall_time_s, 4)},
   };
   for (const SweepPoint& point : spec.points) {
     extra.emplace_back("point " + std::to_string(point.index),

@@ -22,6 +22,7 @@ struct ReportContext {
   std::string date_utc;        // ISO 8601
   int threads = 1;
   int ranks = 1;
+  double wall_time_s = -1.0;   // of the sweep, when known (< 0: not stated)
 };
 
 class Experiment {

@@ -134,6 +134,7 @@ std::string ProvenanceBlock(const SweepSpec& spec, const ReportContext& context,
   line("threads", std::to_string(context.threads));
   line("ranks", std::to_string(context.ranks));
   line("command", context.command_line);
+  if (context.wall_time_s >= 0.0) line("wall_time_s", FormatNumber(context.wall_time_s, 4));
   for (const auto& [key, value] : extra) line(key, value);
   // The spec itself, one line per spec line, so the table alone says what was run.
   std::istringstream spec_lines(spec.canonical_text);
