@@ -100,7 +100,20 @@ const char* Color(std::size_t index) {
   return kColors[index % (sizeof kColors / sizeof kColors[0])];
 }
 
-std::string Script(const AllanPlot& plot, const std::string& output_path) {
+std::string TerminalLines(int width_px, int height_px, const std::string& output_path) {
+  std::ostringstream os;
+  os << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+     << "  set terminal pngcairo noenhanced size " << width_px << "," << height_px
+     << " font ',10'\n"
+     << "} else {\n"
+     << "  set terminal png noenhanced size " << width_px << "," << height_px << "\n"
+     << "}\n"
+     << "set output " << Quoted(output_path) << "\n";
+  return os.str();
+}
+
+// The commands that draw one diagram (after the terminal is set).
+std::string Body(const AllanPlot& plot) {
   std::vector<const PlotSeries*> kept;
   std::vector<std::vector<std::pair<double, double>>> points;
   std::vector<std::vector<std::pair<double, double>>> bars;  // (low, high) per kept point
@@ -141,14 +154,7 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   if (x_hi <= x_lo) x_hi = x_lo * 2;
   if (y_hi <= y_lo) y_hi = y_lo * 2;
   std::ostringstream os;
-  os << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-     << "  set terminal pngcairo noenhanced size " << plot.width_px << "," << plot.height_px
-     << " font ',10'\n"
-     << "} else {\n"
-     << "  set terminal png noenhanced size " << plot.width_px << "," << plot.height_px << "\n"
-     << "}\n"
-     << "set output " << Quoted(output_path) << "\n"
-     << "set title " << Quoted(plot.title) << "\n"
+  os << "set title " << Quoted(plot.title) << "\n"
      << "set xlabel " << Quoted(plot.x_label) << "\n"
      << "set ylabel " << Quoted(plot.y_label) << "\n"
      << "set logscale xy\n"
@@ -249,8 +255,34 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   for (std::size_t i = 0; i < clauses.size(); ++i) {
     os << (i ? ", \\\n     " : "") << clauses[i];
   }
-  os << "\nunset output\n";
+  os << "\n";
   return os.str();
+}
+
+std::string Script(const AllanPlot& plot, const std::string& output_path) {
+  return TerminalLines(plot.width_px, plot.height_px, output_path) + Body(plot) + "unset output\n";
+}
+
+// Panels side by side, each with its own axes, labels and objects.
+std::string Script(const std::vector<AllanPlot>& panels, const std::string& output_path) {
+  int width = 0, height = 0;
+  for (const AllanPlot& p : panels) {
+    width += p.width_px;
+    height = std::max(height, p.height_px);
+  }
+  std::string out = TerminalLines(width, height, output_path);
+  out += "set multiplot layout 1," + std::to_string(panels.size()) + "\n";
+  for (const AllanPlot& p : panels) out += Body(p) + "unset object\nunset label\n";
+  return out + "unset multiplot\nunset output\n";
+}
+
+bool AnyPlottable(const AllanPlot& plot) {
+  for (const PlotSeries& s : plot.series) {
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (Plottable(s.x[i], s.y[i])) return true;
+    }
+  }
+  return false;
 }
 
 // The first line of gnuplot's stderr that says what went wrong, for a one-line message.
@@ -288,19 +320,13 @@ bool FindGnuplot(std::string* why) {
   return Fail(why, kInstallHint);
 }
 
-bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
-  if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
-  bool any = false;
-  for (const PlotSeries& s : plot.series) {
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-      any |= Plottable(s.x[i], s.y[i]);
-  }
-  if (!any) return Fail(why, "nothing to plot: no positive, finite point in any series");
-  png->stream().close();
+namespace {
 
+// Runs gnuplot on `text` (which writes png->temp_path()).
+bool RunGnuplot(const std::string& text, AtomicFile* png, std::string* why) {
+  png->stream().close();
   ScratchFile script, log;
   if (!script.Create(why) || !log.Create(why)) return false;
-  const std::string text = Script(plot, png->temp_path());
   if (::write(script.fd(), text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
     return Fail(why, "cannot write the gnuplot script: " + std::string(std::strerror(errno)));
   }
@@ -335,6 +361,24 @@ bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
     return Fail(why, "gnuplot wrote no image: " + FirstErrorLine(log.path()));
   }
   return true;
+}
+
+}  // namespace
+
+bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
+  if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
+  if (!AnyPlottable(plot)) return Fail(why, "nothing to plot: no positive, finite point in any series");
+  return RunGnuplot(Script(plot, png->temp_path()), png, why);
+}
+
+bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why) {
+  if (panels.size() == 1) return RenderAllanPlot(panels.front(), png, why);
+  if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
+  if (panels.empty()) return Fail(why, "nothing to plot: no panel");
+  for (const AllanPlot& p : panels) {
+    if (!AnyPlottable(p)) return Fail(why, "nothing to plot in panel '" + p.title + "': no positive, finite point");
+  }
+  return RunGnuplot(Script(panels, png->temp_path()), png, why);
 }
 
 bool WriteAllanPlotPng(const AllanPlot& plot, const std::string& png_path, std::string* why) {

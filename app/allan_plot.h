@@ -61,6 +61,10 @@ bool FindGnuplot(std::string* why);
 // Fails with gnuplot's first error line when gnuplot is missing, fails, or writes nothing.
 bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why);
 
+// Several diagrams side by side in one PNG (e.g. an IMU's gyro and accelerometer axes, whose
+// units differ), each `width_px` wide; one panel is RenderAllanPlot.
+bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why);
+
 // RenderAllanPlot into a file of its own: on any failure, no file at `png_path` is created or
 // changed.
 bool WriteAllanPlotPng(const AllanPlot& plot, const std::string& png_path, std::string* why);

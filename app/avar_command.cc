@@ -8,7 +8,10 @@
 #include <utility>
 #include <vector>
 
+#include "app/accel_units.h"
 #include "app/allan_plot.h"
+#include "app/imu_columns.h"
+#include "app/imu_report.h"
 #include "app/atomic_file.h"
 #include "app/avar_report.h"
 #include "app/output_paths.h"
@@ -46,6 +49,7 @@ struct Plan {
   RecordReaderOptions read;
   InputKind input = InputKind::kRate;
   RateUnit output_unit = RateUnit::kDegPerHour;
+  AccelUnit accel_output_unit = AccelUnit::kMilliG;
   estimators::AvarOptions avar;
 };
 
@@ -54,13 +58,35 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
   if (o.path.empty()) return Usage("FILE is required");
   plan->read.path = o.path;
   plan->read.column = o.column;
+  if (SeveralColumns(o)) {
+    if (!o.columns.empty() && o.column.find(',') == std::string::npos && !o.column.empty()) {
+      return Usage("--column and --columns: give one of them");
+    }
+    if (o.imu && (!o.columns.empty() || !o.column.empty())) {
+      return Usage("--imu takes every gyro and accelerometer column: drop --column/--columns, or "
+                   "drop --imu to name them");
+    }
+    const std::string list = o.columns.empty() ? o.column : o.columns;
+    if (!o.imu && !ParseColumnList(list, &plan->read.columns, &why)) return Usage("--columns: " + why);
+    plan->read.column.clear();
+    plan->read.imu = o.imu;
+    if (o.stream) return Usage("--stream reads one column; drop --stream to read several");
+  }
+  if (!o.accel_units.empty()) {
+    AccelUnit unit;
+    if (!ParseAccelUnit(o.accel_units, &unit, &why)) return Usage("--accel-units: " + why);
+    plan->read.accel_units = std::string(AccelUnitName(unit));
+  }
+  if (!ParseAccelUnit(o.accel_out_units, &plan->accel_output_unit, &why)) {
+    return Usage("--accel-out-units: " + why);
+  }
   plan->read.drop_nonfinite = o.drop_nonfinite;
   if (o.format.empty()) {
     plan->read.format_from_sidecar = true;
   } else if (!ParseRecordFormat(o.format, &plan->read.format, &why)) {
     return Usage("--format: " + why);
   }
-  if (plan->read.format != RecordFormat::kText && !o.column.empty()) {
+  if (plan->read.format != RecordFormat::kText && (!o.column.empty() || SeveralColumns(o))) {
     return Usage("--column applies to text records; raw " + o.format + " has one column");
   }
   if (o.rate_hz) {
@@ -191,6 +217,47 @@ std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   return std::nullopt;
 }
 
+// Every asked column in SI (rad/s, rad or m/s^2), one report each, from one read of the record.
+std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::string& taus_text,
+                                              std::vector<AvarReport>* reports) {
+  std::vector<std::vector<double>> columns;
+  RecordInfo info;
+  RecordError error;
+  if (!ReadRecordColumns(plan.read, &columns, &info, &error)) {
+    return Failure{error.exit_code, error.message};
+  }
+  reports->assign(columns.size(), AvarReport());
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const ColumnInfo& c = info.columns[k];
+    AvarReport& r = (*reports)[k];
+    r.record = info;
+    r.record.column = c.name;
+    r.record.units = c.units;
+    r.record.units_source = c.units_source;
+    r.record.longest_constant_stretch = c.longest_constant_stretch;
+    r.input_units = c.units;
+    r.sensor = c.sensor;
+    r.output_unit = plan.output_unit;
+    r.accel_output_unit = plan.accel_output_unit;
+    r.taus_text = taus_text;
+    estimators::AvarOptions options = plan.avar;
+    if (c.sensor == ImuSensor::kAccelerometer) {
+      AccelUnit unit;
+      ParseAccelUnit(c.units, &unit, nullptr);  // canonical: always parses
+      AccelToSi(unit, columns[k]);
+      options.input = InputKind::kRate;  // acceleration samples: the rate of velocity
+    } else {
+      InputScale(plan.input, c.units).Apply(columns[k]);
+    }
+    options.sample_period_s = 1.0 / info.sample_rate_hz;
+    if (!estimators::ComputeAvarInPlace(options, &columns[k], &r.summary)) {
+      return Runtime(plan.read.path + ": column " + c.name + ": " + r.summary.message);
+    }
+    std::vector<double>().swap(columns[k]);
+  }
+  return std::nullopt;
+}
+
 // One pass in bounded memory: the rate (angle differences for angle input) goes straight from the
 // reader into the streaming estimator; units and tau0 are applied to the results at the end,
 // since tau0 may only be known from the time column once the file has been read.
@@ -266,41 +333,21 @@ void WarnAboutRecord(const RecordInfo& info, const std::string& command = kComma
                      "; the estimator assumes uniform sampling",
                  command);
   }
-  if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+  if (info.columns.size() > 1) {
+    for (const ColumnInfo& c : info.columns) {
+      if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+        PrintWarning(info.path + ": column " + c.name + ": " + *stuck, command);
+      }
+    }
+  } else if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
     PrintWarning(info.path + ": " + *stuck, command);
   }
 }
 
-std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& command_line) {
-  // 1. The command line on its own.
-  Plan plan;
-  if (auto failure = MakePlan(o, &plan)) return failure;
-
-  // 2. Every output opened before the work: a bad path or a missing gnuplot costs nothing.
-  std::string why;
-  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.path}};
-  if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
-  if (!o.csv_path.empty()) outputs.emplace_back("--csv", o.csv_path);
-  if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
-  if (!CheckDistinctOutputs(outputs, &why)) return Usage(why);
-  if (!o.plot_path.empty() && !FindGnuplot(&why)) return Runtime(why);
-  AtomicFile json, csv, png;
-  if (!o.json_path.empty() && !json.Open(o.json_path, &why)) return Runtime(why);
-  if (!o.csv_path.empty() && !csv.Open(o.csv_path, &why)) return Runtime(why);
-  if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return Runtime(why);
-
-  // 3. The record and its curve.
-  AvarReport report;
-  report.output_unit = plan.output_unit;
-  report.taus_text = o.taus;
-  const std::optional<Failure> failure = o.stream
-                                             ? ComputeStreamed(plan, o.stream_exact_max_m, &report)
-                                             : ComputeInMemory(plan, &report);
-  if (failure) return failure;
-  WarnAboutRecord(report.record);
-
-  Provenance& p = report.provenance;
-  p = MakeProvenance(kCommand, command_line);
+// Where the curve came from and how it was computed.
+Provenance AvarProvenance(const AvarCommandOptions& o, const Plan& plan, const AvarReport& report,
+                          const std::string& command_line) {
+  Provenance p = MakeProvenance(kCommand, command_line);
   const RecordInfo& info = report.record;
   p.Add("input", info.path);
   p.Add("format", std::string(RecordFormatName(info.format)) + ", compression " +
@@ -325,6 +372,66 @@ std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& comm
   p.Add("taus", o.taus);
   p.Add("interval", o.ci.value_or(o.stream ? "simple" : "auto") + " at confidence " +
                         ShortestDecimal(plan.avar.confidence));
+
+  return p;
+}
+
+// Several columns: a table each on stdout, one JSON, CSV and PNG for all (app/imu_report.h).
+std::optional<Failure> AvarSeveral(const AvarCommandOptions& o, const Plan& plan,
+                                   const std::string& command_line, AtomicFile* json, AtomicFile* csv,
+                                   AtomicFile* png) {
+  std::vector<AvarReport> reports;
+  if (auto failure = ComputeColumnsInMemory(plan, o.taus, &reports)) return failure;
+  WarnAboutRecord(reports.front().record);
+  for (AvarReport& r : reports) r.provenance = AvarProvenance(o, plan, r, command_line);
+  Provenance p = reports.front().provenance;
+  p.Add("columns", DescribeColumns(reports));
+  for (std::size_t k = 0; k < reports.size(); ++k) {
+    if (k > 0) std::cout << "\n";
+    WriteAvarTable(std::cout, reports[k]);
+  }
+  std::cout.flush();
+  std::string why;
+  if (json->is_open()) json->stream() << ImuAvarJson(reports, p).dump(2) << "\n";
+  if (csv->is_open()) WriteImuAvarCsv(csv->stream(), reports, p);
+  if (png->is_open() && !RenderAllanPlots(ImuAvarPlots(reports, "allanlab avar"), png, &why)) return Runtime(why);
+  for (AtomicFile* file : {json, csv, png}) {
+    if (file->is_open() && !file->Commit(&why)) return Runtime(why);
+  }
+  return std::nullopt;
+}
+
+std::optional<Failure> Avar(const AvarCommandOptions& o, const std::string& command_line) {
+  // 1. The command line on its own.
+  Plan plan;
+  if (auto failure = MakePlan(o, &plan)) return failure;
+
+  // 2. Every output opened before the work: a bad path or a missing gnuplot costs nothing.
+  std::string why;
+  std::vector<std::pair<std::string, std::string>> outputs = {{"FILE", o.path}};
+  if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
+  if (!o.csv_path.empty()) outputs.emplace_back("--csv", o.csv_path);
+  if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
+  if (!CheckDistinctOutputs(outputs, &why)) return Usage(why);
+  if (!o.plot_path.empty() && !FindGnuplot(&why)) return Runtime(why);
+  AtomicFile json, csv, png;
+  if (!o.json_path.empty() && !json.Open(o.json_path, &why)) return Runtime(why);
+  if (!o.csv_path.empty() && !csv.Open(o.csv_path, &why)) return Runtime(why);
+  if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return Runtime(why);
+
+  if (SeveralColumns(o)) return AvarSeveral(o, plan, command_line, &json, &csv, &png);
+
+  // 3. The record and its curve.
+  AvarReport report;
+  report.output_unit = plan.output_unit;
+  report.taus_text = o.taus;
+  const std::optional<Failure> failure = o.stream
+                                             ? ComputeStreamed(plan, o.stream_exact_max_m, &report)
+                                             : ComputeInMemory(plan, &report);
+  if (failure) return failure;
+  WarnAboutRecord(report.record);
+
+  report.provenance = AvarProvenance(o, plan, report, command_line);
 
   // 4. Outputs: stdout first, files committed last and together.
   WriteAvarTable(std::cout, report);
@@ -352,6 +459,15 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
                   "is not the time column t, t_s, time, time_s, timestamp, t_ms, time_ns, %time "
                   "...; without a header, a first column that increases is the time in seconds)")
       ->type_name("NAME|INDEX");
+  cmd->add_option("--columns", options->columns,
+                  "several columns, read in one pass, each with its own curve: a comma list of "
+                  "names or 0-based indices (Gyro_X,Gyro_Y,Gyro_Z); a column whose name starts "
+                  "acc (Accel_X) or is a ROS linear_acceleration is an accelerometer axis, any "
+                  "other a gyro axis")
+      ->type_name("LIST");
+  cmd->add_flag("--imu", options->imu,
+                "every gyro and accelerometer column, recognised by name (a word starting gyr or "
+                "acc, ROS angular_velocity and linear_acceleration)");
   cmd->add_option("--units", options->units,
                   "input units: deg/s, deg/h or rad/s for rate; deg, rad or arcsec for angle. "
                   "Needed unless the file states them (a unit in the column name such as "
@@ -361,6 +477,14 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
   cmd->add_option("--out-units", options->out_units,
                   "units of the printed deviation: deg/h (default), deg/s or rad/s")
       ->type_name("deg/h|deg/s|rad/s");
+  cmd->add_option("--accel-units", options->accel_units,
+                  "input units of accelerometer columns: m/s^2, g or mg. Needed unless the file "
+                  "states them (Accel_X_g, acc_x_mps2, a ROS linear_acceleration, a '# units: g' "
+                  "line); when both do, they must agree")
+      ->type_name("UNIT");
+  cmd->add_option("--accel-out-units", options->accel_out_units,
+                  "units of an accelerometer's printed deviation: mg (default), g or m/s^2")
+      ->type_name("mg|g|m/s^2");
   cmd->add_option("--rate", options->rate_hz,
                   "sample rate in Hz; needed without a time column or a raw record's sidecar; "
                   "with one it must agree to 1e-3 relative")
@@ -431,6 +555,10 @@ Subcommand AddAvarCommand(CLI::App* parent) {
 
 int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& command,
                          AvarReport* report, std::string* error) {
+  if (SeveralColumns(options)) {
+    *error = "`" + command + "` reads one column here: give --column NAME";
+    return kExitUsageError;
+  }
   Plan plan;
   std::optional<Failure> failure = MakePlan(options, &plan);
   if (!failure) {
@@ -446,8 +574,29 @@ int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& c
   return kExitOk;
 }
 
+bool SeveralColumns(const AvarCommandOptions& options) {
+  return options.imu || !options.columns.empty() || options.column.find(',') != std::string::npos;
+}
+
+int ComputeCurvesFromFile(const AvarCommandOptions& options, const std::string& command,
+                          std::vector<AvarReport>* reports, std::string* error) {
+  Plan plan;
+  std::optional<Failure> failure = MakePlan(options, &plan);
+  if (!failure) failure = ComputeColumnsInMemory(plan, options.taus, reports);
+  if (failure) {
+    *error = failure->message;
+    return failure->code;
+  }
+  WarnAboutRecord(reports->front().record, command);
+  return kExitOk;
+}
+
 int ReadRateFromFile(const AvarCommandOptions& options, const std::string& command,
                      std::vector<double>* rate, RecordInfo* info, std::string* error) {
+  if (SeveralColumns(options)) {
+    *error = "`" + command + "` reads one column here: give --column NAME";
+    return kExitUsageError;
+  }
   Plan plan;
   if (std::optional<Failure> failure = MakePlan(options, &plan)) {
     *error = failure->message;

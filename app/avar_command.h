@@ -31,7 +31,13 @@ namespace allanlab::app {
 
 struct AvarCommandOptions {
   std::string path;
-  std::string column;
+  std::string column;  // a comma list reads several columns, as `columns`
+  // Several columns in one pass (app/imu_columns.h): a comma list, or --imu for every gyro and
+  // accelerometer column named as such. Each gets its own curve.
+  std::string columns;
+  bool imu = false;
+  std::string accel_units;             // empty: as the file states them
+  std::string accel_out_units = "mg";  // m/s^2, g or mg
   std::string units;  // empty: as the file states them (an error when it does not)
   std::string out_units = "deg/h";
   std::optional<double> rate_hz;
@@ -62,6 +68,14 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options);
 struct AvarReport;
 int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& command,
                          AvarReport* report, std::string* error);
+
+// Several columns asked (--columns, a comma list in --column, or --imu).
+bool SeveralColumns(const AvarCommandOptions& options);
+// Every asked column's curve, the record read once; one report per column in the order asked,
+// each with the column's name, units and sensor in report->record / ->sensor (warnings about the
+// record printed once, about a column's constant stretch per column).
+int ComputeCurvesFromFile(const AvarCommandOptions& options, const std::string& command,
+                          std::vector<AvarReport>* reports, std::string* error);
 
 // Reading the record alone, as `avar` reads it, converted to rate samples in rad/s (angle input
 // differenced); *info describes the file (sample rate, dropped values, time steps). Returns

@@ -21,14 +21,6 @@ std::string Percent(double fraction) {
   return text;
 }
 
-// The factor from the estimator's SI deviation to the output unit.
-double DeviationFactor(const AvarReport& r) {
-  if (r.summary.options.statistic == Statistic::kTime) {
-    return r.output_unit == RateUnit::kRadPerSecond ? 1.0 : 1.0 / units::kRadPerDeg;
-  }
-  return FromRadPerSecond(r.output_unit, 1.0);
-}
-
 std::string Identifier(const std::string& unit) {
   std::string out;
   for (char c : unit) out += c == '/' ? std::string("_per_") : std::string(1, c);
@@ -80,7 +72,9 @@ std::string TypeName(estimators::InputKind kind) {
 std::string RecordLine(const AvarReport& r) {
   const RecordInfo& i = r.record;
   return i.path + ", " + i.column + ", " + std::to_string(r.summary.num_samples) + " " +
-         TypeName(r.summary.options.input) + " samples at " + Number(i.sample_rate_hz) + " Hz (" +
+         (r.sensor == ImuSensor::kAccelerometer ? std::string("accelerometer")
+                                                 : TypeName(r.summary.options.input)) +
+         " samples at " + Number(i.sample_rate_hz) + " Hz (" +
          i.rate_source + "), input in " + r.input_units + " (" + i.units_source + ")";
 }
 
@@ -133,7 +127,17 @@ std::string DeviationName(Statistic s) {
   return name.substr(0, name.size() - 3) + "DEV";
 }
 
+double DeviationFactor(const AvarReport& r) {
+  const bool time = r.summary.options.statistic == Statistic::kTime;
+  if (r.sensor == ImuSensor::kAccelerometer) return time ? 1.0 : AccelFromSi(r.accel_output_unit, 1.0);
+  if (time) return r.output_unit == RateUnit::kRadPerSecond ? 1.0 : 1.0 / units::kRadPerDeg;
+  return FromRadPerSecond(r.output_unit, 1.0);
+}
+
 std::string DeviationUnit(const AvarReport& r) {
+  if (r.sensor == ImuSensor::kAccelerometer) {
+    return r.summary.options.statistic == Statistic::kTime ? "m/s" : std::string(AccelUnitName(r.accel_output_unit));
+  }
   if (r.summary.options.statistic == Statistic::kTime) {
     return r.output_unit == RateUnit::kRadPerSecond ? "rad" : "deg";
   }
@@ -249,6 +253,7 @@ nlohmann::ordered_json AvarJson(const AvarReport& r) {
   input["column"] = i.column;
   input["time_column"] = i.time_column;
   input["type"] = TypeName(r.summary.options.input);
+  input["sensor"] = ImuSensorName(r.sensor);
   input["units"] = r.input_units;
   input["units_source"] = i.units_source;
   input["samples_read"] = i.samples;

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "app/accel_units.h"
 #include "app/allan_plot.h"
+#include "app/imu_columns.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
 #include "app/record_reader.h"
@@ -22,6 +24,10 @@ struct AvarReport {
   RecordInfo record;
   std::string input_units;  // as read (record.units_source says where), e.g. "deg/s" or "deg"
   RateUnit output_unit = RateUnit::kDegPerHour;
+  // An accelerometer axis: summary values in (m/s^2)^2 (m^2/s^2 for Statistic::kTime), printed
+  // in accel_output_unit (m/s for kTime).
+  ImuSensor sensor = ImuSensor::kGyro;
+  AccelUnit accel_output_unit = AccelUnit::kMilliG;
   std::string taus_text;  // --taus as given
   bool streamed = false;
   // --stream only, one per point: overlapping starts every stride samples (1 = every start).
@@ -49,8 +55,11 @@ std::vector<AvarRow> AvarRows(const AvarReport& report);
 // "AVAR"/"ADEV", "MVAR"/"MDEV", ...: the statistic's short names, for column headings.
 std::string VarianceName(estimators::Statistic s);
 std::string DeviationName(estimators::Statistic s);
-// The unit of the deviation: the output rate unit, or deg/rad for TDEV.
+// The unit of the deviation: the output rate unit, or deg/rad for TDEV (an accelerometer's:
+// its output unit, or m/s for TDEV) ...
 std::string DeviationUnit(const AvarReport& report);
+// ... and the factor from the estimator's SI deviation to it.
+double DeviationFactor(const AvarReport& report);
 
 // '#' description lines, the aligned table, then '#' lines for dropped taus and notes.
 void WriteAvarTable(std::ostream& os, const AvarReport& report);

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "app/accel_units.h"
+#include "app/imu_columns.h"
 #include "app/provenance.h"
 #include "app/raw_sample_decoder.h"
 #include "app/raw_sidecar.h"
@@ -63,6 +65,10 @@ class Reader {
   Reader(const RecordReaderOptions& options, const std::function<void(double)>& sink,
          RecordInfo* info, const std::function<void(std::span<const double>)>* block_sink = nullptr)
       : o_(options), sink_(sink), block_sink_(block_sink), info_(info) {}
+  // Several columns: each kept row's values (one per column) go to row_sink.
+  Reader(const RecordReaderOptions& options, const std::function<void(std::span<const double>)>* row_sink,
+         RecordInfo* info)
+      : o_(options), sink_(kNoSink), block_sink_(nullptr), row_sink_(row_sink), info_(info) {}
 
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
@@ -82,6 +88,11 @@ class Reader {
       }
     }
     info_->format = format_;
+    if (row_sink_ != nullptr && format_ != RecordFormat::kText) {
+      return Usage(error, In() + (o_.imu ? std::string("--imu") : std::string("--columns")) +
+                              " applies to text records; raw " +
+                              std::string(RecordFormatName(format_)) + " has one column");
+    }
     if (format_ != RecordFormat::kText) {
       if (o_.path != "-" && !ReadRawSidecar(o_.path, &sidecar_, &why)) {
         return Runtime(error, In() + why);
@@ -167,6 +178,89 @@ class Reader {
     return ResolveStatedUnits(std::move(stated), "column " + parser.value_column(), error);
   }
 
+  // Every column's units (several-column read): a gyro column as ResolveTextUnits, an
+  // accelerometer column from its name, a '# units:' line naming an accelerometer unit, and
+  // --accel-units. A '# units:' line speaks for the columns whose kind its unit fits.
+  bool ResolveColumnUnits(const TextRecordParser& parser, RecordError* error) {
+    const std::string line = parser.LeadingComment("units");
+    std::string why;
+    AccelUnit accel_line_unit;
+    const bool line_is_accel = !line.empty() && ParseAccelUnit(line, &accel_line_unit, nullptr);
+    std::string gyro_line_unit;
+    const bool line_is_gyro = !line.empty() && CanonicalUnit(line, o_.kind, &gyro_line_unit, &why);
+    if (!line.empty() && !line_is_accel && !line_is_gyro) {
+      return Runtime(error, In() + "the '# units:' line: '" + line +
+                                "' is neither a gyro unit (deg/s, deg/h, rad/s) nor an "
+                                "accelerometer unit (m/s^2, g, mg)");
+    }
+    info_->columns.clear();
+    for (const std::string& name : parser.value_columns()) {
+      ColumnInfo c;
+      c.name = name;
+      c.sensor = ImuSensorOfColumn(name).value_or(ImuSensor::kGyro);
+      std::vector<StatedUnit> stated;
+      if (c.sensor == ImuSensor::kGyro) {
+        if (parser.has_header()) {
+          std::optional<StatedUnit> from_name;
+          if (!UnitFromColumnName(name, o_.kind, &from_name, &why)) return Runtime(error, In() + why);
+          if (from_name) stated.push_back(*from_name);
+        }
+        if (line_is_gyro) stated.push_back({gyro_line_unit, "the '# units: " + line + "' line"});
+        if (!o_.units.empty()) stated.push_back({o_.units, "--units"});
+        StatedUnit resolved;
+        if (!ResolveUnits(stated, o_.kind, "gyro column " + name, &resolved, &why)) {
+          return Usage(error, In() + why);
+        }
+        c.units = resolved.unit;
+        c.units_source = resolved.source;
+      } else {
+        if (const std::string unit = AccelUnitFromColumnName(name); !unit.empty()) {
+          stated.push_back({unit, "column " + name});
+        }
+        if (line_is_accel) {
+          stated.push_back({std::string(AccelUnitName(accel_line_unit)), "the '# units: " + line + "' line"});
+        }
+        if (!o_.accel_units.empty()) stated.push_back({o_.accel_units, "--accel-units"});
+        if (stated.empty()) {
+          return Usage(error, In() + "the units of accelerometer column " + name +
+                                  " are not stated in the file (a unit in the column name such as "
+                                  "Accel_X_g or acc_x_mps2, or a '# units:' line): give "
+                                  "--accel-units m/s^2, g or mg");
+        }
+        for (std::size_t i = 1; i < stated.size(); ++i) {
+          if (stated[i].unit != stated[0].unit) {
+            return Usage(error, In() + stated[i].source + " (" + stated[i].unit + ") contradicts " +
+                                    stated[0].source + " (" + stated[0].unit + ")");
+          }
+        }
+        c.units = stated[0].unit;
+        c.units_source = stated[0].source;
+      }
+      info_->columns.push_back(std::move(c));
+    }
+    info_->units = info_->columns.front().units;
+    info_->units_source = info_->columns.front().units_source;
+    stretches_.assign(info_->columns.size(), ConstantStretchTracker());
+    return true;
+  }
+
+  // A row of a several-column read: dropped or logged whole when any value is not finite.
+  void AcceptRow(std::span<const double> values, std::int64_t line) {
+    bool finite = true;
+    for (double v : values) finite &= std::isfinite(v);
+    if (!finite) {
+      if (o_.drop_nonfinite) {
+        ++info_->dropped_nonfinite;
+      } else {
+        nonfinite_.Add(line);
+      }
+      return;
+    }
+    ++info_->samples;
+    for (std::size_t k = 0; k < values.size(); ++k) stretches_[k].Add(values[k]);
+    if (nonfinite_.count() == 0) (*row_sink_)(values);
+  }
+
   bool Usage(RecordError* error, const std::string& message) {
     *error = {kExitUsageError, message};
     return false;
@@ -199,7 +293,11 @@ class Reader {
     bool stop_is_usage = false;
     RecordError units_error;
     TextRecordParser* parser_ptr = nullptr;
-    TextRecordParser parser(o_.column, [&](const TextRow& row) {
+    const bool several = row_sink_ != nullptr;
+    TextRecordParser::ColumnChooser chooser;
+    if (several && o_.imu && o_.columns.empty()) chooser = ChooseImuColumns;
+    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser,
+                            [&](const TextRow& row) {
       if (info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0) {
         // First data row: the columns are known, so a missing rate fails before the long read.
         if (!row.has_time && !o_.rate_hz) {
@@ -211,10 +309,14 @@ class Reader {
                  ": give the sample rate with --rate HZ";
           return false;
         }
-        if (!ResolveTextUnits(*parser_ptr, &units_error)) return false;
+        if (several ? !ResolveColumnUnits(*parser_ptr, &units_error)
+                    : !ResolveTextUnits(*parser_ptr, &units_error)) {
+          return false;
+        }
       }
-      if (row.has_time && o_.drop_nonfinite &&
-          (!std::isfinite(row.time) || !std::isfinite(row.value))) {
+      bool values_finite = true;
+      for (double v : row.values) values_finite &= std::isfinite(v);
+      if (row.has_time && o_.drop_nonfinite && (!std::isfinite(row.time) || !values_finite)) {
         ++info_->dropped_nonfinite;
         return true;
       }
@@ -233,7 +335,11 @@ class Reader {
           return false;
         }
       }
-      Accept(row.value, row.line);
+      if (several) {
+        AcceptRow(row.values, row.line);
+      } else {
+        Accept(row.value, row.line);
+      }
       return true;
     });
     parser_ptr = &parser;
@@ -259,6 +365,12 @@ class Reader {
     info_->has_header = parser.has_header();
     info_->lines = parser.lines();
     info_->column = parser.value_column();
+    if (several) {
+      for (std::size_t k = 0; k < info_->columns.size(); ++k) {
+        info_->columns[k].longest_constant_stretch = stretches_[k].longest();
+      }
+      if (!info_->columns.empty()) info_->longest_constant_stretch = stretches_.front().longest();
+    }
     info_->time_column = parser.time_column();
     info_->time_column_guessed = parser.time_column_guessed();
     if (time_unit_s_ > 0.0) info_->time_unit_s = time_unit_s_;
@@ -267,7 +379,9 @@ class Reader {
                                 " line(s) of comments, blank lines or header)");
     }
     if (nonfinite_.count() > 0) {
-      return Runtime(error, In() + nonfinite_.Describe("column " + info_->column, "line(s)"));
+      std::string columns;
+      for (const std::string& c : parser.value_columns()) columns += (columns.empty() ? "" : ", ") + c;
+      return Runtime(error, In() + nonfinite_.Describe((several ? "columns " : "column ") + columns, "line(s)"));
     }
     return true;
   }
@@ -413,9 +527,12 @@ class Reader {
   // means it is not (a 100 Hz record with ms, us or ns stamps).
   static constexpr double kLongestPlausibleStepS = 10.0;
 
+  static inline const std::function<void(double)> kNoSink = [](double) {};
   const RecordReaderOptions& o_;
   const std::function<void(double)>& sink_;
   const std::function<void(std::span<const double>)>* block_sink_;
+  const std::function<void(std::span<const double>)>* row_sink_ = nullptr;
+  std::vector<ConstantStretchTracker> stretches_;  // several columns: one per column
   double time_unit_s_ = 0.0;  // set at the first row with a time
   bool unit_is_guess_ = false;
   RecordInfo* info_;
@@ -475,6 +592,18 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
         values->insert(values->end(), block.begin(), block.end());
       };
   return Reader(options, sink, info, &block_sink).Run(error);
+}
+
+bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,
+                       RecordInfo* info, RecordError* error) {
+  values->clear();
+  const std::function<void(std::span<const double>)> row_sink = [values](std::span<const double> row) {
+    if (values->size() != row.size()) values->resize(row.size());
+    for (std::size_t k = 0; k < row.size(); ++k) (*values)[k].push_back(row[k]);
+  };
+  if (!Reader(options, &row_sink, info).Run(error)) return false;
+  values->resize(info->columns.size());
+  return true;
 }
 
 }  // namespace allanlab::app

@@ -36,6 +36,7 @@
 
 #include "app/byte_source.h"
 #include "app/constant_stretch.h"
+#include "app/imu_columns.h"
 #include "app/time_steps.h"
 #include "estimators/avar_summary.h"
 
@@ -66,6 +67,24 @@ struct RecordReaderOptions {
   std::int64_t min_samples = 3;   // fewer kept samples is an error
   estimators::InputKind kind = estimators::InputKind::kRate;  // what the samples are
   std::string units;  // --units, canonical (app/stated_units.h); empty when not given
+  // Several columns in one pass (ReadRecordColumns; text only): header names or 0-based indices,
+  // or, with `imu` and no `columns`, every gyro and accelerometer column (app/imu_columns.h).
+  // `units` and `kind` then apply to the gyro columns; accelerometer columns take their unit from
+  // their name, a '# units:' line stating an accelerometer unit, or `accel_units` (canonical,
+  // app/accel_units.h), which must agree. A row with a non-finite value in any column is dropped
+  // whole (drop_nonfinite) so that the columns stay aligned in time.
+  std::vector<std::string> columns;
+  bool imu = false;
+  std::string accel_units;
+};
+
+// One column of a several-column read.
+struct ColumnInfo {
+  std::string name;
+  ImuSensor sensor = ImuSensor::kGyro;
+  std::string units;         // canonical: "deg/s", "rad/s", ...; "m/s^2", "g", "mg"
+  std::string units_source;  // "column Accel_X_g", "--accel-units", ...
+  ConstantStretch longest_constant_stretch;  // in file units
 };
 
 struct RecordInfo {
@@ -87,6 +106,9 @@ struct RecordInfo {
   std::string rate_source;
   TimeSteps::Summary time;  // the time column's steps (samples == 0 without one)
   ConstantStretch longest_constant_stretch;  // of the kept values, in file units
+  // ReadRecordColumns: one per column, in the order asked (column, units, units_source and
+  // longest_constant_stretch above then describe the first).
+  std::vector<ColumnInfo> columns;
 };
 
 struct RecordError {
@@ -102,5 +124,10 @@ bool ReadRecord(const RecordReaderOptions& options, const std::function<void(dou
 // ReadRecord into a vector.
 bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
                       RecordInfo* info, RecordError* error);
+
+// Several columns (options.columns or options.imu) read in one pass: values[k] holds column k's
+// kept samples in file units, every column the same length.
+bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,
+                       RecordInfo* info, RecordError* error);
 
 }  // namespace allanlab::app

@@ -13,29 +13,6 @@ bool IsAlnum(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
 
-// Lower-case alphanumeric tokens; the degree sign (UTF-8 C2 B0) is the token "deg".
-std::vector<std::string> Tokens(std::string_view text) {
-  std::vector<std::string> out;
-  std::string current;
-  const auto flush = [&] {
-    if (!current.empty()) out.push_back(std::move(current));
-    current.clear();
-  };
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '\xC2' && i + 1 < text.size() && text[i + 1] == '\xB0') {
-      flush();
-      out.emplace_back("deg");
-      ++i;
-    } else if (IsAlnum(text[i])) {
-      current += Lower(text[i]);
-    } else {
-      flush();
-    }
-  }
-  flush();
-  return out;
-}
-
 bool OneOf(const std::string& token, std::initializer_list<std::string_view> words) {
   for (std::string_view w : words) {
     if (token == w) return true;
@@ -92,10 +69,33 @@ std::string Choices(InputKind kind) {
 
 }  // namespace
 
+// Lower-case alphanumeric tokens; the degree sign (UTF-8 C2 B0) is the token "deg".
+std::vector<std::string> UnitTokens(std::string_view text) {
+  std::vector<std::string> out;
+  std::string current;
+  const auto flush = [&] {
+    if (!current.empty()) out.push_back(std::move(current));
+    current.clear();
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\xC2' && i + 1 < text.size() && text[i + 1] == '\xB0') {
+      flush();
+      out.emplace_back("deg");
+      ++i;
+    } else if (IsAlnum(text[i])) {
+      current += Lower(text[i]);
+    } else {
+      flush();
+    }
+  }
+  flush();
+  return out;
+}
+
 bool UnitFromColumnName(std::string_view name, InputKind kind, std::optional<StatedUnit>* unit,
                         std::string* why) {
   unit->reset();
-  const std::vector<std::string> t = Tokens(name);
+  const std::vector<std::string> t = UnitTokens(name);
   const std::string source = "column " + std::string(name);
   // A ROS sensor_msgs/Imu angular_velocity is rad/s by definition (REP 103), whatever the export
   // tool called the column (`field.angular_velocity.x`, `angular_velocity_x`).
@@ -141,7 +141,7 @@ bool UnitFromColumnName(std::string_view name, InputKind kind, std::optional<Sta
 }
 
 bool CanonicalUnit(std::string_view text, InputKind kind, std::string* unit, std::string* why) {
-  const std::vector<std::string> t = Tokens(text);
+  const std::vector<std::string> t = UnitTokens(text);
   std::string found;
   if (kind == InputKind::kRate) {
     std::size_t length = 0;

@@ -20,6 +20,10 @@
 
 namespace allanlab::app {
 
+// The lower-case alphanumeric words of a unit or column name ("Gyro_X [°/s]" -> gyro, x, deg, s;
+// the degree sign is the word "deg"), as the unit readers here and in app/accel_units.h see them.
+std::vector<std::string> UnitTokens(std::string_view text);
+
 // One statement of the units: the canonical spelling ("deg/s", "rad", ...) and where it was read,
 // for messages ("column rate_rad_per_s", "the '# units:' line", "sidecar r.f64.json", "--units").
 struct StatedUnit {

@@ -1,5 +1,6 @@
 #include "app/text_record_parser.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -87,7 +88,12 @@ bool ParseNumberField(std::string_view field, double* value) {
 }
 
 TextRecordParser::TextRecordParser(std::string column, RowSink sink)
-    : column_spec_(std::move(column)), sink_(std::move(sink)) {}
+    : column_spec_(column), column_specs_{std::move(column)}, sink_(std::move(sink)) {}
+
+TextRecordParser::TextRecordParser(std::vector<std::string> columns, ColumnChooser choose, RowSink sink)
+    : column_specs_(std::move(columns)), choose_(std::move(choose)), sink_(std::move(sink)) {
+  if (!column_specs_.empty()) column_spec_ = column_specs_.front();
+}
 
 bool TextRecordParser::Fail(std::string message) {
   failed_ = true;
@@ -213,6 +219,45 @@ bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first,
       }
     }
   }
+  if (column_specs_.empty() && choose_) {
+    std::string why;
+    if (!choose_(names, time_index_, &column_specs_, &why)) {
+      error_is_usage_ = true;
+      return Fail(why);
+    }
+    column_spec_ = column_specs_.empty() ? std::string() : column_specs_.front();
+  }
+  if (column_specs_.empty()) column_specs_.emplace_back();
+  for (const std::string& spec : column_specs_) {
+    int index = -1;
+    if (!ResolveColumn(spec, names, header, &index)) return false;
+    for (std::size_t k = 0; k < value_indices_.size(); ++k) {
+      if (value_indices_[k] == index) {
+        error_is_usage_ = true;
+        return Fail("--columns: " + Shown(spec) + " names column " + std::to_string(index) +
+                    " twice (as " + Shown(column_specs_[k]) + ")");
+      }
+    }
+    value_indices_.push_back(index);
+  }
+  value_index_ = value_indices_.front();
+  error_is_usage_ = false;
+  for (int index : value_indices_) {
+    value_columns_.push_back(header ? names[index] : "column " + std::to_string(index));
+    // The time column chosen as (one of) the data: it then carries no time information.
+    if (index == time_index_) {
+      time_index_ = -1;
+      time_column_.clear();
+      time_name_ = nullptr;
+    }
+  }
+  value_column_ = value_columns_.front();
+  values_.resize(value_indices_.size());
+  return true;
+}
+
+bool TextRecordParser::ResolveColumn(const std::string& spec, const std::vector<std::string>& names,
+                                     bool header, int* index) {
   const auto list = [&] {
     std::string out;
     for (std::size_t i = 0; i < names.size(); ++i) {
@@ -221,52 +266,43 @@ bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first,
     }
     return out;
   };
-  if (column_spec_.empty()) {
-    value_index_ = time_index_ == 0 ? 1 : 0;
-    if (value_index_ >= static_cast<int>(names.size())) {
+  *index = -1;
+  if (spec.empty()) {
+    *index = time_index_ == 0 ? 1 : 0;
+    if (*index >= static_cast<int>(names.size())) {
       return Fail("no data column besides the time column '" + time_column_ + "'");
     }
-  } else if (AllDigits(column_spec_)) {
-    const std::string_view digits = column_spec_;
-    int index = 0;
-    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
-    if (ec != std::errc() || index >= static_cast<int>(names.size())) {
-      error_is_usage_ = true;
-      return Fail("--column " + column_spec_ + ": the " + (header ? "header" : "first data row") +
+    return true;
+  }
+  error_is_usage_ = true;
+  if (AllDigits(spec)) {
+    const auto [end, ec] = std::from_chars(spec.data(), spec.data() + spec.size(), *index);
+    if (ec != std::errc() || *index >= static_cast<int>(names.size())) {
+      return Fail("--column " + spec + ": the " + (header ? "header" : "first data row") +
                   " has " + std::to_string(names.size()) + " column(s), 0-based (" + list() + ")");
     }
-    value_index_ = index;
-  } else {
-    error_is_usage_ = true;
-    if (!header) {
-      return Fail("--column " + Shown(column_spec_) +
-                  ": the file has no header row, so columns have no names; give a 0-based index");
-    }
-    for (std::size_t i = 0; i < names.size() && value_index_ < 0; ++i) {
-      if (names[i] == column_spec_) value_index_ = static_cast<int>(i);
-    }
-    if (value_index_ < 0) {
-      int matches = 0;
-      for (std::size_t i = 0; i < names.size(); ++i) {
-        if (EqualsIgnoreCase(names[i], column_spec_)) {
-          value_index_ = static_cast<int>(i);
-          ++matches;
-        }
+    error_is_usage_ = false;
+    return true;
+  }
+  if (!header) {
+    return Fail("--column " + Shown(spec) +
+                ": the file has no header row, so columns have no names; give a 0-based index");
+  }
+  for (std::size_t i = 0; i < names.size() && *index < 0; ++i) {
+    if (names[i] == spec) *index = static_cast<int>(i);
+  }
+  if (*index < 0) {
+    int matches = 0;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (EqualsIgnoreCase(names[i], spec)) {
+        *index = static_cast<int>(i);
+        ++matches;
       }
-      if (matches > 1) value_index_ = -1;
     }
-    if (value_index_ < 0) {
-      return Fail("--column " + Shown(column_spec_) + ": no such column (" + list() + ")");
-    }
+    if (matches > 1) *index = -1;
   }
+  if (*index < 0) return Fail("--column " + Shown(spec) + ": no such column (" + list() + ")");
   error_is_usage_ = false;
-  // The time column chosen as the data: it then carries no time information of its own.
-  if (value_index_ == time_index_) {
-    time_index_ = -1;
-    time_column_.clear();
-    time_name_ = nullptr;
-  }
-  value_column_ = header ? names[value_index_] : "column " + std::to_string(value_index_);
   return true;
 }
 
@@ -303,7 +339,11 @@ bool TextRecordParser::ParseLine(std::string_view line) {
     if (!ChooseColumns(fields_, header)) return false;
     if (header) return true;
     // Without a header the first column may be time: hold rows until that is decided.
-    probing_ = fields_.size() >= 2 && (column_spec_.empty() || value_index_ != 0);
+    bool data_in_first = false;
+    for (std::size_t k = 0; k < value_indices_.size(); ++k) {
+      data_in_first |= !column_specs_[k].empty() && value_indices_[k] == 0;
+    }
+    probing_ = fields_.size() >= 2 && !data_in_first;
   } else {
     Split(line, &fields_);
   }
@@ -337,7 +377,9 @@ bool TextRecordParser::DecideHeaderlessTime() {
     time_guessed_ = true;
     if (column_spec_.empty()) {
       value_index_ = 1;
+      value_indices_.front() = 1;
       value_column_ = "column 1";
+      value_columns_.front() = value_column_;
     }
   }
   std::vector<std::pair<std::int64_t, std::string>> rows = std::move(probe_);
@@ -367,19 +409,27 @@ std::string TextRecordParser::LeadingComment(std::string_view key) const {
 }
 
 bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
-  const int needed = std::max(value_index_, time_index_) + 1;
+  int needed = time_index_ + 1;
+  for (int index : value_indices_) needed = std::max(needed, index + 1);
   if (static_cast<int>(fields_.size()) < needed) {
+    std::string columns;
+    for (const std::string& c : value_columns_) columns += (columns.empty() ? "" : ", ") + Shown(c);
     return Fail("line " + std::to_string(line_no) + " has " + std::to_string(fields_.size()) +
-                " field(s); column " + Shown(value_column_) +
+                " field(s); column " + columns +
                 (time_index_ >= 0 ? " and time column " + time_column_ : std::string()) + " need " +
                 std::to_string(needed));
   }
   TextRow row;
   row.line = line_no;
-  if (!ParseNumberField(fields_[value_index_], &row.value)) {
-    return Fail("line " + std::to_string(line_no) + ": column " + Shown(value_column_) + ": '" +
-                Shown(Trim(fields_[value_index_])) + "' is not a number");
+  for (std::size_t k = 0; k < value_indices_.size(); ++k) {
+    const int index = value_indices_[k];
+    if (!ParseNumberField(fields_[index], &values_[k])) {
+      return Fail("line " + std::to_string(line_no) + ": column " + Shown(value_columns_[k]) + ": '" +
+                  Shown(Trim(fields_[index])) + "' is not a number");
+    }
   }
+  row.value = values_.front();
+  row.values = values_;
   if (time_index_ >= 0) {
     row.has_time = true;
     if (!ParseTimeField(fields_[time_index_], &row.time)) {

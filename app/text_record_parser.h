@@ -22,6 +22,7 @@
 //    and SigmaTheta), in seconds, unless --column chose it as the data.
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -48,7 +49,10 @@ inline constexpr TimeColumnName kTimeColumnNames[] = {
 
 struct TextRow {
   std::int64_t line = 0;  // 1-based physical line number in the (decompressed) text
-  double value = 0.0;     // may be NaN or +-inf
+  double value = 0.0;     // may be NaN or +-inf; the first of `values`
+  // Every chosen value column, in the order asked (one entry with the one-column constructor).
+  // Valid during the sink call only.
+  std::span<const double> values;
   bool has_time = false;
   // In the time column's own unit, when has_time; may be non-finite. Integer time stamps are
   // given relative to the first row's, exactly: a 19-digit nanosecond stamp does not fit a
@@ -74,6 +78,14 @@ class TextRecordParser {
   // when that is unambiguous.
   explicit TextRecordParser(std::string column, RowSink sink);
 
+  // Several value columns read in one pass: `columns` are resolved each as the one-column
+  // constructor's (none may be empty or repeated); or, when `columns` is empty, `choose` picks
+  // them from the header's names (the time column's index, -1 for none, given to skip it).
+  // Without a header row the chooser sees empty names.
+  using ColumnChooser = std::function<bool(const std::vector<std::string>& names, int time_index,
+                                           std::vector<std::string>* columns, std::string* why)>;
+  TextRecordParser(std::vector<std::string> columns, ColumnChooser choose, RowSink sink);
+
   // Parses the complete lines in `chunk` (a partial last line is kept for the next call).
   // Returns false on the first format error (error() says which line and why) or when the sink
   // stopped; after that the parser ignores further input.
@@ -90,6 +102,8 @@ class TextRecordParser {
   // The chosen column: its header name, or "column K" without a header; and its 0-based index.
   const std::string& value_column() const { return value_column_; }
   int value_column_index() const { return value_index_; }
+  // Every chosen column (their names as value_column()); known with has_header().
+  const std::vector<std::string>& value_columns() const { return value_columns_; }
   // The time column's header name, empty when there is none, and its entry in kTimeColumnNames.
   const std::string& time_column() const { return time_column_; }
   const TimeColumnName* time_column_name() const { return time_name_; }
@@ -107,11 +121,15 @@ class TextRecordParser {
   bool DecideHeaderlessTime();
   void KeepLeadingComment(std::string_view comment);
   bool ChooseColumns(const std::vector<std::string_view>& first_fields, bool header);
+  bool ResolveColumn(const std::string& spec, const std::vector<std::string>& names, bool header,
+                     int* index);
   bool Fail(std::string message);
   bool ParseTimeField(std::string_view field, double* time);
   void Split(std::string_view line, std::vector<std::string_view>* fields) const;
 
-  std::string column_spec_;
+  std::string column_spec_;  // the first of column_specs_
+  std::vector<std::string> column_specs_;
+  ColumnChooser choose_;
   RowSink sink_;
   std::string pending_;  // the incomplete last line of the previous chunk
   std::string error_;
@@ -123,6 +141,9 @@ class TextRecordParser {
   char delimiter_ = ',';
   std::string value_column_;
   int value_index_ = -1;
+  std::vector<std::string> value_columns_;
+  std::vector<int> value_indices_;
+  std::vector<double> values_;  // the current row's
   std::string time_column_;
   int time_index_ = -1;
   const TimeColumnName* time_name_ = nullptr;
