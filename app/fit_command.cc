@@ -118,8 +118,9 @@ const estimators::ParametricEstimate* FittedBandLimit(const std::vector<estimato
 std::string PoorFitLine(const estimators::ModelFitSummary& m) {
   if (!m.poor_fit) return "";
   std::ostringstream os;
-  os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof
-     << " dof is above its 99.9 % quantile: the IEEE terms do not describe this record";
+  os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof << " dof is above its "
+     << Format(100.0 * (1.0 - estimators::kPoorFitP)) << " % quantile (p < " << Format(estimators::kPoorFitP)
+     << "): the IEEE terms do not describe this record";
   if (m.best_extended < 0) {
     os << (m.extended.empty() ? "" : "; no extended model could be fitted");
     return os.str();
@@ -303,7 +304,7 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
               {"tau_max_s", s.tau_max_s},
               {"band_limit", s.band_limit},
               {"poor_fit", m.poor_fit},
-              {"poor_fit_rule", "chi2 above the 99.9 % quantile of chi2 on its dof (p < 0.001)"},
+              {"poor_fit_rule", estimators::PoorFitRule()},
               {"message", s.message}};
   if (m.poor_fit) {
     nlohmann::ordered_json tried = nlohmann::ordered_json::array();
@@ -599,7 +600,7 @@ Subcommand AddFitCommand(CLI::App* parent) {
   cmd->add_option("--min-tau", options->min_tau_s, "fit only taus >= S seconds")->type_name("S");
   cmd->add_option("--max-tau", options->max_tau_s, "fit only taus <= S seconds")->type_name("S");
   cmd->add_flag("--strict", options->strict,
-                 "exit with status 1 on a poor fit (chi2 above its 99.9 % quantile), after writing "
+                 "exit with status 1 on a poor fit (" + estimators::PoorFitRule() + "), after writing "
                  "the outputs");
   cmd->add_flag_callback("--no-select", [options] { options->select_terms = false; },
                          "keep every requested term (default: the subset of terms with the lowest AIC "

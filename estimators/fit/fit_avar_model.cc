@@ -136,6 +136,23 @@ bool FitOptions::IsValid(std::string* why) const {
   return true;
 }
 
+bool IsPoorFit(const FitSummary& s) { return s.dof > 0 && s.p_value < kPoorFitP; }
+
+std::string PoorFitRule() {
+  std::ostringstream os;
+  os << "chi2 above the " << 100.0 * (1.0 - kPoorFitP) << " % quantile of chi2 on its dof (p < " << kPoorFitP << ")";
+  return os.str();
+}
+
+std::string PoorFitNote(const FitSummary& s) {
+  if (!IsPoorFit(s)) return "";
+  std::ostringstream os;
+  os << "; POOR FIT: chi2 = " << s.chi2 << " on " << s.dof << " dof (p = " << s.p_value
+     << "), the model does not describe this curve (sigmas are not meaningful; look for effects "
+        "beyond the model)";
+  return os.str();
+}
+
 std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact) {
   if (!exact || curve.num_samples <= 0) {
     std::vector<double> s;
@@ -355,13 +372,7 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
   if (options.method == FitMethod::kLogWls) {
     message += "; log-WLS: subsets and profile ranges on the quadratic expansion of its cost";
   }
-  if (summary->dof > 0 && summary->p_value < 1e-6) {
-    std::ostringstream os;
-    os << "; POOR FIT: chi2 = " << summary->chi2 << " on " << summary->dof << " dof (p = " << summary->p_value
-       << "), the model does not describe this curve (sigmas are not meaningful; look for effects "
-          "beyond the model)";
-    message += os.str();
-  }
+  message += PoorFitNote(*summary);
   summary->message = message;
   return true;
 }
@@ -544,6 +555,26 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
     }
     linear->problem.a = a;
     linear->problem.y = whitened_residual + a * x;
+    if (options.method == FitMethod::kGls) {
+      // The profile's test at each held value under that value's covariance (linear_profile.h).
+      Eigen::MatrixXd& design = linear->problem.design;
+      design.resize(static_cast<Eigen::Index>(taus), static_cast<Eigen::Index>(p.asked.size()));
+      for (std::size_t k = 0; k < taus; ++k) {
+        for (std::size_t j = 0; j < p.asked.size(); ++j) {
+          design(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = p.shape[p.asked[j]][k] * p.scale[p.asked[j]];
+        }
+      }
+      linear->problem.target = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), static_cast<Eigen::Index>(taus));
+      const AvarCovarianceModel* covariance = &cache->Covariance();
+      linear->problem.whitening_at = [covariance, asked = p.asked, scale = linear->scale](
+                                         const Eigen::VectorXd& x_scaled, Eigen::MatrixXd* w) {
+        std::array<double, kTerms> theta{};
+        for (std::size_t j = 0; j < asked.size(); ++j) {
+          theta[asked[j]] = std::max(x_scaled(static_cast<Eigen::Index>(j)), 0.0) * scale[j];
+        }
+        return Whitening(covariance->Covariance(theta), w);
+      };
+    }
   }
   const Eigen::MatrixXd cov = (a.transpose() * a).completeOrthogonalDecomposition().pseudoInverse();
   int fitted = 0;
@@ -573,13 +604,7 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
     summary->p_value =
         boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), chi2));
   }
-  if (summary->dof > 0 && summary->p_value < 1e-6) {
-    std::ostringstream os;
-    os << "; POOR FIT: chi2 = " << chi2 << " on " << summary->dof << " dof (p = " << summary->p_value
-       << "), the model does not describe this curve (sigmas are not meaningful; look for effects "
-          "beyond the model)";
-    summary->message += os.str();
-  }
+  summary->message += PoorFitNote(*summary);
   return true;
 }
 

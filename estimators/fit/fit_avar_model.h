@@ -107,7 +107,7 @@ struct FitSummary {
   bool converged = false;
   double chi2 = 0.0;  // sum of squared weighted (GLS: whitened) residuals at the solution
   int dof = 0;        // taus - fitted coefficients
-  // P(chi2_dof >= chi2): the goodness of fit. Tiny (POOR FIT in the message below 1e-6) when the
+  // P(chi2_dof >= chi2): the goodness of fit. Below kPoorFitP (POOR FIT in the message) when the
   // model does not describe the curve; then coefficients and sigmas are those of the closest
   // wrong model.
   double p_value = 1.0;
@@ -119,6 +119,16 @@ struct FitSummary {
   bool ok = false;
   std::string message;
 };
+
+// A poor fit: P(chi2_dof >= chi2) below kPoorFitP, i.e. chi2 above the 99.9 % quantile of chi2 on
+// its dof (a right model is called poor in 1 record of 1000). The one threshold of every fit's
+// POOR FIT message, ModelFitSummary::poor_fit (fit_model.h) and `allanlab fit`.
+inline constexpr double kPoorFitP = 1e-3;
+bool IsPoorFit(const FitSummary& s);  // dof > 0 and p_value < kPoorFitP
+// The rule in words, for outputs: "chi2 above the 99.9 % quantile of chi2 on its dof (p < 0.001)".
+std::string PoorFitRule();
+// "" or the message's "; POOR FIT: chi2 = ... on ... dof (p = ...), ..." clause.
+std::string PoorFitNote(const FitSummary& s);
 
 // Returns summary->ok. A curve too short for the requested terms, invalid options or a solver
 // failure give ok = false with a message; a fit that converged poorly is ok with

@@ -15,10 +15,6 @@ bool ModelFitOptions::IsValid(std::string* why) const {
     if (why) *why = "fit: parametric terms need a fit method (gls, wls or logwls), not slope";
     return false;
   }
-  if (!(poor_fit_p > 0.0 && poor_fit_p < 1.0)) {
-    if (why) *why = "fit: the poor-fit level must be in (0, 1)";
-    return false;
-  }
   if (bw_oversampling < 1 || bw_oversampling > 256) {
     if (why) *why = "fit: band-limit oversampling must be an integer in [1, 256]";
     return false;
@@ -115,7 +111,7 @@ void TryExtended(const ModelFitOptions& options, const AvarCurve& curve, ModelFi
     x.extra_terms = terms;
     x.extra = s.extra;
     x.aic = s.fit.chi2 + 2.0 * FittedParameters(s.fit);
-    x.fits = s.fit.dof > 0 && s.fit.p_value >= options.poor_fit_p;
+    x.fits = s.fit.dof > 0 && !IsPoorFit(s.fit);
     summary->extended.push_back(x);
     if (summary->best_extended < 0 || x.aic < summary->extended[summary->best_extended].aic) {
       summary->best_extended = static_cast<int>(summary->extended.size()) - 1;
@@ -158,7 +154,7 @@ bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
   }
   if (!FitRoute(options, curve, summary)) return false;
   if (options.method == FitMethod::kSlope) return true;
-  summary->poor_fit = summary->fit.dof > 0 && summary->fit.p_value < options.poor_fit_p;
+  summary->poor_fit = IsPoorFit(summary->fit);
   if (summary->poor_fit) {
     summary->poor_chi2 = summary->fit.chi2;
     summary->poor_dof = summary->fit.dof;

@@ -44,9 +44,6 @@ struct ModelFitOptions {
   BootstrapOptions bootstrap;
   // Optional, GLS: the covariance model of this curve built with every term of `terms`.
   std::shared_ptr<const AvarCovarianceModel> covariance;
-  // A poor fit: chi2 above the (1 - poor_fit_p) quantile of chi2 on its dof, i.e. p < poor_fit_p
-  // (a right model is called poor in 1 record of 1000 at 1e-3).
-  double poor_fit_p = 1e-3;
   // On a poor fit without parametric terms: also fit the terms with each of GM, H, BW and BW2
   // (RTS has GM's Allan variance, so it is not tried apart; the band-limit found, if any, kept)
   // and report the best by AIC in ModelFitSummary::extended; when it fits, it becomes the
@@ -65,7 +62,7 @@ struct ExtendedFit {
   std::vector<std::shared_ptr<const ParametricTerm>> extra_terms;
   std::vector<ParametricEstimate> extra;
   double aic = 0.0;   // chi2 + 2 (fitted parameters)
-  bool fits = false;  // its p >= poor_fit_p
+  bool fits = false;  // not a poor fit (IsPoorFit, fit_avar_model.h)
 };
 
 struct ModelFitSummary {
@@ -78,7 +75,7 @@ struct ModelFitSummary {
   bool band_limited = false;  // the reported fit includes a band-limit the detection found
   double plain_chi2 = 0.0;    // band-limit detection: chi2 and dof of the fit without it
   int plain_dof = 0;
-  bool poor_fit = false;      // the fit of the listed terms had p < poor_fit_p
+  bool poor_fit = false;      // the fit of the listed terms is poor (IsPoorFit)
   double poor_chi2 = 0.0;     // poor fit: that fit's chi2 and dof
   int poor_dof = 0;
   // try_extended_on_poor_fit: every extended model tried (failed fits left out), and the index

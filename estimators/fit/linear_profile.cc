@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace allanlab::estimators {
@@ -107,35 +108,55 @@ SubsetChoice SelectSubsetByAic(const LinearProblem& p) {
 
 ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double delta) {
   const Eigen::VectorXd x_hat = SolveSubset(p, free_mask);
-  const double level = p.Chi2(x_hat) + delta;
+  const double chi2_min = p.Chi2(x_hat);
   const double t_hat = x_hat(j);
-  auto profile = [&](double t) { return p.Chi2(SolveMasked(p, free_mask, j, t)); };
-  // The profile is convex in t (a convex quadratic minimised over a convex set), so each end is
-  // one bracketed root.
+  auto held = [&](double t) { return p.Chi2(SolveMasked(p, free_mask, j, t)) - chi2_min; };
+  // Delta(t) <= delta inside the range (header).
+  auto statistic = [&](double t) {
+    if (!p.whitening_at) return held(t);
+    Eigen::MatrixXd w;
+    if (!p.whitening_at(SolveMasked(p, free_mask, j, t), &w)) return held(t);
+    LinearProblem q;
+    q.a = w * p.design;
+    q.y = w * p.target;
+    return q.Chi2(SolveMasked(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
+  };
+  const double tolerance = p.whitening_at ? 1e-6 : 1e-9;
+  // The estimate is inside by construction: each end is bracketed from it outwards (with W0 held
+  // the statistic is convex in t, so the end is its one root).
   const double column = p.a.col(j).norm();
   double step = column > 0.0 ? std::sqrt(delta) / column : 1.0;  // the end with the others fixed
   step = std::max(step, 1e-6 * t_hat);
   ProfileRange r;
   double lo = t_hat, hi = t_hat + step;
-  for (int i = 0; i < 200 && profile(hi) <= level; ++i) {
+  bool bracketed = false;
+  for (int i = 0; i < 80; ++i) {
+    if (statistic(hi) > delta) {
+      bracketed = true;
+      break;
+    }
     lo = hi;
     step *= 2.0;
     hi = t_hat + step;
   }
-  for (int i = 0; i < 60 && hi - lo > 1e-9 * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (profile(mid) <= level ? lo : hi) = mid;
+  if (!bracketed) {
+    r.upper = std::numeric_limits<double>::infinity();  // not bounded up to 2^80 first steps
+  } else {
+    for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (statistic(mid) <= delta ? lo : hi) = mid;
+    }
+    r.upper = 0.5 * (lo + hi);
   }
-  r.upper = 0.5 * (lo + hi);
-  if (t_hat <= 0.0 || profile(0.0) <= level) {
+  if (t_hat <= 0.0 || statistic(0.0) <= delta) {
     r.lower = 0.0;
     return r;
   }
   lo = 0.0;
   hi = t_hat;
-  for (int i = 0; i < 60 && hi - lo > 1e-9 * hi; ++i) {
+  for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (profile(mid) <= level ? hi : lo) = mid;
+    (statistic(mid) <= delta ? hi : lo) = mid;
   }
   r.lower = 0.5 * (lo + hi);
   return r;

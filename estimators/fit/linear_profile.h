@@ -22,6 +22,8 @@
 // and the one-sided 95 % upper limit at Delta = 2.706 (the boundary makes the lower end 0: the
 // 50:50 mixture of chi2_0 and chi2_1 puts 5 % above 2.706). The interval of c = sqrt(x) is the
 // square root of x's: no first-order propagation, which fails near the boundary.
+#include <functional>
+
 #include <Eigen/Dense>
 
 #include "estimators/fit/fit_avar_model.h"
@@ -32,6 +34,13 @@ struct LinearProblem {
   Eigen::MatrixXd a;  // whitened design, one column per term
   Eigen::VectorXd y;  // whitened target
   double Chi2(const Eigen::VectorXd& x) const { return (y - a * x).squaredNorm(); }
+  // Optional (GLS): the whitening W (W' W = Omega^-1) of the curve's covariance under the model
+  // x, and the unwhitened design and target (a = W0 design, y = W0 target for the W0 the fit
+  // held). When set, the profile tests each held value under the covariance of that value's
+  // model (see ProfileInterval) instead of W0's.
+  std::function<bool(const Eigen::VectorXd& x, Eigen::MatrixXd* w)> whitening_at;
+  Eigen::MatrixXd design;
+  Eigen::VectorXd target;
 };
 
 // min |A x - y|^2 over x >= 0 (Lawson-Hanson active set on column-normalised A: exact for these
@@ -61,6 +70,15 @@ struct ProfileRange {
 };
 // The x_j range where the profile of x_j (the terms of free_mask free, j included) stays within
 // `delta` of its minimum. Precondition: bit j of free_mask set.
+// With p.whitening_at set, the statistic at a held value t is the distance test of GMM
+// (Newey & West 1987) with the weight that is efficient under that hypothesis: the covariance
+// Omega_t of the model fitted with x_j = t under W0, then Delta(t) = min chi2_t(x_j = t) -
+// min chi2_t, both with Omega_t. Holding W0 (the pilot's covariance) instead tests a large x_j
+// against the small long-tau variances of a model with a small one: on 2 h records of
+// N + B + K the 95 % upper limit of K then held the truth in 6 of 8 records. Each t is tested
+// at its own level, so the range is the inverted test; Delta(t) need not be convex, and each end
+// is the first crossing from the estimate outwards. An end the test never reaches (Delta stays
+// below `delta` up to 1e12 times the estimate's scale) is +infinity.
 ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double delta);
 
 // The estimate's profile ranges in SI (c_j^2 = scale x_j), free_mask as above: its 68.3 % and

@@ -1,0 +1,154 @@
+// Coverage of the default fit's profile-likelihood intervals and upper limits (FitModel with its
+// defaults: GLS on Q, N, B, K, R with the AIC subset choice, as `allanlab fit` and the "default"
+// method of the coefficient_recovery tables) on records from independent/, a generator written
+// apart from sim/ (continuous-time averages, its own flicker and random numbers).
+//
+// Records: 2 h at 10 Hz of N = 0.17 deg/sqrt(h) and K = 5 deg/h/sqrt(h), with and without
+// B = 3 deg/h, where K is pinned only by the last few taus (EDF ~ 1-5) and is often reported by its
+// 95 % upper limit. 10 Hz rather than 100 Hz keeps the test fast; K and B are set by the taus
+// > 10 s, where the two rates give the same curve. Each count must lie in the two-sided acceptance
+// band of Binomial(trials, nominal) at level 1e-3 (an upper limit: the band's lower end only, a
+// conservative limit being allowed), so a calibrated method fails one check with probability
+// 1e-3 and the test (12 checks) with at most 1.2e-2. At 160 trials the band is about nominal
+// +- 12 points at 68.3 % and [88.8 %, 98.8 %] at 95 %.
+// What it catches: with the GLS covariance held at the pilot fit along the profile (the previous
+// code) the upper limit of K held the truth in 112 of 134 N + B + K records here (84 %) and in 4
+// of 18 N + K records at seeds 1..200, and the 95 % interval of K in 139 of 160; both fail.
+// Not asserted: N's intervals on the records with flicker. independent/'s flicker is the mean of a
+// continuous process over each sample, whose AVAR at m = 1 is 0.82 of the discrete shape the fit
+// uses (0.98 at m = 4); N, fitted to 0.1 % there, feels it: its 95 % interval held the truth in
+// 181 of 200 records (90.5 %, Wilson [85.6, 93.8] %), 191 of 200 on sim/'s records of the same
+// model, 190 of 200 on these without flicker (asserted below).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <boost/math/distributions/binomial.hpp>
+
+#include "estimators/avar.h"
+#include "estimators/fit/fit_model.h"
+#include "independent/generate.h"
+#include "independent/recipe.h"
+
+namespace allanlab::estimators {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kFalseFail = 1e-3;  // per check
+
+// The overlapping curve `allanlab fit` takes: dense:10 taus, Greenhall-Riley EDFs.
+AvarCurve CurveOf(const std::vector<double>& rate, double rate_hz) {
+  AvarOptions o;
+  o.statistic = Statistic::kAllanOverlapping;
+  std::string why;
+  EXPECT_TRUE(TauGridOptions::Parse("dense:10", &o.taus, &why)) << why;
+  o.sample_period_s = 1.0 / rate_hz;
+  AvarSummary s;
+  EXPECT_TRUE(ComputeAvar(o, rate, &s)) << s.message;
+  AvarCurve c;
+  c.sample_period_s = o.sample_period_s;
+  c.num_samples = s.num_samples;
+  c.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const AvarPoint& p : s.points) {
+    if (!(p.value > 0.0)) continue;
+    c.m.push_back(p.m);
+    c.tau_s.push_back(p.tau_s);
+    c.avar.push_back(p.value);
+    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
+  return c;
+}
+
+// Expects `hits` of `trials` inside the acceptance band of Binomial(trials, nominal).
+void ExpectCoverage(const std::string& what, int hits, int trials, double nominal, bool lower_only) {
+  const boost::math::binomial b(trials, nominal);
+  const double tail = lower_only ? kFalseFail : kFalseFail / 2.0;
+  // The smallest count with P(X < lo) <= tail, the largest with P(X > hi) <= tail.
+  int lo = 0;
+  while (lo < trials && boost::math::cdf(b, lo) <= tail) ++lo;
+  int hi = trials;
+  while (!lower_only && hi > 0 && boost::math::cdf(boost::math::complement(b, hi - 1)) <= tail) --hi;
+  std::printf("%s: %d of %d (band %d..%d)\n", what.c_str(), hits, trials, lo, hi);
+  EXPECT_GE(hits, lo) << what << ": " << hits << " of " << trials << " (nominal " << nominal << ")";
+  EXPECT_LE(hits, hi) << what << ": " << hits << " of " << trials << " (nominal " << nominal << ")";
+}
+
+struct Counts {
+  int trials = 0;
+  int in68[5] = {}, in95[5] = {}, limited[5] = {}, under[5] = {};
+};
+
+// Fits `trials` records of the recipe (seeds 1..trials) with FitModel's defaults and counts, per
+// coefficient, the intervals and upper limits that hold the truth (SI, indexed by Coefficient).
+Counts FitRecords(const independent::Recipe& r, const double (&truth)[5], int trials) {
+  constexpr double kDurationS = 7200.0;
+  const auto n = static_cast<std::int64_t>(kDurationS * r.rate_hz);
+  Counts c;
+  c.trials = trials;
+  for (int seed = 1; seed <= trials; ++seed) {
+    const AvarCurve curve = CurveOf(independent::Generate(r, n, static_cast<std::uint64_t>(seed), 0), r.rate_hz);
+    ModelFitSummary m;
+    EXPECT_TRUE(FitModel(ModelFitOptions{}, curve, &m)) << m.fit.message;
+    for (int i = 0; i < 5; ++i) {
+      if (truth[i] == 0.0) continue;
+      const CoefficientEstimate& e = m.fit.coefficients[i];
+      EXPECT_TRUE(e.has_intervals) << i;
+      if (e.fitted) {  // the reported value lies in its own intervals
+        EXPECT_LE(e.interval68_si[0], e.value_si) << "seed " << seed << " term " << i;
+        EXPECT_GE(e.interval68_si[1], e.value_si) << "seed " << seed << " term " << i;
+      }
+      c.in68[i] += e.interval68_si[0] <= truth[i] && truth[i] <= e.interval68_si[1];
+      c.in95[i] += e.interval95_si[0] <= truth[i] && truth[i] <= e.interval95_si[1];
+      if (e.has_upper_limit) {
+        ++c.limited[i];
+        c.under[i] += truth[i] <= e.upper_limit_si;
+      }
+    }
+  }
+  return c;
+}
+
+constexpr const char* kNames[5] = {"Q", "N", "B", "K", "R"};
+constexpr double kN = 0.17 * kDeg / 60.0, kB = 3.0 * kDeg / 3600.0, kK = 5.0 * kDeg / 3600.0 / 60.0;
+
+void ExpectIntervals(const Counts& c, int i) {
+  ExpectCoverage(std::string(kNames[i]) + " 68.3 % interval", c.in68[i], c.trials, 0.683, false);
+  ExpectCoverage(std::string(kNames[i]) + " 95 % interval", c.in95[i], c.trials, 0.95, false);
+}
+
+TEST(ProfileCoverage, FlickerAndRandomWalk) {
+  const double truth[5] = {0.0, kN, kB, kK, 0.0};
+  independent::Recipe r;
+  r.rate_hz = 10.0;
+  r.noise.arw_rad_per_sqrt_s = kN;
+  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(kB);
+  r.noise.rrw_rad_per_s_per_sqrt_s = kK;
+  const Counts c = FitRecords(r, truth, 160);
+  ExpectIntervals(c, 2);
+  ExpectIntervals(c, 3);
+  // K is mostly not determined by 2 h: its upper limit is what these records test.
+  ASSERT_GE(c.limited[3], c.trials / 2);
+  ExpectCoverage("K 95 % upper limit", c.under[3], c.limited[3], 0.95, true);
+}
+
+TEST(ProfileCoverage, WhiteAndRandomWalk) {
+  const double truth[5] = {0.0, kN, 0.0, kK, 0.0};
+  independent::Recipe r;
+  r.rate_hz = 10.0;
+  r.noise.arw_rad_per_sqrt_s = kN;
+  r.noise.rrw_rad_per_s_per_sqrt_s = kK;
+  const Counts c = FitRecords(r, truth, 200);
+  ExpectIntervals(c, 1);
+  ExpectIntervals(c, 3);
+  // Pooled with the records above: the limit must hold the truth whenever it is given.
+  ExpectCoverage("K 95 % upper limit", c.under[3], std::max(c.limited[3], 1), 0.95, true);
+}
+
+}  // namespace
+}  // namespace allanlab::estimators
