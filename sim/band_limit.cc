@@ -6,6 +6,73 @@
 #include <sstream>
 
 namespace allanlab::sim {
+namespace {
+
+// x with sinc(x)^power = 1/sqrt(2), sinc(x) = sin(pi x) / (pi x): the -3 dB point of a box
+// (power 1) or of two boxes in cascade (power 2) of unit length, by bisection on (0, 1).
+double BoxHalfPowerProduct(int power) {
+  double lo = 1e-6, hi = 1.0;
+  for (int i = 0; i < 200; ++i) {
+    const double x = 0.5 * (lo + hi);
+    const double sinc = std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
+    (std::pow(sinc, power) > 1.0 / std::numbers::sqrt2 ? lo : hi) = x;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+std::string_view LowPassKindName(LowPassKind kind) {
+  switch (kind) {
+    case LowPassKind::kNone: return "none";
+    case LowPassKind::kFirstOrder: return "first_order";
+    case LowPassKind::kButterworth2: return "butterworth2";
+    case LowPassKind::kFirstOrderBilinear: return "first_order_bilinear";
+    case LowPassKind::kButterworth2ImpulseInvariant: return "butterworth2_impulse";
+    case LowPassKind::kMovingAverage: return "moving_average";
+    case LowPassKind::kCic2: return "cic2";
+  }
+  return "none";
+}
+
+bool IsFirLowPass(LowPassKind kind) {
+  return kind == LowPassKind::kMovingAverage || kind == LowPassKind::kCic2;
+}
+
+std::vector<double> BoxLengths(LowPassKind kind, double cutoff_hz, double internal_rate_hz) {
+  static const double kBox = BoxHalfPowerProduct(1), kCic2 = BoxHalfPowerProduct(2);
+  if (kind == LowPassKind::kMovingAverage) return {kBox * internal_rate_hz / cutoff_hz};
+  if (kind == LowPassKind::kCic2) {
+    const double w = kCic2 * internal_rate_hz / cutoff_hz;
+    return {w, w};
+  }
+  return {};
+}
+
+std::vector<double> BoxTaps(double w) {
+  const auto whole = static_cast<std::size_t>(std::floor(w));
+  std::vector<double> taps(whole, 1.0 / w);
+  const double frac = w - static_cast<double>(whole);
+  if (frac > 0.0) taps.push_back(frac / w);
+  return taps;
+}
+
+BoxFilter::BoxFilter(double w)
+    : whole_(static_cast<std::size_t>(std::floor(w))), frac_(w - std::floor(w)), inv_w_(1.0 / w) {
+  ring_.assign(whole_ + 1, 0.0);
+}
+
+double BoxFilter::Step(double x) {
+  // ring_ holds x_{n-1} .. x_{n-whole-1}; the slot after pos_ is x_{n-whole}, which leaves the
+  // whole taps now and takes the fractional one.
+  const std::size_t next = pos_ + 1 == ring_.size() ? 0 : pos_ + 1;
+  const double leaving = ring_[next];
+  ring_[pos_] = x;
+  pos_ = next;
+  sum_ += x;
+  sum_ -= leaving;
+  return static_cast<double>((sum_ + frac_ * static_cast<long double>(leaving)) * inv_w_);
+}
 
 bool BandLimit::IsValid(double output_rate_hz, std::string* why) const {
   auto fail = [&](const std::string& msg) {
@@ -21,6 +88,18 @@ bool BandLimit::IsValid(double output_rate_hz, std::string* why) const {
                 std::to_string(oversampling));
   }
   const double internal_nyquist = 0.5 * oversampling * output_rate_hz;
+  if (IsFirLowPass(kind)) {
+    for (double w : BoxLengths(kind, cutoff_hz, oversampling * output_rate_hz)) {
+      if (!(w >= 1.0)) {
+        std::ostringstream os;
+        os << "band-limit cutoff fc = " << cutoff_hz << " Hz makes the " << LowPassKindName(kind)
+           << " filter shorter than one internal sample (" << oversampling << " x " << output_rate_hz
+           << " Hz)";
+        return fail(os.str());
+      }
+    }
+    return true;
+  }
   if (cutoff_hz >= internal_nyquist) {
     std::ostringstream os;
     os << "band-limit cutoff fc = " << cutoff_hz << " Hz is not below the Nyquist frequency "
@@ -45,6 +124,19 @@ Biquad DesignLowPass(LowPassKind kind, double cutoff_hz, double internal_rate_hz
     f.b2 = f.b0;
     f.a1 = 2.0 * (k * k - 1.0) * norm;
     f.a2 = (1.0 - std::numbers::sqrt2 * k + k * k) * norm;
+  } else if (kind == LowPassKind::kFirstOrderBilinear) {
+    const double k = std::tan(std::numbers::pi * cutoff_hz / internal_rate_hz);
+    f.b0 = k / (1.0 + k);
+    f.b1 = f.b0;
+    f.a1 = (k - 1.0) / (1.0 + k);
+  } else if (kind == LowPassKind::kButterworth2ImpulseInvariant) {
+    // h(t) = sqrt(2) wc e^{-a t} sin(a t), a = wc / sqrt(2), sampled: poles e^{(-a +- i a) T}, the
+    // response starting one sample late (h(0) = 0); the numerator is rescaled to unit DC gain.
+    const double a = 2.0 * std::numbers::pi * cutoff_hz / std::numbers::sqrt2 / internal_rate_hz;
+    f.b0 = 0.0;
+    f.a1 = -2.0 * std::exp(-a) * std::cos(a);
+    f.a2 = std::exp(-2.0 * a);
+    f.b1 = 1.0 + f.a1 + f.a2;
   }
   return f;
 }
@@ -55,18 +147,32 @@ BandLimitChain::BandLimitChain(const BandLimit& limit, double output_rate_hz) : 
   internal_period_s_ = 1.0 / internal_rate_hz;
   design_ = DesignLowPass(limit_.kind, limit_.cutoff_hz, internal_rate_hz);
 
-  // Impulse response of the filter until it has decayed to 1e-18 of its peak for a full
-  // output period (the poles are inside the unit circle, so the envelope decays).
+  box_lengths_ = BoxLengths(limit_.kind, limit_.cutoff_hz, internal_rate_hz);
   std::vector<double> g;
-  Biquad f = design_;
-  double peak = 0.0;
-  int quiet = 0;
-  for (std::int64_t n = 0; n < (std::int64_t{1} << 26); ++n) {
-    const double v = f.Step(n == 0 ? 1.0 : 0.0);
-    g.push_back(v);
-    peak = std::max(peak, std::abs(v));
-    quiet = std::abs(v) < 1e-18 * peak ? quiet + 1 : 0;
-    if (quiet > 2 * l + 4) break;
+  if (!box_lengths_.empty()) {
+    // The boxes' taps convolved: finite, exact.
+    g = {1.0};
+    for (double w : box_lengths_) {
+      const std::vector<double> box = BoxTaps(w);
+      std::vector<double> next(g.size() + box.size() - 1, 0.0);
+      for (std::size_t i = 0; i < g.size(); ++i) {
+        for (std::size_t j = 0; j < box.size(); ++j) next[i + j] += g[i] * box[j];
+      }
+      g = std::move(next);
+    }
+  } else {
+    // Impulse response of the filter until it has decayed to 1e-18 of its peak for a full
+    // output period (the poles are inside the unit circle, so the envelope decays).
+    Biquad f = design_;
+    double peak = 0.0;
+    int quiet = 0;
+    for (std::int64_t n = 0; n < (std::int64_t{1} << 26); ++n) {
+      const double v = f.Step(n == 0 ? 1.0 : 0.0);
+      g.push_back(v);
+      peak = std::max(peak, std::abs(v));
+      quiet = peak > 0.0 && std::abs(v) < 1e-18 * peak ? quiet + 1 : 0;
+      if (quiet > 2 * l + 4) break;
+    }
   }
   if (limit_.sampling == OutputSampling::kAverage) {
     std::vector<double> avg(g.size() + l - 1, 0.0);
@@ -125,6 +231,34 @@ std::vector<double> BandLimitChain::HeldOutputAutocovariance(const std::vector<d
     r[j] = static_cast<double>(s);
   }
   return r;
+}
+
+const std::vector<BandLimitFamily>& BandLimitFamilies() {
+  using K = LowPassKind;
+  using S = OutputSampling;
+  static const std::vector<BandLimitFamily> families = {
+      {"analog1_point", K::kFirstOrder, 8, S::kPoint, 1},
+      {"analog1_average", K::kFirstOrder, 8, S::kAverage, 1},
+      {"analog2_point", K::kButterworth2, 8, S::kPoint, 2},
+      {"analog2_average", K::kButterworth2, 8, S::kAverage, 2},
+      {"digital1_impulse", K::kFirstOrder, 1, S::kPoint, 1},
+      {"digital1_bilinear", K::kFirstOrderBilinear, 1, S::kPoint, 1},
+      {"digital2_impulse", K::kButterworth2ImpulseInvariant, 1, S::kPoint, 2},
+      {"digital2_bilinear", K::kButterworth2, 1, S::kPoint, 2},
+      {"moving_average", K::kMovingAverage, 8, S::kPoint, 1},
+      {"cic2", K::kCic2, 8, S::kPoint, 2},
+  };
+  return families;
+}
+
+const BandLimitFamily* FamilyOf(const BandLimit& limit) {
+  for (const BandLimitFamily& f : BandLimitFamilies()) {
+    if (f.kind == limit.kind && f.oversampling == limit.oversampling &&
+        (f.sampling == limit.sampling || f.oversampling == 1)) {
+      return &f;
+    }
+  }
+  return nullptr;
 }
 
 std::shared_ptr<const BandLimitChain> SharedBandLimitChain(const BandLimit& limit, double output_rate_hz) {

@@ -7,15 +7,28 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace allanlab::sim {
 
+// Every filter has unit DC gain and -3 dB at fc (for the IIR kinds, of the analog prototype).
 enum class LowPassKind {
   kNone,
   kFirstOrder,    // RC low-pass, time constant 1/(2 pi fc), impulse-invariant at the internal rate
   kButterworth2,  // 2nd-order Butterworth, bilinear transform with pre-warping at fc
+  kFirstOrderBilinear,           // RC low-pass, bilinear transform with pre-warping at fc
+  kButterworth2ImpulseInvariant,  // 2nd-order Butterworth, impulse-invariant (DC gain rescaled to 1)
+  // Moving average (boxcar) over T = 0.4429 / fc seconds of internal samples (the continuous
+  // box's -3 dB point), the last tap weighted by the fractional part of T fs_internal: the
+  // averaging or decimation filter of a digital sensor, continuous in fc.
+  kMovingAverage,
+  // Two such boxes in cascade (2nd-order CIC decimator, triangular response), each 0.3190 / fc
+  // long (-3 dB of sinc^2).
+  kCic2,
 };
+std::string_view LowPassKindName(LowPassKind kind);  // YAML name: "first_order", "moving_average", ...
+bool IsFirLowPass(LowPassKind kind);                 // the box kinds
 enum class OutputSampling { kPoint, kAverage };
 
 struct BandLimit {
@@ -25,7 +38,7 @@ struct BandLimit {
   OutputSampling sampling = OutputSampling::kPoint;
 
   bool enabled() const { return kind != LowPassKind::kNone; }
-  // fc > 0, L in [1, 256], fc < L * fs / 2.
+  // fc > 0, L in [1, 256], fc < L * fs / 2; a box at least one internal sample long.
   bool IsValid(double output_rate_hz, std::string* why) const;
 };
 
@@ -51,6 +64,8 @@ class BandLimitChain {
   int oversampling() const { return limit_.oversampling; }
   double internal_period_s() const { return internal_period_s_; }
   Biquad MakeFilter() const { return design_; }
+  // The box kinds: lengths of the cascaded boxes in internal samples (real, >= 1); empty for IIR.
+  const std::vector<double>& box_lengths() const { return box_lengths_; }
 
   // ge_n: response of the output (at internal index kL + L - 1) to a unit impulse at internal
   // index kL + L - 1 - n: the filter's impulse response, averaged over a box of L when the output
@@ -78,14 +93,47 @@ class BandLimitChain {
   BandLimit limit_;
   double internal_period_s_ = 0.0;
   Biquad design_;
+  std::vector<double> box_lengths_;
   std::vector<double> internal_response_;
   std::vector<double> held_response_;
   std::vector<double> held_autocorrelation_;  // rq(d), d = 0..len(q)-1
   std::int64_t burn_in_samples_ = 0;
 };
 
-// Low-pass design at the internal rate (unit DC gain).
+// Low-pass design at the internal rate (unit DC gain); identity for the box kinds.
 Biquad DesignLowPass(LowPassKind kind, double cutoff_hz, double internal_rate_hz);
+// Length in internal samples of each box of a box kind at this cutoff (empty for IIR kinds).
+std::vector<double> BoxLengths(LowPassKind kind, double cutoff_hz, double internal_rate_hz);
+// Impulse response of one box of real length w >= 1: floor(w) taps of 1/w, then frac(w)/w.
+std::vector<double> BoxTaps(double w);
+
+// A running box filter of real length w (BoxTaps): O(1) per sample whatever its length.
+class BoxFilter {
+ public:
+  explicit BoxFilter(double w);
+  double Step(double x);
+
+ private:
+  std::vector<double> ring_;  // the last floor(w) + 1 inputs
+  std::size_t pos_ = 0;
+  std::size_t whole_ = 1;
+  double frac_ = 0.0, inv_w_ = 1.0;
+  long double sum_ = 0.0L;  // sum of the last `whole_` inputs
+};
+
+// A band-limit family the diagnosis fits as one candidate: a filter kind at an oversampling and
+// output sampling, named. `analog*` approximate the analog filter by L = 8 internal samples per
+// output (point-sampled or averaged over the output period); `digital*` run at the output rate.
+struct BandLimitFamily {
+  std::string_view name;
+  LowPassKind kind;
+  int oversampling;
+  OutputSampling sampling;
+  int order;  // of the filter: 1 or 2 (a box counts as first order, CIC2 as second)
+};
+const std::vector<BandLimitFamily>& BandLimitFamilies();
+// The family of a band-limit, or nullptr if it is none of them.
+const BandLimitFamily* FamilyOf(const BandLimit& limit);
 
 // BandLimitChain(limit, output_rate_hz) memoised per thread (the last few distinct arguments):
 // building one is O(len(q)^2) (its held autocorrelation), and fits, theory and every simulated

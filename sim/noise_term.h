@@ -17,6 +17,7 @@
 #include "sim/quantization_noise.h"
 #include "sim/random_telegraph.h"
 #include "sim/random_walk_rate.h"
+#include "sim/resonance.h"
 #include "sim/rate_ramp.h"
 #include "sim/white_rate_noise.h"
 
@@ -39,7 +40,7 @@ concept NoiseTermType = requires(const T& t, Engine& engine, std::span<double> r
 using NoiseTerm =
     std::variant<QuantizationNoise, WhiteRateNoise, FlickerNoise, FlickerGaussMarkovSum,
                  RandomWalkRate, RateRamp, Harmonic, GaussMarkov, RandomTelegraph,
-                 ExponentialDrift, BiasStep, Outliers>;
+                 ExponentialDrift, BiasStep, Outliers, Resonance>;
 
 namespace internal {
 template <typename V>

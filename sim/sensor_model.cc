@@ -236,6 +236,16 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
       double Step(double x) { return y = b0 * x + -(a1 * y); }
     } pole{filter.b0, filter.a1};
     const bool first_order = filter.b1 == 0.0 && filter.b2 == 0.0 && filter.a2 == 0.0;
+    // The box kinds (moving average, CIC): running boxes in cascade, O(1) per internal sample.
+    struct BoxCascade {
+      std::vector<BoxFilter> stages;
+      double Step(double x) {
+        for (BoxFilter& b : stages) x = b.Step(x);
+        return x;
+      }
+    } cascade;
+    const std::vector<double>& boxes = chain->box_lengths();
+    for (double w : boxes) cascade.stages.emplace_back(w);
     constexpr std::int64_t kChunk = 4096;
     std::vector<double> wide(static_cast<std::size_t>(kChunk * l));
     const bool average = band_limit.sampling == OutputSampling::kAverage;
@@ -261,7 +271,9 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
           if (k >= burn_in) out[k - burn_in] = average ? acc / l : f;
         }
       };
-      if (first_order) {
+      if (!boxes.empty()) {
+        run(cascade);
+      } else if (first_order) {
         run(pole);
       } else {
         run(filter);

@@ -254,7 +254,7 @@ using D = Dimension;
 
 // TermReaders() below has one entry per NoiseTerm alternative; this fails to compile when a term
 // is added to sim/noise_term.h without teaching the spec reader about it.
-constexpr std::size_t kTermReaderCount = 12;
+constexpr std::size_t kTermReaderCount = 13;
 static_assert(std::variant_size_v<NoiseTerm> == kTermReaderCount,
               "add a TermReader for the new NoiseTerm alternative");
 
@@ -322,6 +322,15 @@ const std::vector<TermReader>& TermReaders() {
          const bool ok =
              r.Quantity("sigma", D::kRate, Sign::kNonNegative, &x.sigma_rad_per_s) &&
              r.Quantity("correlation_time", D::kTime, Sign::kPositive, &x.correlation_time_s);
+         return Store(ok, x, t);
+       }},
+      {Resonance::kId,
+       {"sigma", "frequency", "damping"},
+       [](MapReader& r, NoiseTerm* t) {
+         Resonance x;
+         const bool ok = r.Quantity("sigma", D::kRate, Sign::kNonNegative, &x.sigma_rad_per_s) &&
+                         r.Quantity("frequency", D::kFrequency, Sign::kPositive, &x.frequency_hz) &&
+                         r.Number("damping", Sign::kPositive, &x.damping);
          return Store(ok, x, t);
        }},
       {RandomTelegraph::kId,
@@ -399,13 +408,20 @@ bool ReadBandLimit(const YAML::Node& node, double sample_rate_hz, ErrorSink* sin
   auto map = MapReader::Open(node, "band_limit", "band_limit",
                              {"type", "cutoff", "oversampling", "sampling"}, sink);
   if (!map) return false;
-  static const std::vector<std::string_view> kKinds = {"none", "first_order", "butterworth2"};
+  static const std::vector<LowPassKind> kKindValues = {
+      LowPassKind::kNone, LowPassKind::kFirstOrder, LowPassKind::kButterworth2,
+      LowPassKind::kFirstOrderBilinear, LowPassKind::kButterworth2ImpulseInvariant,
+      LowPassKind::kMovingAverage, LowPassKind::kCic2};
+  static const std::vector<std::string_view> kKinds = [] {
+    std::vector<std::string_view> names;
+    for (LowPassKind k : kKindValues) names.push_back(LowPassKindName(k));
+    return names;
+  }();
   static const std::vector<std::string_view> kSampling = {"point", "average"};
   std::size_t kind = 0;
   std::size_t sampling = 0;
   if (!map->Choice("type", true, kKinds, &kind)) return false;
-  limit->kind =
-      std::array{LowPassKind::kNone, LowPassKind::kFirstOrder, LowPassKind::kButterworth2}[kind];
+  limit->kind = kKindValues[kind];
   const bool cutoff_ok =
       limit->kind == LowPassKind::kNone
           ? map->OptionalQuantity("cutoff", Dimension::kFrequency, Sign::kPositive,
