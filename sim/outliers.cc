@@ -16,7 +16,20 @@ void Outliers::AddTo(Engine& engine, double tau0_s, std::span<double> rate) cons
   const auto threshold = static_cast<std::uint64_t>(std::ldexp(std::min(p, 1.0), 63));
   for (double& v : rate) {
     const std::uint64_t u = engine();
-    if ((u >> 1) < threshold) v += (u & 1U) ? size_rad_per_s : -size_rad_per_s;
+    if ((u >> 1) >= threshold) continue;
+    double size = size_rad_per_s;
+    if (size_law == SpikeSize::kExponential) {
+      // -ln(1 - U) with U in [0, 1) from the top 53 bits of a second draw.
+      const double uniform = std::ldexp(static_cast<double>(engine() >> 11), -53);
+      size = -size_rad_per_s * std::log1p(-uniform);
+    }
+    if (sign == SpikeSign::kPositive) {
+      v += size;
+    } else if (sign == SpikeSign::kNegative) {
+      v -= size;
+    } else {
+      v += (u & 1U) ? size : -size;
+    }
   }
 }
 
@@ -25,7 +38,10 @@ double Outliers::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape&)
 }
 
 double Outliers::AsymptoticAvar(double tau_s, double tau0_s) const {
-  return std::min(rate_hz * tau0_s, 1.0) * size_rad_per_s * size_rad_per_s * tau0_s / tau_s;
+  const double p = std::min(rate_hz * tau0_s, 1.0);
+  const double second = (size_law == SpikeSize::kExponential ? 2.0 : 1.0) * size_rad_per_s * size_rad_per_s;
+  const double mean = sign == SpikeSign::kSymmetric ? 0.0 : p * size_rad_per_s;
+  return (p * second - mean * mean) * tau0_s / tau_s;
 }
 
 }  // namespace allanlab::sim

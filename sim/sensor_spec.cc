@@ -359,11 +359,16 @@ const std::vector<TermReader>& TermReaders() {
          return Store(ok, x, t);
        }},
       {Outliers::kId,
-       {"rate", "size"},
+       {"rate", "size", "sign", "size_law"},
        [](MapReader& r, NoiseTerm* t) {
          Outliers x;
+         std::size_t sign = 0, law = 0;
          const bool ok = r.Quantity("rate", D::kFrequency, Sign::kNonNegative, &x.rate_hz) &&
-                         r.Quantity("size", D::kRate, Sign::kNonNegative, &x.size_rad_per_s);
+                         r.Quantity("size", D::kRate, Sign::kNonNegative, &x.size_rad_per_s) &&
+                         r.Choice("sign", false, {"symmetric", "positive", "negative"}, &sign) &&
+                         r.Choice("size_law", false, {"fixed", "exponential"}, &law);
+         x.sign = std::array{SpikeSign::kSymmetric, SpikeSign::kPositive, SpikeSign::kNegative}[sign];
+         x.size_law = law == 0 ? SpikeSize::kFixed : SpikeSize::kExponential;
          return Store(ok, x, t);
        }},
   };
