@@ -119,6 +119,10 @@ Json ParamsJson(const std::vector<EffectInstance>& effects) {
   auto one = [](const EffectInstance& e) {
     Json p = Json::object();
     for (const std::string& name : EffectParameterNames(e.effect)) p[name] = e.params.at(name);
+    // A band-limit's filter family by name ("bandwidth (moving_average)" -> "moving_average").
+    if (const std::string label = EffectLabel(e); label.size() > EffectId(e.effect).size() + 3) {
+      p["filter"] = label.substr(EffectId(e.effect).size() + 2, label.size() - EffectId(e.effect).size() - 3);
+    }
     return p;
   };
   if (effects.size() == 1) return one(effects[0]);
@@ -223,7 +227,7 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
     const auto& c = s.candidates[s.verdict_candidate];
     os << (s.verdict == "unexplained" ? " (best tried: " + c.id() + ")" : "");
     for (const auto& e : c.effects) {
-      os << "\n  " << EffectId(e.effect) << ":";
+      os << "\n  " << EffectLabel(e) << ":";
       for (const auto& name : EffectParameterNames(e.effect)) os << " " << name << "=" << Format(e.params.at(name));
     }
   }
@@ -481,7 +485,7 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_option("--validate-on", options->validate_path, "score the verdict's model on a second recording of the same sensor")->type_name("FILE2");
   AddCurveOptions(cmd, &options->curve);
   cmd->footer("Verdict: none (no significant gap), an effect id (bandwidth, gauss_markov, random_telegraph, harmonic,\n"
-              "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers) or unexplained.\n"
+              "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers, resonance) or unexplained.\n"
               "Exit status: 0 ok (any verdict), 1 bad file or unusable record, 2 usage error.");
   return {cmd, [options](const std::string& command_line) { return RunDiagnose(*options, command_line); }};
 }

@@ -89,6 +89,10 @@ bool SpecYaml(const BenchmarkCase& c, std::string* yaml, std::string* why) {
         term << "  - {type: random_telegraph, amplitude: " << Exact(p.at("amplitude_rad_per_s"))
              << " rad/s, mean_dwell: " << Exact(p.at("mean_dwell_s")) << " s}";
         break;
+      case Effect::kResonance:
+        term << "  - {type: resonance, sigma: " << Exact(p.at("sigma_rad_per_s")) << " rad/s, frequency: "
+             << Exact(p.at("frequency_hz")) << " Hz, damping: " << Exact(p.at("damping")) << "}";
+        break;
       case Effect::kHarmonic:
         term << "  - {type: harmonic, amplitude: " << Exact(p.at("amplitude_rad_per_s")) << " rad/s, frequency: "
              << Exact(p.at("frequency_hz")) << " Hz}";

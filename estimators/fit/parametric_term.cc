@@ -196,8 +196,14 @@ class BandLimitTerm final : public ParametricTerm {
     specs_ = {{"fc", "Hz", "Hz", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
   }
   std::string_view id() const override { return "bandwidth"; }
+  // BW / BW2 for the analog chain of `fit --terms`; other filters by their family name.
   std::string_view short_name() const override {
-    return kind_ == sim::LowPassKind::kButterworth2 ? "BW2" : "BW";
+    if (oversampling_ == 8 && sampling_ == sim::OutputSampling::kPoint) {
+      if (kind_ == sim::LowPassKind::kFirstOrder) return "BW";
+      if (kind_ == sim::LowPassKind::kButterworth2) return "BW2";
+    }
+    const sim::BandLimitFamily* f = sim::FamilyOf(sim::BandLimit{kind_, 1.0, oversampling_, sampling_});
+    return f != nullptr ? f->name : "BW";
   }
   const std::vector<ParameterSpec>& parameters() const override { return specs_; }
   bool modifies_other_terms() const override { return true; }
@@ -208,55 +214,22 @@ class BandLimitTerm final : public ParametricTerm {
   // runs to 2^26 samples, and the fit never finished.
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
     *lower = {std::max(0.1 / c.tau_s.back(), 1e-3 / c.sample_period_s)};
-    *upper = {0.45 * oversampling_ / c.sample_period_s};
+    // A box kind must stay at least one internal sample long (its fc <= 0.319 L fs for CIC2).
+    *upper = {(sim::IsFirLowPass(kind_) ? 0.3 : 0.45) * oversampling_ / c.sample_period_s};
   }
   void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
     model->band_limit = sim::BandLimit{kind_, p[0], oversampling_, sampling_};
   }
-  // The cutoff at which the baseline's terms, band-limited and each rescaled (non-negative
-  // weighted least squares), fit the curve best, on a grid from fs/100 to the upper bound; false
-  // if no cutoff beats the unfiltered baseline. Rescaling each term matters: a baseline fitted
-  // without the band-limit has bent its terms to mimic it (N low, B high).
+  // ScreenBandLimit's cutoff. Rescaling each term matters: a baseline fitted without the
+  // band-limit has bent its terms to mimic it (N low, B high).
   bool InitialGuess(const AvarCurve& curve, std::span<const double>, const sim::SensorModel& without,
                     std::vector<double>* params, std::string* why) const override {
-    std::vector<double> lower, upper;
-    Bounds(curve, &lower, &upper);
-    // Each baseline term's own AVAR once; each cutoff adds the band-limit's change.
-    std::vector<std::vector<double>> own;
-    for (const sim::NoiseTerm& t : without.terms) {
-      sim::SensorModel one = without;
-      one.terms = {t};
-      own.push_back(ModelAvarOnCurve(one, curve));
-    }
-    const double baseline = BestNonNegativeFit(curve, own);
-    double best = baseline, best_fc = 0.0;
-    for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_period_s), upper[0], 6.0)) {
-      sim::SensorModel model = without;
-      const double p[] = {fc};
-      ApplyTo(p, &model);
-      const sim::BandLimitChain chain(model.band_limit, model.sample_rate_hz);
-      std::vector<std::vector<double>> columns = own;
-      std::vector<double> change;
-      for (std::size_t i = 0; i < without.terms.size(); ++i) {
-        if (sim::BandLimitAvarChange(without.terms[i], chain, curve.sample_period_s, curve.m, &change)) {
-          for (std::size_t k = 0; k < change.size(); ++k) columns[i][k] += change[k];
-        } else {
-          sim::SensorModel one = model;
-          one.terms = {without.terms[i]};
-          columns[i] = ModelAvarOnCurve(one, curve);
-        }
-      }
-      const double s = BestNonNegativeFit(curve, columns);
-      if (s < best) {
-        best = s;
-        best_fc = fc;
-      }
-    }
-    if (best_fc == 0.0) {
+    double fc = 0.0, ratio = 1.0;
+    if (!ScreenBandLimit(kind_, sampling_, oversampling_, curve, without, &fc, &ratio)) {
       if (why) *why = "no cutoff improves the fit of the short taus";
       return false;
     }
-    *params = {best_fc};
+    *params = {fc};
     return true;
   }
 
@@ -268,6 +241,53 @@ class BandLimitTerm final : public ParametricTerm {
 };
 
 }  // namespace
+
+bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int oversampling,
+                     const AvarCurve& curve, const sim::SensorModel& without, double* cutoff_hz,
+                     double* sse_ratio) {
+  const BandLimitTerm term(kind, sampling, oversampling);
+  std::vector<double> lower, upper;
+  term.Bounds(curve, &lower, &upper);
+  // Each baseline term's own AVAR once; each cutoff adds the band-limit's change.
+  std::vector<std::vector<double>> own;
+  for (const sim::NoiseTerm& t : without.terms) {
+    sim::SensorModel one = without;
+    one.terms = {t};
+    own.push_back(ModelAvarOnCurve(one, curve));
+  }
+  const double baseline = BestNonNegativeFit(curve, own);
+  double best = baseline, best_fc = 0.0;
+  // 12 cutoffs a decade: a box's correlation with the next output changes by ~0.1 between grid
+  // points near a box of one output period (6 a decade left a 1.2-period box between 0.95 and 1.4).
+  for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_period_s), upper[0], 12.0)) {
+    sim::SensorModel model = without;
+    const double p[] = {fc};
+    term.ApplyTo(p, &model);
+    std::string invalid;
+    if (!model.band_limit.IsValid(model.sample_rate_hz, &invalid)) continue;  // a box under one sample
+    const sim::BandLimitChain chain(model.band_limit, model.sample_rate_hz);
+    std::vector<std::vector<double>> columns = own;
+    std::vector<double> change;
+    for (std::size_t i = 0; i < without.terms.size(); ++i) {
+      if (sim::BandLimitAvarChange(without.terms[i], chain, curve.sample_period_s, curve.m, &change)) {
+        for (std::size_t k = 0; k < change.size(); ++k) columns[i][k] += change[k];
+      } else {
+        sim::SensorModel one = model;
+        one.terms = {without.terms[i]};
+        columns[i] = ModelAvarOnCurve(one, curve);
+      }
+    }
+    const double s = BestNonNegativeFit(curve, columns);
+    if (s < best) {
+      best = s;
+      best_fc = fc;
+    }
+  }
+  if (best_fc == 0.0) return false;
+  *cutoff_hz = best_fc;
+  *sse_ratio = baseline > 0.0 ? best / baseline : 0.0;
+  return true;
+}
 
 void ParametricTerm::Bounds(const AvarCurve&, std::vector<double>* lower, std::vector<double>* upper) const {
   lower->clear();
@@ -290,6 +310,7 @@ std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name) {
   if (name == "GM" || name == "gauss_markov") return MakeGaussMarkovTerm();
   if (name == "RTS" || name == "random_telegraph") return MakeRandomTelegraphTerm();
   if (name == "H" || name == "harmonic") return MakeHarmonicTerm();
+  if (name == "RES" || name == "resonance") return MakeResonanceTerm();
   if (name == "BW" || name == "bandwidth") return MakeBandLimitTerm(sim::LowPassKind::kFirstOrder);
   if (name == "BW2") return MakeBandLimitTerm(sim::LowPassKind::kButterworth2);
   return nullptr;

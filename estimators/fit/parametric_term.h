@@ -84,8 +84,22 @@ std::unique_ptr<ParametricTerm> MakeBandLimitTerm(sim::LowPassKind kind,
                                                   sim::OutputSampling sampling = sim::OutputSampling::kPoint,
                                                   int oversampling = 8);
 
-// By CLI name ("GM", "RTS", "H", "BW", "BW2") or id ("gauss_markov", "random_telegraph",
-// "harmonic", "bandwidth" = first order); band-limits with point sampling, L = 8; nullptr if
+// The band-limit's screen (what MakeBandLimitTerm's InitialGuess does): on a cutoff grid from
+// fs/100 to the term's upper bound, the baseline's terms (`without`) band-limited by this filter
+// and each rescaled (non-negative weighted least squares, weights nu / (2 AVAR^2)) fit to the
+// curve. Returns false when no cutoff beats the unfiltered terms; else the best cutoff and its
+// weighted SSE relative to the unfiltered terms' (< 1), so filters can be ranked cheaply.
+bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int oversampling,
+                     const AvarCurve& curve, const sim::SensorModel& without, double* cutoff_hz,
+                     double* sse_ratio);
+
+// Narrowband resonance, sim::Resonance: parameters sigma (rad/s; deg/h), f0 (Hz) and zeta
+// (damping ratio). f0 is bounded below the output Nyquist frequency (a line above it is not a
+// resonance the record can locate), zeta by [1e-3, 0.95].
+std::unique_ptr<ParametricTerm> MakeResonanceTerm();
+
+// By CLI name ("GM", "RTS", "H", "RES", "BW", "BW2") or id ("gauss_markov", "random_telegraph",
+// "harmonic", "resonance", "bandwidth" = first order); band-limits with point sampling, L = 8; nullptr if
 // unknown.
 std::unique_ptr<ParametricTerm> MakeParametricTerm(std::string_view name);
 

@@ -216,6 +216,13 @@ Scaled Shape(Effect e, const double u[2], double fs, double n, double s0) {
       s.lo = 1e-6 * s0;
       s.hi = 1e2 * s0;
       break;
+    case Effect::kResonance:
+      p["frequency_hz"] = LogUniform(u[0], 20.0 / T, fs / 5.0);
+      p["damping"] = 0.05;
+      s.parameter = "sigma_rad_per_s";
+      s.lo = 1e-6 * s0;
+      s.hi = 1e2 * s0;
+      break;
     case Effect::kOutliers:
       p["rate_hz"] = LogUniform(u[0], 5.0, 500.0) / T;
       s.parameter = "size_rad_per_s";

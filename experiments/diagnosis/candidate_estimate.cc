@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <variant>
 
 #include "estimators/fit/parametric_fit.h"
 #include "estimators/fit/parametric_term.h"
+#include "experiments/diagnosis/resonance_estimate.h"
 #include "sim/fft.h"
 #include "sim/gauss_markov.h"
 #include "sim/quantization_noise.h"
@@ -16,7 +18,8 @@ namespace {
 
 class FlooredBandLimit final : public estimators::ParametricTerm {
  public:
-  explicit FlooredBandLimit(std::shared_ptr<const estimators::ParametricTerm> inner) : inner_(std::move(inner)) {}
+  explicit FlooredBandLimit(std::shared_ptr<const estimators::ParametricTerm> inner, double start_hz = 0.0)
+      : inner_(std::move(inner)), start_hz_(start_hz) {}
   std::string_view id() const override { return inner_->id(); }
   std::string_view short_name() const override { return inner_->short_name(); }
   const std::vector<estimators::ParameterSpec>& parameters() const override { return inner_->parameters(); }
@@ -26,6 +29,10 @@ class FlooredBandLimit final : public estimators::ParametricTerm {
   }
   bool InitialGuess(const estimators::AvarCurve& curve, std::span<const double> avar, const sim::SensorModel& without,
                     std::vector<double>* params, std::string* why) const override {
+    if (start_hz_ > 0.0) {
+      *params = {start_hz_};
+      return true;
+    }
     return inner_->InitialGuess(curve, avar, without, params, why);
   }
   void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override { inner_->ApplyTo(p, model); }
@@ -33,6 +40,7 @@ class FlooredBandLimit final : public estimators::ParametricTerm {
 
  private:
   std::shared_ptr<const estimators::ParametricTerm> inner_;
+  double start_hz_ = 0.0;  // a start from the record (> 0), else the inner term's screen
 };
 
 double Median(std::vector<double> v) {
@@ -87,32 +95,108 @@ std::optional<EffectInstance> Bump(Effect effect, const EstimateInputs& in, std:
   return e;
 }
 
-// The band-limit as the fit library measures it: the IEEE 952 terms plus a low-pass of the chain
-// the effect library adds (point-sampled, L = 8: effect.h AddEffect, parametric_term.h), fitted
-// jointly by GLS, first order and Butterworth-2; the lower chi2 gives fc and the order. A maximum
-// of the short-tau ADEV (the seed paper's inflection) is not needed: averaged or slowly sampled
-// outputs have none, yet their curve still bends below the white level.
-// The band-limit as the fit library measures it: the IEEE 952 terms plus a low-pass of the chain
-// the effect library adds (point-sampled, L = 8: effect.h AddEffect, parametric_term.h), fitted
-// jointly by GLS, first order and Butterworth-2; the lower chi2 gives fc and the order. A maximum
-// of the short-tau ADEV (the seed paper's inflection) is not needed: averaged or slowly sampled
-// outputs have none, yet their curve still bends below the white level. Each order is first
-// screened by the term's own cutoff grid against the baseline's terms (cheap): an order no
-// cutoff helps is not fitted, as a band-limited fit wandering to low cutoffs costs minutes
-// (long filter chains) on a curve that has no band-limit.
+// Lag-1..4 autocorrelation of the record's short-lag part: each minus the mean correlation at
+// lags 8..15, where a band-limit near the output rate has none left but slow terms (random walk,
+// flicker) still add about the same.
+std::vector<double> ShortCorrelation(std::span<const double> y) {
+  const std::size_t n = std::min<std::size_t>(y.size(), std::size_t{1} << 21);
+  double mean = 0.0;
+  for (std::size_t k = 0; k < n; ++k) mean += y[k];
+  mean /= static_cast<double>(n);
+  std::vector<double> r(16, 0.0);
+  for (std::size_t j = 0; j < r.size(); ++j) {
+    for (std::size_t k = j; k < n; ++k) r[j] += (y[k] - mean) * (y[k - j] - mean);
+  }
+  double slow = 0.0;
+  for (std::size_t j = 8; j < 16; ++j) slow += r[j] / r[0] / 8.0;
+  std::vector<double> rho;
+  for (std::size_t j = 1; j <= 4; ++j) rho.push_back(r[j] / r[0] - slow);
+  return rho;
+}
+
+// The family's cutoff whose white-noise output has the measured lag-1 correlation (by bisection
+// in log fc on [fs/100, fs/2], where the correlation falls with fc), and how far the family's
+// lags 2..4 then are from the measured ones (sum of squares); false if no cutoff there gives it.
+bool MatchCorrelation(const sim::BandLimitFamily& f, std::span<const double> rho, double fs, double* fc,
+                      double* misfit) {
+  auto predicted = [&](double cutoff, std::vector<double>* out) {
+    sim::SensorModel m;
+    m.sample_rate_hz = fs;
+    m.terms = {sim::WhiteRateNoise{1.0}};
+    m.band_limit = {f.kind, cutoff, f.oversampling, f.sampling};
+    std::string invalid;
+    if (!m.band_limit.IsValid(fs, &invalid)) return false;
+    const std::vector<double> r = m.GaussianAutocovariance(5);
+    out->clear();
+    for (std::size_t j = 1; j < 5; ++j) out->push_back(r[j] / r[0]);
+    return true;
+  };
+  double lo = fs / 100.0, hi = 0.5 * fs;
+  std::vector<double> p_lo, p_hi, p;
+  if (!predicted(lo, &p_lo) || !predicted(hi, &p_hi) || !(p_lo[0] > rho[0] && rho[0] > p_hi[0])) return false;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    if (!predicted(mid, &p)) return false;
+    (p[0] > rho[0] ? lo : hi) = mid;
+  }
+  *fc = std::sqrt(lo * hi);
+  if (!predicted(*fc, &p)) return false;
+  *misfit = 0.0;
+  for (std::size_t j = 1; j < 4; ++j) *misfit += (p[j] - rho[j]) * (p[j] - rho[j]);
+  return true;
+}
+
+// The band-limit as the fit library measures it: the IEEE 952 terms plus a low-pass fitted
+// jointly by GLS, for the filter families (sim::BandLimitFamilies(): first and second order,
+// analog point-sampled or averaged, digital bilinear or impulse-invariant, moving average, CIC)
+// the record or curve favours; the lowest chi2 names the family and gives fc. A maximum of the
+// short-tau ADEV (the seed paper's inflection) is not needed: averaged or slowly sampled outputs
+// have none, yet their curve still bends below the white level. A band-limited fit costs
+// seconds (minutes wandering to low cutoffs: long filter chains), so only three families are
+// fitted: with the record, those whose white-noise correlation at lags 2..4, at the cutoff that
+// matches the record's lag 1, is closest to the record's (a decimator's box leaves lag 2 at 0
+// where a low-pass leaves rho1^2), plus the best of the cheap screen against the baseline's
+// terms; from a curve, the screen's best three.
 std::optional<EffectInstance> Bandwidth(const estimators::AvarCurve& curve, const sim::SensorModel* baseline,
-                                        std::string* why) {
+                                        std::span<const double> record, std::string* why) {
+  const auto& families = sim::BandLimitFamilies();
+  const double fs = 1.0 / curve.sample_period_s;
+  std::vector<std::pair<double, std::size_t>> screened;  // (screen SSE ratio, family)
+  std::vector<double> screen_fc(families.size(), 0.0);
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    double ratio = 0.0;
+    if (baseline == nullptr) {
+      screened.emplace_back(0.0, f);
+    } else if (estimators::ScreenBandLimit(families[f].kind, families[f].sampling, families[f].oversampling, curve,
+                                           *baseline, &screen_fc[f], &ratio)) {
+      screened.emplace_back(ratio, f);
+    }
+  }
+  std::stable_sort(screened.begin(), screened.end());
+  std::vector<std::pair<std::size_t, double>> chosen;  // (family, start fc; 0: the term's screen)
+  if (record.size() >= 4096) {
+    const std::vector<double> rho = ShortCorrelation(record);
+    std::vector<std::tuple<double, std::size_t, double>> matched;  // (misfit, family, fc)
+    for (std::size_t f = 0; f < families.size(); ++f) {
+      double fc = 0.0, misfit = 0.0;
+      if (MatchCorrelation(families[f], rho, fs, &fc, &misfit)) matched.emplace_back(misfit, f, fc);
+    }
+    std::stable_sort(matched.begin(), matched.end());
+    for (std::size_t i = 0; i < matched.size() && chosen.size() < 2; ++i) {
+      chosen.emplace_back(std::get<1>(matched[i]), std::get<2>(matched[i]));
+    }
+  }
+  for (const auto& [ratio, f] : screened) {
+    if (chosen.size() >= 3) break;
+    if (std::none_of(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == f; })) chosen.emplace_back(f, 0.0);
+  }
   std::optional<EffectInstance> best;
   double best_chi2 = 0.0;
   *why = "no cutoff improves the fit of the short taus";
-  for (const auto kind : {sim::LowPassKind::kFirstOrder, sim::LowPassKind::kButterworth2}) {
-    std::shared_ptr<const estimators::ParametricTerm> term =
-        DiagnosisBandLimitTerm(kind == sim::LowPassKind::kButterworth2 ? 2.0 : 1.0);
-    if (baseline != nullptr) {
-      std::vector<double> start;
-      std::string screen_why;
-      if (!term->InitialGuess(curve, {}, *baseline, &start, &screen_why)) continue;
-    }
+  for (const auto& [f, start_fc] : chosen) {
+    const EffectInstance start{Effect::kBandwidth,
+                               {{"cutoff_hz", 1.0}, {"order", families[f].order}, {"family", static_cast<double>(f)}}};
+    std::shared_ptr<const estimators::ParametricTerm> term = DiagnosisBandLimitTerm(start, start_fc);
     estimators::ParametricFitOptions po;
     po.method = estimators::FitMethod::kGls;
     po.max_iterations = 50;  // a starting value: the candidate's refit polishes it
@@ -131,9 +215,8 @@ std::optional<EffectInstance> Bandwidth(const estimators::AvarCurve& curve, cons
     }
     if (!best || ps.base.chi2 < best_chi2) {
       best_chi2 = ps.base.chi2;
-      best = EffectInstance{Effect::kBandwidth,
-                            {{"cutoff_hz", ps.extra[0].value_si[0]},
-                             {"order", kind == sim::LowPassKind::kButterworth2 ? 2.0 : 1.0}}};
+      best = start;
+      best->params["cutoff_hz"] = ps.extra[0].value_si[0];
     }
   }
   return best;
@@ -412,13 +495,19 @@ std::optional<EffectInstance> Spikes(std::span<const double> y, double tau0, std
 
 }  // namespace
 
-std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(double order) {
-  return std::make_shared<FlooredBandLimit>(estimators::MakeBandLimitTerm(
-      order == 2.0 ? sim::LowPassKind::kButterworth2 : sim::LowPassKind::kFirstOrder, sim::OutputSampling::kPoint, 8));
+std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(const EffectInstance& bandwidth,
+                                                                         double start_hz) {
+  sim::SensorModel probe;
+  std::string ignored;
+  EffectInstance e = bandwidth;
+  e.params["cutoff_hz"] = 1.0;  // the filter's kind and chain only
+  if (!AddEffect(e, &probe, &ignored)) probe.band_limit = {sim::LowPassKind::kFirstOrder, 1.0, 8, sim::OutputSampling::kPoint};
+  const sim::BandLimit& b = probe.band_limit;
+  return std::make_shared<FlooredBandLimit>(estimators::MakeBandLimitTerm(b.kind, b.sampling, b.oversampling), start_hz);
 }
 
 std::optional<EffectInstance> BandwidthStart(const EstimateInputs& in, std::string* why) {
-  return Bandwidth(*in.curve, in.baseline_model, why);
+  return Bandwidth(*in.curve, in.baseline_model, in.rate_rad_per_s, why);
 }
 std::optional<EffectInstance> GaussMarkovStart(const EstimateInputs& in, std::string* why) {
   return Bump(Effect::kGaussMarkov, in, why);
@@ -450,6 +539,16 @@ std::optional<EffectInstance> BiasStepStart(const EstimateInputs& in, std::strin
 }
 std::optional<EffectInstance> OutliersStart(const EstimateInputs& in, std::string* why) {
   return Spikes(in.rate_rad_per_s, in.curve->sample_period_s, why);
+}
+std::optional<EffectInstance> ResonanceStart(const EstimateInputs& in, std::string* why) {
+  if (!in.rate_rad_per_s.empty()) return EstimateResonance(in.rate_rad_per_s, in.curve->sample_period_s, why);
+  // Curve mode: where the term's exact shape best explains the curve above the baseline.
+  std::vector<double> residual(in.curve->size()), p;
+  for (std::size_t k = 0; k < residual.size(); ++k) residual[k] = in.curve->avar[k] - in.baseline_avar[k];
+  if (!estimators::MakeResonanceTerm()->InitialGuess(*in.curve, residual, *in.baseline_model, &p, why)) {
+    return std::nullopt;
+  }
+  return EffectInstance{Effect::kResonance, {{"sigma_rad_per_s", p[0]}, {"frequency_hz", p[1]}, {"damping", p[2]}}};
 }
 
 std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs& in, std::string* why) {

@@ -24,11 +24,14 @@ struct EstimateInputs {
   const sim::SensorModel* baseline_model = nullptr;  // the fitted linear terms (bandwidth screen, Q)
 };
 
-// The fit library's band-limit term (point-sampled, L = 8: the chain effect.h AddEffect builds)
-// with its cutoff kept at or above 1/100 of the output rate, where the term's own starting grid
-// begins: below it the filter chain runs to ~5e4 L samples per evaluation and a fit that wanders
-// there on a curve without a band-limit takes minutes (a 2e4-sample record: 490 s CPU).
-std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(double order);
+// The fit library's band-limit term of a bandwidth effect's filter (its family, else the analog
+// filter of its order, point-sampled, L = 8: effect.h AddEffect) with its cutoff kept at or above
+// 1/100 of the output rate, where the term's own starting grid begins: below it the filter chain
+// runs to ~5e4 L samples per evaluation and a fit that wanders there on a curve without a
+// band-limit takes minutes (a 2e4-sample record: 490 s CPU).
+// `start_hz` > 0 replaces the term's own starting cutoff.
+std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(const EffectInstance& bandwidth,
+                                                                         double start_hz = 0.0);
 
 // Each effect's start (the registry's EffectSpec::start, effect.h): nullopt with *why when the
 // record shows nothing to start from (no bump, no spike, no grid).
@@ -41,6 +44,7 @@ std::optional<EffectInstance> RateQuantizationStart(const EstimateInputs& in, st
 std::optional<EffectInstance> ExponentialDriftStart(const EstimateInputs& in, std::string* why);
 std::optional<EffectInstance> BiasStepStart(const EstimateInputs& in, std::string* why);
 std::optional<EffectInstance> OutliersStart(const EstimateInputs& in, std::string* why);
+std::optional<EffectInstance> ResonanceStart(const EstimateInputs& in, std::string* why);
 
 // The registry's start for `effect`; nullopt with *why when it has none (see above, or curve mode
 // for an effect whose start reads the samples).

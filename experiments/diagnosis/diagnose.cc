@@ -6,6 +6,7 @@
 #include "experiments/diagnosis/diagnosis_context.h"
 #include "experiments/diagnosis/envelope.h"
 #include "experiments/diagnosis/heldout.h"
+#include "experiments/diagnosis/physical_bounds.h"
 #include "experiments/diagnosis/refit.h"
 #include "experiments/diagnosis/verdict.h"
 
@@ -60,6 +61,10 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
   CandidateResult c;
   c.effects = effects;
   if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why)) return std::nullopt;
+  if (!PhysicallyPossible(c.effects, 1.0 / ctx.curve.sample_period_s,
+                          ctx.curve.sample_period_s * static_cast<double>(ctx.curve.num_samples), why)) {
+    return std::nullopt;
+  }
   c.after = Assess(ctx, c.model, false, 0, why);
   const int k = ParameterCount(effects);
   c.score = s.before.View(View::kOavar).chi2 - c.after.View(View::kOavar).chi2 - 2.0 * k;

@@ -35,6 +35,23 @@ bool AddBandwidth(const EffectInstance& e, sim::SensorModel* model, std::string*
   model->band_limit.cutoff_hz = Param(e, "cutoff_hz");
   // Point sampling of the filtered internal signal: the analog chain of sim/band_limit.h.
   model->band_limit.sampling = sim::OutputSampling::kPoint;
+  model->band_limit.oversampling = 8;
+  if (const auto it = e.params.find("family"); it != e.params.end()) {
+    const auto& families = sim::BandLimitFamilies();
+    const double index = it->second;
+    if (!(index >= 0.0 && index < static_cast<double>(families.size())) || index != std::floor(index)) {
+      *why = "bandwidth: family must be an index below " + std::to_string(families.size());
+      return false;
+    }
+    const sim::BandLimitFamily& f = families[static_cast<std::size_t>(index)];
+    if (f.order != static_cast<int>(order)) {
+      *why = "bandwidth: family " + std::string(f.name) + " is of order " + std::to_string(f.order);
+      return false;
+    }
+    model->band_limit.kind = f.kind;
+    model->band_limit.oversampling = f.oversampling;
+    model->band_limit.sampling = f.sampling;
+  }
   return model->band_limit.IsValid(model->sample_rate_hz, why);
 }
 
@@ -89,6 +106,14 @@ bool AddBiasStep(const EffectInstance& e, sim::SensorModel* model, std::string* 
   return AddTerm(t, model, why);
 }
 
+bool AddResonance(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
+  sim::Resonance t;
+  t.sigma_rad_per_s = Param(e, "sigma_rad_per_s");
+  t.frequency_hz = Param(e, "frequency_hz");
+  t.damping = Param(e, "damping");
+  return AddTerm(t, model, why);
+}
+
 bool AddOutliers(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
   sim::Outliers t;
   t.rate_hz = Param(e, "rate_hz");
@@ -105,8 +130,11 @@ std::shared_ptr<const estimators::ParametricTerm> RandomTelegraphTerm(const Effe
 std::shared_ptr<const estimators::ParametricTerm> HarmonicTerm(const EffectInstance&) {
   return estimators::MakeHarmonicTerm();
 }
+std::shared_ptr<const estimators::ParametricTerm> ResonanceTerm(const EffectInstance&) {
+  return estimators::MakeResonanceTerm();
+}
 std::shared_ptr<const estimators::ParametricTerm> BandwidthTerm(const EffectInstance& e) {
-  return DiagnosisBandLimitTerm(e.params.at("order"));
+  return DiagnosisBandLimitTerm(e);
 }
 
 // A warm-up drift seen offset_s later has decayed by exp(-offset / tw).
@@ -153,6 +181,8 @@ const std::vector<EffectSpec>& EffectRegistry() {
        nullptr, HeldRefit::kJointFit, ShiftStep, {kOavar, kHalves, kDynamic, kKurtosis}, {}},
       {Effect::kOutliers, "outliers", {"rate_hz", "size_rad_per_s"}, AddOutliers, OutliersStart, true,
        nullptr, HeldRefit::kJointFit, nullptr, {kOavar, kPsd, kKurtosis}, {}},
+      {Effect::kResonance, "resonance", {"sigma_rad_per_s", "frequency_hz", "damping"}, AddResonance,
+       ResonanceStart, false, ResonanceTerm, HeldRefit::kRatio, nullptr, {kOavar, kHadamard, kPsd}, {}},
   };
   return registry;
 }
@@ -178,6 +208,17 @@ bool ParseEffect(std::string_view id, Effect* e) {
 
 std::vector<std::string> EffectParameterNames(Effect e) { return SpecOf(e).params; }
 
+std::string EffectLabel(const EffectInstance& e) {
+  std::string label(EffectId(e.effect));
+  if (e.effect != Effect::kBandwidth) return label;
+  sim::SensorModel probe;
+  std::string ignored;
+  if (AddEffect(e, &probe, &ignored)) {
+    if (const sim::BandLimitFamily* f = sim::FamilyOf(probe.band_limit)) label += " (" + std::string(f->name) + ")";
+  }
+  return label;
+}
+
 bool AddEffect(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
   return SpecOf(e.effect).add(e, model, why);
 }
@@ -185,6 +226,17 @@ bool AddEffect(const EffectInstance& e, sim::SensorModel* model, std::string* wh
 bool IsOneOffEvent(Effect e) { return SpecOf(e).shift != nullptr; }
 
 std::vector<Indistinguishable> AllanEquivalents(Effect e) { return SpecOf(e).allan_equivalents; }
+
+std::string EffectLabel(const EffectInstance& e) {
+  std::string label(EffectId(e.effect));
+  if (e.effect != Effect::kBandwidth) return label;
+  sim::SensorModel probe;
+  std::string ignored;
+  if (AddEffect(e, &probe, &ignored)) {
+    if (const sim::BandLimitFamily* f = sim::FamilyOf(probe.band_limit)) label += " (" + std::string(f->name) + ")";
+  }
+  return label;
+}
 
 bool EffectInstance::IsValid(double sample_rate_hz, std::string* why) const {
   for (const std::string& name : EffectParameterNames(effect)) {

@@ -7,7 +7,9 @@
 // and (optionally) fit term.
 //
 // Parameters are SI with the unit in the name (JSON keys are these names):
-//   bandwidth           cutoff_hz, order (1: RC, 2: Butterworth)
+//   bandwidth           cutoff_hz, order (1: RC, 2: Butterworth); optional family (index into
+//                       sim::BandLimitFamilies(): moving_average, digital2_bilinear, ...; without
+//                       it the analog filter of that order, point-sampled, L = 8)
 //   gauss_markov        sigma_rad_per_s, correlation_time_s
 //   random_telegraph    amplitude_rad_per_s, mean_dwell_s
 //   harmonic            amplitude_rad_per_s, frequency_hz
@@ -16,6 +18,7 @@
 //   exponential_drift   amplitude_rad_per_s, time_constant_s
 //   bias_step           size_rad_per_s, time_s
 //   outliers            rate_hz, size_rad_per_s
+//   resonance           sigma_rad_per_s, frequency_hz, damping
 #include <map>
 #include <memory>
 #include <optional>
@@ -42,11 +45,13 @@ enum class Effect {
   kExponentialDrift,
   kBiasStep,
   kOutliers,
+  kResonance,
 };
 inline constexpr Effect kAllEffects[] = {
     Effect::kBandwidth,         Effect::kGaussMarkov,      Effect::kRandomTelegraph,
     Effect::kHarmonic,          Effect::kAngleQuantization, Effect::kRateQuantization,
-    Effect::kExponentialDrift,  Effect::kBiasStep,          Effect::kOutliers};
+    Effect::kExponentialDrift,  Effect::kBiasStep,          Effect::kOutliers,
+    Effect::kResonance};
 
 // One effect with its parameter values (keys: the effect's parameter names).
 struct EffectInstance {
@@ -103,6 +108,9 @@ const EffectSpec& SpecOf(Effect e);
 std::string_view EffectId(Effect e);
 bool ParseEffect(std::string_view id, Effect* e);
 std::vector<std::string> EffectParameterNames(Effect e);
+// The effect's name as a report gives it: the id, and for a band-limit its filter family
+// ("bandwidth (moving_average)").
+std::string EffectLabel(const EffectInstance& effect);
 bool AddEffect(const EffectInstance& effect, sim::SensorModel* model, std::string* why);
 bool IsOneOffEvent(Effect e);
 std::vector<Indistinguishable> AllanEquivalents(Effect e);

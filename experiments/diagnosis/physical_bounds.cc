@@ -1,0 +1,84 @@
+#include "experiments/diagnosis/physical_bounds.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace allanlab::experiments {
+
+bool PhysicallyPossible(const EffectInstance& e, double fs, double record_length_s, std::string* why) {
+  auto p = [&](const char* name) {
+    const auto it = e.params.find(name);
+    return it == e.params.end() ? std::nan("") : it->second;
+  };
+  const double tau0 = 1.0 / fs, nyquist = 0.5 * fs;
+  std::ostringstream os;
+  os << EffectLabel(e) << ": ";
+  bool ok = true;
+  switch (e.effect) {
+    case Effect::kBandwidth:
+      if (!(p("cutoff_hz") < nyquist)) {
+        os << "cutoff " << p("cutoff_hz") << " Hz is not below the Nyquist frequency " << nyquist << " Hz";
+        ok = false;
+      }
+      break;
+    case Effect::kGaussMarkov:
+      if (!(p("correlation_time_s") >= tau0)) {
+        os << "correlation time " << p("correlation_time_s") << " s is below the sample period " << tau0 << " s";
+        ok = false;
+      }
+      break;
+    case Effect::kRandomTelegraph:
+      if (!(0.5 * p("mean_dwell_s") >= tau0)) {
+        os << "correlation time (mean dwell / 2) " << 0.5 * p("mean_dwell_s") << " s is below the sample period "
+           << tau0 << " s";
+        ok = false;
+      }
+      break;
+    case Effect::kHarmonic:
+      if (!(p("frequency_hz") < nyquist)) {
+        os << "frequency " << p("frequency_hz") << " Hz is not below the Nyquist frequency " << nyquist << " Hz";
+        ok = false;
+      }
+      break;
+    case Effect::kResonance: {
+      const double decay_s = 1.0 / (p("damping") * 2.0 * std::numbers::pi * p("frequency_hz"));
+      if (!(p("frequency_hz") < nyquist)) {
+        os << "frequency " << p("frequency_hz") << " Hz is not below the Nyquist frequency " << nyquist << " Hz";
+        ok = false;
+      } else if (!(p("damping") < 1.0) || !(decay_s >= tau0)) {
+        os << "decay time " << decay_s << " s (damping " << p("damping") << ") is below the sample period " << tau0
+           << " s: not a line";
+        ok = false;
+      }
+      break;
+    }
+    case Effect::kExponentialDrift:
+      if (!(p("time_constant_s") >= tau0)) {
+        os << "time constant " << p("time_constant_s") << " s is below the sample period " << tau0 << " s";
+        ok = false;
+      }
+      break;
+    case Effect::kBiasStep:
+      if (!(p("time_s") > 0.0 && p("time_s") < record_length_s)) {
+        os << "step time " << p("time_s") << " s is outside the record (0, " << record_length_s << " s)";
+        ok = false;
+      }
+      break;
+    case Effect::kAngleQuantization:
+    case Effect::kRateQuantization:
+    case Effect::kOutliers:
+      break;
+  }
+  if (!ok && why) *why = "refused as physically impossible: " + os.str();
+  return ok;
+}
+
+bool PhysicallyPossible(std::span<const EffectInstance> effects, double fs, double record_length_s, std::string* why) {
+  for (const EffectInstance& e : effects) {
+    if (!PhysicallyPossible(e, fs, record_length_s, why)) return false;
+  }
+  return true;
+}
+
+}  // namespace allanlab::experiments

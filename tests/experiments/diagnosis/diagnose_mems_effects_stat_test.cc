@@ -1,0 +1,101 @@
+// `diagnose` on the effects real MEMS gyros show beyond the IEEE 952 terms: a narrowband
+// resonance (the ADIS16405 Z axis's line near 20 Hz) and the short correlation of an internal
+// moving-average decimator (its X and Y axes), each named with its parameters; and candidates
+// whose fit lands outside physics are refused. Fixed seeds, 3.6e4-sample records (seconds each).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/physical_bounds.h"
+#include "sim/sensor_model.h"
+#include "tests/support/diagnosis_control.h"
+#include "tests/support/diagnosis_record.h"
+
+namespace allanlab::experiments {
+namespace {
+
+using testing::DescribeVerdict;
+using testing::DiagnoseShortRecord;
+
+// A resonance at 20 Hz (damping 0.04, line width 1.6 Hz) with the white noise's own variance:
+// the OAVAR at m = 2..4 (tau about half a period) departs by tens of percent, where the band is a
+// few percent wide. The Welch start finds the line to a bin (0.1 Hz); the fit then holds f0 to
+// well within 1 Hz and the damping within a factor 2 (the width is set by a handful of taus).
+TEST(DiagnoseMemsEffectsStatTest, ResonanceIsNamedWithFrequencyAndDamping) {
+  sim::SensorModel model = testing::DiagnosisControlModel();
+  model.terms.push_back(sim::Resonance{1e-3, 20.0, 0.04});
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 41);
+  ASSERT_TRUE(s.significant);
+  ASSERT_EQ(s.verdict, "resonance") << DescribeVerdict(s);
+  const auto& p = s.candidates[s.verdict_candidate].effects[0].params;
+  EXPECT_NEAR(p.at("frequency_hz"), 20.0, 1.0) << DescribeVerdict(s);
+  EXPECT_GT(p.at("damping"), 0.02) << DescribeVerdict(s);
+  EXPECT_LT(p.at("damping"), 0.08) << DescribeVerdict(s);
+}
+
+// A moving average 2.5 output periods long (internal rate 8 fs): adjacent outputs share 60 % of
+// their window, the next 20 %, none beyond, a shape no first- or second-order low-pass has. The
+// band-limit candidate fits every family and names the box.
+TEST(DiagnoseMemsEffectsStatTest, MovingAverageDecimatorIsNamedByItsFamily) {
+  sim::SensorModel model = testing::DiagnosisControlModel();
+  model.band_limit = {sim::LowPassKind::kMovingAverage, 0.44294647 * 100.0 / 2.5, 8, sim::OutputSampling::kPoint};
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 42);
+  ASSERT_TRUE(s.significant);
+  ASSERT_EQ(s.verdict, "bandwidth") << DescribeVerdict(s);
+  const EffectInstance& e = s.candidates[s.verdict_candidate].effects[0];
+  EXPECT_EQ(EffectLabel(e), "bandwidth (moving_average)") << DescribeVerdict(s);
+  EXPECT_NEAR(e.params.at("cutoff_hz"), 0.44294647 * 100.0 / 2.5, 2.0) << DescribeVerdict(s);
+}
+
+TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
+  const double fs = 100.0, length = 3600.0;
+  struct Case {
+    EffectInstance e;
+    const char* reason;
+  };
+  const Case cases[] = {
+      {{Effect::kBandwidth, {{"cutoff_hz", 60.0}, {"order", 1.0}}}, "not below the Nyquist frequency 50 Hz"},
+      {{Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.004}}}, "below the sample period"},
+      {{Effect::kRandomTelegraph, {{"amplitude_rad_per_s", 1e-3}, {"mean_dwell_s", 0.015}}}, "below the sample period"},
+      {{Effect::kHarmonic, {{"amplitude_rad_per_s", 1e-3}, {"frequency_hz", 50.0}}}, "not below the Nyquist"},
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 70.0}, {"damping", 0.05}}}, "not below the Nyquist"},
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 40.0}, {"damping", 0.9}}}, "not a line"},
+      {{Effect::kExponentialDrift, {{"amplitude_rad_per_s", 1e-3}, {"time_constant_s", 1e-3}}}, "below the sample period"},
+      {{Effect::kBiasStep, {{"size_rad_per_s", 1e-3}, {"time_s", 4000.0}}}, "outside the record"},
+  };
+  for (const Case& c : cases) {
+    std::string why;
+    EXPECT_FALSE(PhysicallyPossible(c.e, fs, length, &why)) << EffectId(c.e.effect);
+    EXPECT_NE(why.find(c.reason), std::string::npos) << why;
+    EXPECT_NE(why.find("physically impossible"), std::string::npos) << why;
+  }
+  const EffectInstance fine[] = {
+      {Effect::kBandwidth, {{"cutoff_hz", 30.0}, {"order", 2.0}}},
+      {Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.05}}},
+      {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 20.0}, {"damping", 0.04}}},
+      {Effect::kBiasStep, {{"size_rad_per_s", 1e-3}, {"time_s", 100.0}}},
+  };
+  for (const EffectInstance& e : fine) {
+    std::string why;
+    EXPECT_TRUE(PhysicallyPossible(e, fs, length, &why)) << why;
+  }
+}
+
+// White noise through a first-order low-pass at 40 Hz (correlation time 4 ms, below the 10 ms
+// sample period) and a step: a Gauss-Markov candidate could only mimic the filter with an
+// impossible correlation time; whatever the candidates, none reported carries one.
+TEST(DiagnoseMemsEffectsStatTest, NoReportedCandidateBreaksAPhysicalBound) {
+  sim::SensorModel model = testing::DiagnosisControlModel();
+  model.band_limit = {sim::LowPassKind::kFirstOrder, 40.0, 8, sim::OutputSampling::kPoint};
+  const DiagnosisSummary s = DiagnoseShortRecord(model, 43);
+  for (const CandidateResult& c : s.candidates) {
+    std::string why;
+    EXPECT_TRUE(PhysicallyPossible(c.effects, model.sample_rate_hz, testing::kDiagnosisTestSamples / model.sample_rate_hz, &why))
+        << why << " " << DescribeVerdict(s);
+  }
+}
+
+}  // namespace
+}  // namespace allanlab::experiments
