@@ -196,12 +196,11 @@ class BandLimitTerm final : public ParametricTerm {
     specs_ = {{"fc", "Hz", "Hz", 1.0, 0.0, std::numeric_limits<double>::infinity(), true}};
   }
   std::string_view id() const override { return "bandwidth"; }
-  // BW / BW2 for the analog chain of `fit --terms`; other filters by their family name.
+  // BW / BW2 for the two filters of `fit --terms` (whatever the sampling and L, as before the
+  // family); the other filters by their family name.
   std::string_view short_name() const override {
-    if (oversampling_ == 8 && sampling_ == sim::OutputSampling::kPoint) {
-      if (kind_ == sim::LowPassKind::kFirstOrder) return "BW";
-      if (kind_ == sim::LowPassKind::kButterworth2) return "BW2";
-    }
+    if (kind_ == sim::LowPassKind::kFirstOrder) return "BW";
+    if (kind_ == sim::LowPassKind::kButterworth2) return "BW2";
     const sim::BandLimitFamily* f = sim::FamilyOf(sim::BandLimit{kind_, 1.0, oversampling_, sampling_});
     return f != nullptr ? f->name : "BW";
   }
