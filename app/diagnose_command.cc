@@ -119,10 +119,7 @@ Json ParamsJson(const std::vector<EffectInstance>& effects) {
   auto one = [](const EffectInstance& e) {
     Json p = Json::object();
     for (const std::string& name : EffectParameterNames(e.effect)) p[name] = e.params.at(name);
-    // A band-limit's filter family by name ("bandwidth (moving_average)" -> "moving_average").
-    if (const std::string label = EffectLabel(e); label.size() > EffectId(e.effect).size() + 3) {
-      p["filter"] = label.substr(EffectId(e.effect).size() + 2, label.size() - EffectId(e.effect).size() - 3);
-    }
+    if (const std::string family = FilterFamilyName(e); !family.empty()) p["filter"] = family;
     return p;
   };
   if (effects.size() == 1) return one(effects[0]);

@@ -71,9 +71,10 @@ bool SpecYaml(const BenchmarkCase& c, std::string* yaml, std::string* why) {
     const auto& p = c.effect->params;
     switch (c.effect->effect) {
       case Effect::kBandwidth:
-        extra << "band_limit: {type: " << (p.at("order") == 2.0 ? "butterworth2" : "first_order")
+        extra << "band_limit: {type: " << sim::LowPassKindName(c.model.band_limit.kind)
               << ", cutoff: " << Exact(p.at("cutoff_hz")) << " Hz, oversampling: " << c.model.band_limit.oversampling
-              << ", sampling: point}\n";
+              << ", sampling: " << (c.model.band_limit.sampling == sim::OutputSampling::kAverage ? "average" : "point")
+              << "}\n";
         break;
       case Effect::kAngleQuantization:
         extra << "output: {angle_lsb: " << Exact(p.at("lsb_rad")) << " rad}\n";

@@ -169,13 +169,19 @@ Scaled Shape(Effect e, const double u[2], double fs, double n, double s0) {
   s.effect.effect = e;
   auto& p = s.effect.params;
   switch (e) {
-    case Effect::kBandwidth:
-      p["order"] = u[1] < 0.5 ? 1.0 : 2.0;
+    case Effect::kBandwidth: {
+      // Any filter family (analog or digital, first or second order, box or CIC), its cutoff
+      // below the output Nyquist frequency (above it a fit is refused: physical_bounds.h).
+      const auto& families = sim::BandLimitFamilies();
+      const std::size_t f = std::min(families.size() - 1, static_cast<std::size_t>(u[1] * families.size()));
+      p["family"] = static_cast<double>(f);
+      p["order"] = families[f].order;
       s.parameter = "cutoff_hz";
       s.lo = fs / 200.0;
-      s.hi = 2.0 * fs;
+      s.hi = 0.45 * fs;
       s.increasing = false;
       break;
+    }
     case Effect::kGaussMarkov:
       p["correlation_time_s"] = LogUniform(u[0], 20.0 * tau0, T / 100.0);
       s.parameter = "sigma_rad_per_s";
@@ -310,8 +316,8 @@ bool DrawBenchmarkCase(const BenchmarkDrawOptions& o, std::uint64_t seed, int in
     c->strength_class = "control";
     return Measure(MakeGrid(c->base, c->num_samples, false), c->base, std::nullopt, c, why);
   }
-  const int effect_index = std::min(8, static_cast<int>(u[4] * 9));
-  const Effect effect = kAllEffects[effect_index];
+  constexpr int kEffects = static_cast<int>(std::size(kAllEffects));
+  const Effect effect = kAllEffects[std::min(kEffects - 1, static_cast<int>(u[4] * kEffects))];
   const StrengthGrid grid = MakeGrid(c->base, c->num_samples,
                                      effect == Effect::kBiasStep || effect == Effect::kExponentialDrift);
   const double wsum = o.weak_weight + o.borderline_weight + o.clear_weight;

@@ -1,5 +1,6 @@
 #include "experiments/diagnosis/benchmark_report.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace allanlab::experiments {
@@ -115,6 +116,7 @@ void WriteBenchmarkMarkdown(std::ostream& os, const std::string& title, const st
   }
   os << "\n## Right effect on clear single effects, per effect\n\n| effect | right |\n|---|---|\n";
   for (const auto& [id, p] : s.clear_right_by_effect) os << "| " << id << " | " << Percent(p) << " |\n";
+  if (!s.not_drawn.empty()) os << "\nNot drawn in this run (no rate): " << Joined(s.not_drawn, ", ") << ".\n";
   os << "\n## Localization (detected effects with an expected tau range)\n\n"
      << "a reported region overlaps the expected range: " << Percent(s.overlap)
      << "\n\none reported region contains the expected range: " << Percent(s.contain) << "\n\n";
@@ -166,12 +168,20 @@ void WriteGeneratorComparison(std::ostream& os, const std::string& provenance,
   os << "\n|---|";
   for (std::size_t i = 0; i < runs.size(); ++i) os << "---|";
   os << "\n";
-  for (std::size_t e = 0; !runs.empty() && e < runs.front().second.clear_right_by_effect.size(); ++e) {
-    os << "| " << runs.front().second.clear_right_by_effect[e].first << " |";
+  // Every effect either run drew; "not drawn" where a run has none of it.
+  for (Effect effect : kAllEffects) {
+    const std::string id(EffectId(effect));
+    std::vector<std::string> cells;
+    bool any = false;
     for (const auto& run : runs) {
       const auto& by = run.second.clear_right_by_effect;
-      os << ' ' << (e < by.size() ? Percent(by[e].second) : std::string("-")) << " |";
+      const auto it = std::find_if(by.begin(), by.end(), [&](const auto& x) { return x.first == id; });
+      any |= it != by.end();
+      cells.push_back(it != by.end() ? Percent(it->second) : std::string("not drawn"));
     }
+    if (!any) continue;
+    os << "| " << id << " |";
+    for (const std::string& cell : cells) os << ' ' << cell << " |";
     os << "\n";
   }
   os << "\n## Provenance\n\n" << provenance;

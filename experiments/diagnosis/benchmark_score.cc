@@ -66,6 +66,9 @@ BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& 
   r.num_samples = c.num_samples;
   r.truth = c.effect ? std::string(EffectId(c.effect->effect)) : "control";
   r.params = c.params_text.empty() ? ParamsText(c.effect) : c.params_text;
+  if (c.effect && c.params_text.empty() && !FilterFamilyName(*c.effect).empty()) {
+    r.params += ";filter=" + FilterFamilyName(*c.effect);
+  }
   r.target_z = c.target_z;
   r.strength_z = c.strength_z;
   r.oavar_z = c.oavar_z;
@@ -107,8 +110,14 @@ BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& 
 
 BenchmarkSummary SummarizeBenchmark(const std::vector<BenchmarkRow>& rows) {
   BenchmarkSummary s;
+  // Rows for the effects these recordings hold; an effect none of them holds has no rate at all
+  // (not a rate of 0/0 among the others) and is listed as not drawn.
   s.truths.push_back("control");
-  for (Effect e : kAllEffects) s.truths.emplace_back(EffectId(e));
+  for (Effect e : kAllEffects) {
+    const std::string id(EffectId(e));
+    const bool drawn = std::any_of(rows.begin(), rows.end(), [&](const BenchmarkRow& r) { return r.truth == id; });
+    (drawn ? s.truths : s.not_drawn).push_back(id);
+  }
   s.verdicts.push_back("none");
   for (Effect e : kAllEffects) s.verdicts.emplace_back(EffectId(e));
   for (const char* v : {"pair", "unexplained", "failed"}) s.verdicts.emplace_back(v);

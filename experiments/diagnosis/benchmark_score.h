@@ -84,7 +84,8 @@ struct StrengthBin {
 };
 
 struct BenchmarkSummary {
-  std::vector<std::string> truths;    // row labels: "control", then the effect ids
+  std::vector<std::string> truths;    // row labels: "control", then the ids of the effects drawn
+  std::vector<std::string> not_drawn;  // effect ids no recording holds (no row, no rate)
   std::vector<std::string> verdicts;  // column labels
   std::vector<std::vector<int>> confusion;
   Proportion false_alarm;             // controls with a significant gap

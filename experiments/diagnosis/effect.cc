@@ -208,15 +208,18 @@ bool ParseEffect(std::string_view id, Effect* e) {
 
 std::vector<std::string> EffectParameterNames(Effect e) { return SpecOf(e).params; }
 
-std::string EffectLabel(const EffectInstance& e) {
-  std::string label(EffectId(e.effect));
-  if (e.effect != Effect::kBandwidth) return label;
+std::string FilterFamilyName(const EffectInstance& e) {
+  if (e.effect != Effect::kBandwidth) return "";
   sim::SensorModel probe;
   std::string ignored;
-  if (AddEffect(e, &probe, &ignored)) {
-    if (const sim::BandLimitFamily* f = sim::FamilyOf(probe.band_limit)) label += " (" + std::string(f->name) + ")";
-  }
-  return label;
+  if (!AddEffect(e, &probe, &ignored)) return "";
+  const sim::BandLimitFamily* f = sim::FamilyOf(probe.band_limit);
+  return f != nullptr ? std::string(f->name) : "";
+}
+
+std::string EffectLabel(const EffectInstance& e) {
+  const std::string family = FilterFamilyName(e);
+  return std::string(EffectId(e.effect)) + (family.empty() ? "" : " (" + family + ")");
 }
 
 bool AddEffect(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
@@ -226,17 +229,6 @@ bool AddEffect(const EffectInstance& e, sim::SensorModel* model, std::string* wh
 bool IsOneOffEvent(Effect e) { return SpecOf(e).shift != nullptr; }
 
 std::vector<Indistinguishable> AllanEquivalents(Effect e) { return SpecOf(e).allan_equivalents; }
-
-std::string EffectLabel(const EffectInstance& e) {
-  std::string label(EffectId(e.effect));
-  if (e.effect != Effect::kBandwidth) return label;
-  sim::SensorModel probe;
-  std::string ignored;
-  if (AddEffect(e, &probe, &ignored)) {
-    if (const sim::BandLimitFamily* f = sim::FamilyOf(probe.band_limit)) label += " (" + std::string(f->name) + ")";
-  }
-  return label;
-}
 
 bool EffectInstance::IsValid(double sample_rate_hz, std::string* why) const {
   for (const std::string& name : EffectParameterNames(effect)) {

@@ -108,6 +108,9 @@ const EffectSpec& SpecOf(Effect e);
 std::string_view EffectId(Effect e);
 bool ParseEffect(std::string_view id, Effect* e);
 std::vector<std::string> EffectParameterNames(Effect e);
+// A band-limit's filter family (sim::BandLimitFamilies() name: "moving_average", "analog1_point",
+// ...); empty for other effects.
+std::string FilterFamilyName(const EffectInstance& effect);
 // The effect's name as a report gives it: the id, and for a band-limit its filter family
 // ("bandwidth (moving_average)").
 std::string EffectLabel(const EffectInstance& effect);

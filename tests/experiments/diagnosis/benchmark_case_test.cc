@@ -3,6 +3,7 @@
 // its target), and the scores on hand-made outcomes. Short records keep it to seconds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "experiments/diagnosis/benchmark_case.h"
@@ -170,6 +171,12 @@ TEST(BenchmarkScoreTest, SummaryCountsAndWilsonIntervals) {
   EXPECT_EQ(s.clear_right.trials, 1);
   EXPECT_EQ(s.confusion[0][0], 19);
   EXPECT_EQ(s.confusion[0][s.verdicts.size() - 2], 1);  // unexplained
+  // Only the effects drawn get a row and a rate; the others are listed as not drawn.
+  EXPECT_EQ(s.truths, (std::vector<std::string>{"control", "gauss_markov"}));
+  ASSERT_EQ(s.clear_right_by_effect.size(), 1u);
+  EXPECT_EQ(s.clear_right_by_effect[0].first, "gauss_markov");
+  EXPECT_EQ(s.not_drawn.size(), std::size(kAllEffects) - 1);
+  EXPECT_NE(std::find(s.not_drawn.begin(), s.not_drawn.end(), "resonance"), s.not_drawn.end());
   int bin_total = 0;
   for (const StrengthBin& b : s.bins) bin_total += b.detected.trials;
   EXPECT_EQ(bin_total, 1);
