@@ -1,10 +1,14 @@
 #pragma once
 // Allan curves as the fit tests build them: averaging factors spaced evenly in log m, and an
 // AvarCurve from given values (exact expectations or one simulated record's estimates).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "estimators/avar.h"
 #include "estimators/fit/avar_curve.h"
 
 namespace allanlab::testing_support {
@@ -29,6 +33,30 @@ inline estimators::AvarCurve Curve(double rate_hz, std::int64_t n,
   c.m = ms;
   for (std::int64_t m : ms) c.tau_s.push_back(static_cast<double>(m) * c.sample_period_s);
   c.avar = avar;
+  return c;
+}
+
+// The overlapping curve `allanlab fit` takes of a rate record: dense:10 taus, Greenhall-Riley
+// EDFs, taus with a positive value.
+inline estimators::AvarCurve DenseCurveOf(const std::vector<double>& rate, double rate_hz) {
+  estimators::AvarOptions o;
+  o.statistic = estimators::Statistic::kAllanOverlapping;
+  std::string why;
+  EXPECT_TRUE(estimators::TauGridOptions::Parse("dense:10", &o.taus, &why)) << why;
+  o.sample_period_s = 1.0 / rate_hz;
+  estimators::AvarSummary s;
+  EXPECT_TRUE(estimators::ComputeAvar(o, rate, &s)) << s.message;
+  estimators::AvarCurve c;
+  c.sample_period_s = o.sample_period_s;
+  c.num_samples = s.num_samples;
+  c.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const estimators::AvarPoint& p : s.points) {
+    if (!(p.value > 0.0)) continue;
+    c.m.push_back(p.m);
+    c.tau_s.push_back(p.tau_s);
+    c.avar.push_back(p.value);
+    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
   return c;
 }
 

@@ -16,30 +16,12 @@
 #include "estimators/fit/band_limited_fit.h"
 #include "sim/sensor_spec.h"
 
+#include "tests/support/fit_curves.h"
+
 namespace allanlab::estimators {
 namespace {
 
 constexpr std::int64_t kSamples = 720000;
-
-AvarCurve CurveOf(const std::vector<double>& y, double rate_hz) {
-  AvarOptions o;
-  std::string why;
-  EXPECT_TRUE(TauGridOptions::Parse("dense:10", &o.taus, &why)) << why;
-  o.sample_period_s = 1.0 / rate_hz;
-  AvarSummary s;
-  EXPECT_TRUE(ComputeAvar(o, y, &s)) << s.message;
-  AvarCurve c;
-  c.sample_period_s = o.sample_period_s;
-  c.num_samples = s.num_samples;
-  for (const AvarPoint& p : s.points) {
-    if (!(p.value > 0.0)) continue;
-    c.m.push_back(p.m);
-    c.tau_s.push_back(p.tau_s);
-    c.avar.push_back(p.value);
-    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
-  return c;
-}
 
 // The preset's coefficients (SI; 0 when absent).
 std::array<double, 5> Truth(const sim::SensorModel& model) {
@@ -62,7 +44,7 @@ TEST(BandLimitedFit, DefaultGlsIsUnbiasedOnTheSeedPresets) {
     ASSERT_EQ(model.band_limit.kind, sim::LowPassKind::kFirstOrder);
     const std::array<double, 5> truth = Truth(model);
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-      const AvarCurve curve = CurveOf(model.Generate(seed, 0, kSamples), model.sample_rate_hz);
+      const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(seed, 0, kSamples), model.sample_rate_hz);
       BandLimitedFitOptions o;
       o.fit.method = FitMethod::kGls;
       BandLimitedFitSummary s;
@@ -101,7 +83,7 @@ TEST(BandLimitedFit, NothingDetectedWithoutABandLimit) {
   ASSERT_TRUE(sim::LoadPreset("tg100", &model, &why)) << why;
   model.band_limit.kind = sim::LowPassKind::kNone;
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-    const AvarCurve curve = CurveOf(model.Generate(seed, 0, kSamples / 4), model.sample_rate_hz);
+    const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(seed, 0, kSamples / 4), model.sample_rate_hz);
     BandLimitedFitOptions o;
     o.fit.method = FitMethod::kGls;
     BandLimitedFitSummary s;
@@ -115,7 +97,7 @@ TEST(BandLimitedFit, OffKeepsThePlainFit) {
   sim::SensorModel model;
   std::string why;
   ASSERT_TRUE(sim::LoadPreset("tg100", &model, &why)) << why;
-  const AvarCurve curve = CurveOf(model.Generate(7, 0, kSamples / 4), model.sample_rate_hz);
+  const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(7, 0, kSamples / 4), model.sample_rate_hz);
   BandLimitedFitOptions o;
   o.fit.method = FitMethod::kGls;
   o.policy = BandLimitPolicy::kOff;

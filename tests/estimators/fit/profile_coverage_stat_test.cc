@@ -36,34 +36,13 @@
 #include "independent/generate.h"
 #include "independent/recipe.h"
 
+#include "tests/support/fit_curves.h"
+
 namespace allanlab::estimators {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kFalseFail = 1e-3;  // per check
-
-// The overlapping curve `allanlab fit` takes: dense:10 taus, Greenhall-Riley EDFs.
-AvarCurve CurveOf(const std::vector<double>& rate, double rate_hz) {
-  AvarOptions o;
-  o.statistic = Statistic::kAllanOverlapping;
-  std::string why;
-  EXPECT_TRUE(TauGridOptions::Parse("dense:10", &o.taus, &why)) << why;
-  o.sample_period_s = 1.0 / rate_hz;
-  AvarSummary s;
-  EXPECT_TRUE(ComputeAvar(o, rate, &s)) << s.message;
-  AvarCurve c;
-  c.sample_period_s = o.sample_period_s;
-  c.num_samples = s.num_samples;
-  c.estimator = sim::AvarEstimatorKind::kOverlapping;
-  for (const AvarPoint& p : s.points) {
-    if (!(p.value > 0.0)) continue;
-    c.m.push_back(p.m);
-    c.tau_s.push_back(p.tau_s);
-    c.avar.push_back(p.value);
-    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
-  return c;
-}
 
 // Expects `hits` of `trials` inside the acceptance band of Binomial(trials, nominal).
 void ExpectCoverage(const std::string& what, int hits, int trials, double nominal, bool lower_only) {
@@ -92,7 +71,7 @@ Counts FitRecords(const independent::Recipe& r, const double (&truth)[5], int tr
   Counts c;
   c.trials = trials;
   for (int seed = 1; seed <= trials; ++seed) {
-    const AvarCurve curve = CurveOf(independent::Generate(r, n, static_cast<std::uint64_t>(seed), 0), r.rate_hz);
+    const AvarCurve curve = testing_support::DenseCurveOf(independent::Generate(r, n, static_cast<std::uint64_t>(seed), 0), r.rate_hz);
     ModelFitSummary m;
     EXPECT_TRUE(FitModel(ModelFitOptions{}, curve, &m)) << m.fit.message;
     for (int i = 0; i < 5; ++i) {
