@@ -87,6 +87,20 @@ double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarP
           return edf;
         }
       }
+      if (options.statistic == Statistic::kTotal) {
+        // Bounded by OAVAR's EDF at the same m, measured on the record where it can be.
+        double oavar = 0.0;
+        if (RecordEdfAvailable(Statistic::kAllanOverlapping, point->m, n_rate)) {
+          oavar = RecordEdf(Statistic::kAllanOverlapping, phase, point->m);
+        }
+        if (!(oavar > 0.0)) {
+          oavar = StatisticEdf(Statistic::kAllanOverlapping, point->alpha, point->m, n_rate,
+                               options.sample_period_s);
+        }
+        return BoundTotalVarianceEdf(
+            StatisticEdf(Statistic::kTotal, point->alpha, point->m, n_rate, options.sample_period_s),
+            oavar, point->m, n_rate);
+      }
       return StatisticEdf(options.statistic, point->alpha, point->m, n_rate,
                           options.sample_period_s);
   }

@@ -212,6 +212,12 @@ double StatisticEdf(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
   return GreenhallRileyEdf(alpha, DifferenceOrder(s), m, n_phase, IsOverlapping(s), IsModified(s));
 }
 
+double BoundTotalVarianceEdf(double total_edf, double oavar_edf, std::int64_t m, std::int64_t n_rate) {
+  if (m < 1 || 2 * m > n_rate || !(oavar_edf > 0.0)) return total_edf;
+  const double terms = static_cast<double>(n_rate - 1) / static_cast<double>(n_rate - 2 * m + 1);
+  return std::min(total_edf, oavar_edf * terms);
+}
+
 double SimpleEdf(std::int64_t clusters) {
   return clusters >= 2 ? static_cast<double>(clusters - 1) : 0.0;
 }
