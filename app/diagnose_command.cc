@@ -152,6 +152,10 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
       region["tau_max_s"] = 1.0 / (2.0 * r.x_min);
       region["frequency_min_hz"] = r.x_min;
       region["frequency_max_hz"] = r.x_max;
+    } else if (r.view == View::kChangePoint || r.view == View::kTrend) {
+      region["block_min_s"] = r.x_min;
+      region["block_max_s"] = r.x_max;
+      region[r.view == View::kChangePoint ? "time_s" : "time_constant_s"] = r.time_s;
     } else {
       region["tau_min_s"] = r.x_min;
       region["tau_max_s"] = r.x_max;
@@ -216,6 +220,20 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   return j;
 }
 
+// How a gap region departs: the record above or below the model, or for the block-mean views
+// (x: block length) the step's time or the settling's time constant.
+std::string RegionMeaning(const GapRegion& r) {
+  if (r.view == View::kChangePoint) {
+    return std::string(r.mean_z > 0 ? " (blocks; the rate level rises" : " (blocks; the rate level falls") +
+           " at t = " + Format(r.time_s) + " s from the start)";
+  }
+  if (r.view == View::kTrend) {
+    return std::string(r.mean_z > 0 ? " (blocks; the rate settles from above" : " (blocks; the rate settles from below") +
+           " from the start, time constant " + Format(r.time_s) + " s)";
+  }
+  return r.mean_z > 0 ? " (record above model)" : " (record below model)";
+}
+
 void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
   const std::string h = markdown ? "## " : "";
   if (markdown) os << "# allanlab diagnose\n\n";
@@ -256,7 +274,7 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
   for (const GapRegion& r : s.regions) {
     os << (markdown ? "- " : "  ") << "region " << ViewId(r.view) << " " << Format(r.x_min) << " .. "
        << Format(r.x_max) << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << Format(r.max_abs_z)
-       << (r.mean_z > 0 ? " (record above model)" : " (record below model)") << "\n";
+       << RegionMeaning(r) << "\n";
   }
   if (markdown) os << "\n" << h << "candidates\n\n| effect | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes |\n|---|---|---|---|---|---|---|\n";
   else if (!s.candidates.empty()) os << "candidates (score = OAVAR chi2 improvement - 2k):\n";
@@ -343,6 +361,14 @@ AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
         span.x_max = 1.0 / (2.0 * r.x_min);
         span.color = "#ff7f0e";
         span.title = "gap: psd, drawn at tau = 1/(2f) (a convention)";
+        break;
+      case View::kChangePoint:
+        span.color = "#e377c2";
+        span.title = "gap: change_point, step at t = " + Format(r.time_s) + " s (shaded: block lengths)";
+        break;
+      case View::kTrend:
+        span.color = "#bcbd22";
+        span.title = "gap: trend, settling time constant " + Format(r.time_s) + " s (shaded: block lengths)";
         break;
       default:
         span.color = "#8c564b";

@@ -425,6 +425,37 @@ std::optional<EffectInstance> Step(std::span<const double> y, double tau0, std::
                         {{"size_rad_per_s", size}, {"time_s", static_cast<double>(best_k) * tau0}}};
 }
 
+// A step near `time_s`: the sample k within one block of it where the means of the block after
+// and the block before differ most; the size is that difference (local means, so the record's slow
+// wander over the rest of it does not bias the size as whole-record means would).
+std::optional<EffectInstance> LocalStep(std::span<const double> y, double tau0, double time_s, double block_s,
+                                        std::string* why) {
+  const auto n = static_cast<std::int64_t>(y.size());
+  const auto block = static_cast<std::int64_t>(std::llround(block_s / tau0));
+  const auto centre = static_cast<std::int64_t>(std::llround(time_s / tau0));
+  if (block < 1 || 2 * block > n) {
+    *why = "record too short for the located step";
+    return std::nullopt;
+  }
+  std::vector<double> prefix(y.size() + 1, 0.0);
+  for (std::size_t k = 0; k < y.size(); ++k) prefix[k + 1] = prefix[k] + y[k];
+  double best = 0.0;
+  std::int64_t best_k = -1;
+  for (std::int64_t k = std::max(block, centre - block); k <= std::min(n - block, centre + block); ++k) {
+    const double d = (prefix[k + block] - 2.0 * prefix[k] + prefix[k - block]) / static_cast<double>(block);
+    if (best_k < 0 || std::abs(d) > std::abs(best)) {
+      best = d;
+      best_k = k;
+    }
+  }
+  if (best_k < 0) {
+    *why = "the located step is at the record's edge";
+    return std::nullopt;
+  }
+  return EffectInstance{Effect::kBiasStep,
+                        {{"size_rad_per_s", best}, {"time_s", static_cast<double>(best_k) * tau0}}};
+}
+
 std::optional<EffectInstance> Spikes(std::span<const double> y, double tau0, std::string* why) {
   if (y.size() < 16) {
     *why = "record too short";
@@ -535,6 +566,9 @@ std::optional<EffectInstance> ExponentialDriftStart(const EstimateInputs& in, st
   return Drift(in.rate_rad_per_s, in.curve->sample_period_s, why);
 }
 std::optional<EffectInstance> BiasStepStart(const EstimateInputs& in, std::string* why) {
+  if (std::isfinite(in.step_time_s) && std::isfinite(in.step_block_s)) {
+    return LocalStep(in.rate_rad_per_s, in.curve->sample_period_s, in.step_time_s, in.step_block_s, why);
+  }
   return Step(in.rate_rad_per_s, in.curve->sample_period_s, why);
 }
 std::optional<EffectInstance> OutliersStart(const EstimateInputs& in, std::string* why) {

@@ -4,6 +4,7 @@
 // quantizer the baseline's Q = lsb / sqrt(12)) or from where the
 // Allan curve departs from the baseline fit (a bump -> Gauss-Markov / telegraph time constant,
 // a band-limited GLS fit -> bandwidth). They are the refit's starting point, not a fit.
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -22,6 +23,10 @@ struct EstimateInputs {
   std::span<const double> baseline_avar;          // the baseline model's E[OAVAR] on the curve
   std::span<const double> rate_rad_per_s;         // the record; empty in curve mode
   const sim::SensorModel* baseline_model = nullptr;  // the fitted linear terms (bandwidth screen, Q)
+  // Where the change-point view (block_means.h) placed a step [s from the start] and its block
+  // length [s]; NaN when it saw none. The bias step's start is then looked for there.
+  double step_time_s = std::numeric_limits<double>::quiet_NaN();
+  double step_block_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The fit library's band-limit term of a bandwidth effect's filter (its family, else the analog

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "experiments/diagnosis/baseline.h"
+#include "experiments/diagnosis/block_means.h"
 #include "experiments/diagnosis/diagnosis_context.h"
 #include "experiments/diagnosis/envelope.h"
 #include "experiments/diagnosis/heldout.h"
@@ -13,22 +14,28 @@
 namespace allanlab::experiments {
 namespace detail {
 
-// A record's views against a model: OAVAR exact, the others from a Monte Carlo envelope when
-// `monte_carlo` (and trials >= 3).
-std::vector<ViewResiduals> RecordResiduals(const ViewLayout& layout, const ViewValues& observed,
-                                           const sim::SensorModel& model, bool monte_carlo, int trials,
-                                           std::uint64_t seed, std::string* note) {
+std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
+                                           const ViewValues& observed, const sim::SensorModel& model,
+                                           bool monte_carlo, int trials, std::uint64_t seed,
+                                           std::string* note) {
   const OavarTheory theory = ExactOavar(model, layout.oavar_m, layout.num_samples);
   ViewEnvelope envelope;
   const bool have_envelope = monte_carlo && trials >= 3 && SimulateEnvelope(model, layout, trials, seed, &envelope, note);
-  return Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr);
+  std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr);
+  if (!layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
+    ViewResiduals change_point, trend;
+    BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, &change_point, &trend);
+    out.push_back(std::move(change_point));
+    out.push_back(std::move(trend));
+  }
+  return out;
 }
 
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
                 std::uint64_t seed, std::string* note) {
   ModelGap gap;
   if (ctx.have_record) {
-    gap.views = RecordResiduals(ctx.layout, ctx.observed, model, monte_carlo, ctx.options->trials, seed, note);
+    gap.views = RecordResiduals(ctx.rate, ctx.layout, ctx.observed, model, monte_carlo, ctx.options->trials, seed, note);
   } else {
     const OavarTheory theory = ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
     ViewValues observed(kNumViews);
@@ -53,6 +60,10 @@ int ParameterCount(const std::vector<EffectInstance>& effects) {
   return k;
 }
 
+double ExactChi2(const ModelGap& gap) {
+  return gap.View(View::kOavar).chi2 + gap.View(View::kChangePoint).chi2 + gap.View(View::kTrend).chi2;
+}
+
 bool ClosesGap(const ModelGap& gap, double threshold) { return gap.All().max_abs_z <= threshold; }
 
 std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisSummary& s,
@@ -67,7 +78,7 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
   }
   c.after = Assess(ctx, c.model, false, 0, why);
   const int k = ParameterCount(effects);
-  c.score = s.before.View(View::kOavar).chi2 - c.after.View(View::kOavar).chi2 - 2.0 * k;
+  c.score = ExactChi2(s.before) - ExactChi2(c.after) - 2.0 * k;
   if (ctx.have_halves) {
     c.heldout_half = ScoredHalf(ctx, effects);
     std::string ignored;

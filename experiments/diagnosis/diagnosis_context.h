@@ -51,11 +51,12 @@ struct Context {
   mutable std::optional<HeldoutBefore> heldout_before[2];
 };
 
-// A record's views against a model: OAVAR exact, the others from a Monte Carlo envelope when
-// `monte_carlo` (and trials >= 3).
-std::vector<ViewResiduals> RecordResiduals(const ViewLayout& layout, const ViewValues& observed,
-                                           const sim::SensorModel& model, bool monte_carlo, int trials,
-                                           std::uint64_t seed, std::string* note);
+// A record's views against a model: OAVAR and the block-mean views exact (block_means.h), the
+// others from a Monte Carlo envelope when `monte_carlo` (and trials >= 3).
+std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
+                                           const ViewValues& observed, const sim::SensorModel& model,
+                                           bool monte_carlo, int trials, std::uint64_t seed,
+                                           std::string* note);
 
 // The record (or in curve mode the curve) against a model.
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
@@ -66,6 +67,9 @@ GapMetrics CurveMetrics(const sim::SensorModel& model, const estimators::AvarCur
 
 int ParameterCount(const std::vector<EffectInstance>& effects);
 bool ClosesGap(const ModelGap& gap, double threshold);
+// chi2 over the views with an exact distribution (OAVAR and the block-mean views), which every
+// assessment has: what a candidate's first score compares (docs/theory.md §6.4).
+double ExactChi2(const ModelGap& gap);
 
 // One candidate (one or more effects from their starts): refitted, assessed on the exact OAVAR
 // view, scored, and held out.

@@ -74,6 +74,7 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
   std::vector<ViewResiduals> out;
   for (View view : kAllViews) {
     const int v = static_cast<int>(view);
+    if (view == View::kChangePoint || view == View::kTrend) continue;  // against each model (block_means.h)
     ViewResiduals r;
     r.view = view;
     r.x = layout.Axis(view);

@@ -111,6 +111,7 @@ std::vector<GapRegion> FindGapRegions(const std::vector<ViewResiduals>& views, d
       while (i < v.z.size() && (std::abs(v.z[i]) > threshold || !std::isfinite(v.z[i]))) {
         if (std::isfinite(v.z[i])) {
           r.x_max = v.x[i];
+          if (std::abs(v.z[i]) > r.max_abs_z && i < v.time_s.size()) r.time_s = v.time_s[i];
           r.max_abs_z = std::max(r.max_abs_z, std::abs(v.z[i]));
           sum += v.z[i];
           ++count;

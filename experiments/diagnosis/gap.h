@@ -13,6 +13,7 @@
 // Phi^{-1}(1 - alpha / (2 M)), M the number of points in all views, so a record drawn from the
 // model is flagged with probability <= alpha whatever the correlation between taus (the taus of
 // one curve are strongly correlated, so the real rate is below alpha).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,9 @@ struct ViewResiduals {
                                  // (rad/s)^2/Hz, log ratios and kurtosis as they are)
   std::vector<double> expected;  // the model's typical value on the same scale
   std::vector<double> z;         // NaN where the point has no distribution (skipped)
+  // Block-mean views (block_means.h): where the step is [s from the start] (change_point) or the
+  // settling's time constant [s] (trend), per point; empty for the other views.
+  std::vector<double> time_s;
 };
 
 struct GapMetrics {
@@ -63,7 +67,9 @@ struct GapRegion {
   View view = View::kOavar;
   double x_min = 0.0, x_max = 0.0;  // contiguous points with |z| > threshold
   double max_abs_z = 0.0;
-  double mean_z = 0.0;  // sign: the record above (> 0) or below the model
+  double mean_z = 0.0;  // sign: the record above (> 0) or below the model (block-mean views:
+                        // the level rises at the step / settles from above)
+  double time_s = std::numeric_limits<double>::quiet_NaN();  // the largest |z| point's time_s
 };
 std::vector<GapRegion> FindGapRegions(const std::vector<ViewResiduals>& views, double threshold);
 

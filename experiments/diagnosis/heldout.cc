@@ -28,7 +28,7 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
     const HalfRecord& scored = ctx.halves[h];
     HeldoutBefore b;
     std::string ignored;
-    b.residuals = RecordResiduals(scored.layout, scored.observed,
+    b.residuals = RecordResiduals(scored.rate, scored.layout, scored.observed,
                                   ctx.spec.Model(ctx.halves[1 - h].baseline, 1.0 / ctx.curve.sample_period_s), true,
                                   ctx.options->trials, ctx.options->seed + 500 + h, &ignored);
     for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
@@ -67,7 +67,11 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
     const bool event = IsOneOffEvent(e.effect);
     const HalfRecord& from = event ? scored_half : fit_half;
     const auto base = probe.ExpectedAvar(from.curve.m, {from.curve.num_samples, from.curve.estimator});
-    const EstimateInputs in{&from.curve, base, from.rate, &probe};
+    EstimateInputs in{&from.curve, base, from.rate, &probe};
+    if (e.effect == Effect::kBiasStep) {  // look for it where the whole record placed it
+      in.step_time_s = e.params.at("time_s") - (scored == 1 ? ctx.half_length_s : 0.0);
+      in.step_block_s = ctx.half_length_s / 32.0;
+    }
     std::string ignored;
     auto est = EstimateEffect(e.effect, in, &ignored);
     if (!est && event) est = ShiftEffect(e, scored == 1 ? ctx.half_length_s : 0.0);
@@ -99,7 +103,7 @@ void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std:
   if (before.gap_views.empty()) return;
   std::string ignored;
   c->heldout_before = MetricsOf(before.residuals, before.gap_views);
-  c->after.heldout = MetricsOf(RecordResiduals(scored.layout, scored.observed, c->heldout_model, true,
+  c->after.heldout = MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, c->heldout_model, true,
                                                ctx.options->trials, seed, &ignored),
                                before.gap_views);
   c->heldout_in_gap_views = true;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "estimators/allan_family.h"
+#include "experiments/diagnosis/block_means.h"
 #include "sim/fft.h"
 
 namespace allanlab::experiments {
@@ -81,11 +82,16 @@ std::string_view ViewId(View v) {
     case View::kDynamic: return "dynamic";
     case View::kPsd: return "psd";
     case View::kKurtosis: return "kurtosis";
+    case View::kChangePoint: return "change_point";
+    case View::kTrend: return "trend";
   }
   return "?";
 }
 
-std::string_view ViewAxisName(View v) { return v == View::kPsd ? "frequency_hz" : "tau_s"; }
+std::string_view ViewAxisName(View v) {
+  if (v == View::kChangePoint || v == View::kTrend) return "block_s";
+  return v == View::kPsd ? "frequency_hz" : "tau_s";
+}
 
 std::vector<double> ViewLayout::Axis(View v) const {
   auto taus = [&](const std::vector<std::int64_t>& ms) {
@@ -100,6 +106,12 @@ std::vector<double> ViewLayout::Axis(View v) const {
     case View::kDynamic: return taus(dynamic_m);
     case View::kPsd: return psd_band_hz;
     case View::kKurtosis: return taus(kurtosis_m);
+    case View::kChangePoint:
+    case View::kTrend: {
+      std::vector<double> x;
+      for (int b : block_counts) x.push_back(static_cast<double>(num_samples / b) * sample_period_s);
+      return x;
+    }
   }
   return {};
 }
@@ -115,6 +127,7 @@ ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
   l.halves_m = Octaves(n / 16);
   l.dynamic_m = Octaves(n / 64);
   l.kurtosis_m = Octaves(n / 256);
+  l.block_counts = BlockMeanCounts(n);
   std::int64_t seg = 1;
   while (seg * 2 <= std::min<std::int64_t>(n / 8, std::int64_t{1} << 14)) seg *= 2;
   if (seg >= 64) {
@@ -217,6 +230,8 @@ bool ComputeViews(const ViewLayout& layout, std::span<const double> rate, ViewVa
 
   auto& kurtosis = v[static_cast<int>(View::kKurtosis)];
   for (std::int64_t m : layout.kurtosis_m) kurtosis.push_back(ExcessKurtosisOfBlockIncrements(rate, m));
+  v[static_cast<int>(View::kChangePoint)].assign(layout.block_counts.size(), kNaN);
+  v[static_cast<int>(View::kTrend)].assign(layout.block_counts.size(), kNaN);
   return true;
 }
 

@@ -13,6 +13,10 @@
 //   kurtosis: excess kurtosis of the first differences of non-overlapping block means of m
 //             samples, octave m with >= 256 blocks: ~0 for Gaussian noise of any spectrum,
 //             > 0 for spikes or jumps, < 0 for a two-level (telegraph) signal
+//   change_point, trend: the record's block means (16, 32, 64 blocks) against the model's
+//             block-mean covariance: the largest step and the largest exponential settling, and
+//             when (block_means.h); computed against each model, whose steps and drifts it places
+//             in time, with its own exact null, so ComputeViews leaves them NaN
 // Logs make the statistics nearly Gaussian across realisations, so one mean and one standard
 // deviation per point describe the envelope.
 #include <cstdint>
@@ -23,13 +27,15 @@
 
 namespace allanlab::experiments {
 
-enum class View { kOavar, kHadamard, kHalves, kDynamic, kPsd, kKurtosis };
-inline constexpr View kAllViews[] = {View::kOavar, View::kHadamard, View::kHalves,
-                                     View::kDynamic, View::kPsd,    View::kKurtosis};
-inline constexpr int kNumViews = 6;
-// "oavar", "hadamard", "halves", "dynamic", "psd", "kurtosis" (stable JSON ids).
+enum class View { kOavar, kHadamard, kHalves, kDynamic, kPsd, kKurtosis, kChangePoint, kTrend };
+inline constexpr View kAllViews[] = {View::kOavar,    View::kHadamard,    View::kHalves,
+                                     View::kDynamic,  View::kPsd,         View::kKurtosis,
+                                     View::kChangePoint, View::kTrend};
+inline constexpr int kNumViews = 8;
+// "oavar", "hadamard", "halves", "dynamic", "psd", "kurtosis", "change_point", "trend" (stable
+// JSON ids).
 std::string_view ViewId(View v);
-// "tau_s" or "frequency_hz".
+// "tau_s", "frequency_hz" or (block-mean views) "block_s".
 std::string_view ViewAxisName(View v);
 
 // Where each view is evaluated for a record of N samples at tau0 (the same for real and
@@ -39,6 +45,7 @@ struct ViewLayout {
   std::int64_t num_samples = 0;
   std::vector<std::int64_t> oavar_m;  // the fit's grid
   std::vector<std::int64_t> hadamard_m, halves_m, dynamic_m, kurtosis_m;
+  std::vector<int> block_counts;                  // block-mean views: blocks of N / count samples
   std::int64_t psd_segment = 0;                   // 0: no PSD view (record too short)
   std::vector<std::pair<int, int>> psd_bands;     // [first, last) periodogram bins per band
   std::vector<double> psd_band_hz;                // geometric centre frequency of each band

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "estimators/fit/noise_coefficient.h"
+#include "experiments/diagnosis/block_means.h"
 #include "experiments/diagnosis/candidate_estimate.h"
 #include "experiments/diagnosis/heldout.h"
 
@@ -13,12 +14,13 @@ using estimators::Coefficient;
 
 bool ByScore(const CandidateResult& a, const CandidateResult& b) { return a.score > b.score; }
 
-// Each effect's candidate from its start, refitted and scored on the exact OAVAR view, best
+// Each effect's candidate from its start, refitted and scored on the exact views, best
 // first; effects without a start (or whose refit fails) are listed as skipped.
 void RankSingles(const Context& ctx, DiagnosisSummary* s) {
   for (Effect effect : ctx.options->effects) {
     const auto base = s->baseline_model.ExpectedAvar(ctx.curve.m, {ctx.curve.num_samples, ctx.curve.estimator});
     EstimateInputs in{&ctx.curve, base, ctx.rate, &s->baseline_model};
+    LocatedStep(s->before.views, s->threshold, &in.step_time_s, &in.step_block_s);
     std::string why;
     const auto est = EstimateEffect(effect, in, &why);
     if (!est) {
