@@ -279,7 +279,7 @@ bool LocatedStep(const std::vector<ViewResiduals>& views, double threshold, doub
 
 std::vector<int> BlockMeanCounts(std::int64_t n) {
   std::vector<int> out;
-  for (int b : {16, 32, 64}) {
+  for (int b : {64, 32, 16}) {  // ascending block length, as every view's x
     if (n / b >= 16) out.push_back(b);
   }
   return out;

@@ -35,7 +35,8 @@ namespace allanlab::experiments {
 
 inline constexpr int kBlockMeanNullDraws = 2000;
 
-// The block counts for a record of n samples: 16, 32, 64 where each block keeps >= 16 samples.
+// The block counts for a record of n samples: 64, 32, 16 (block lengths ascending), where each
+// block keeps >= 16 samples.
 std::vector<int> BlockMeanCounts(std::int64_t n);
 
 // The model's covariance of adjacent block-mean differences for blocks of m samples: c[k] =
