@@ -152,14 +152,12 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
       region["tau_max_s"] = 1.0 / (2.0 * r.x_min);
       region["frequency_min_hz"] = r.x_min;
       region["frequency_max_hz"] = r.x_max;
-    } else if (r.view == View::kChangePoint || r.view == View::kTrend) {
-      region["block_min_s"] = r.x_min;
-      region["block_max_s"] = r.x_max;
-      region[r.view == View::kChangePoint ? "time_s" : "time_constant_s"] = r.time_s;
     } else {
-      region["tau_min_s"] = r.x_min;
+      region["tau_min_s"] = r.x_min;  // block-mean views: the block lengths
       region["tau_max_s"] = r.x_max;
     }
+    if (r.view == View::kChangePoint) region["time_s"] = r.time_s;
+    if (r.view == View::kTrend) region["time_constant_s"] = r.time_s;
     region["max_abs_z"] = r.max_abs_z;
     region["mean_z"] = r.mean_z;
     regions.push_back(region);
