@@ -426,8 +426,8 @@ std::optional<EffectInstance> Step(std::span<const double> y, double tau0, std::
 }
 
 // A step near `time_s`: the sample k within one block of it where the means of the block after
-// and the block before differ most; the size is that difference (local means, so the record's slow
-// wander over the rest of it does not bias the size as whole-record means would).
+// and the block before differ most; the size is the difference of the record's means after and
+// before k (as Step's).
 std::optional<EffectInstance> LocalStep(std::span<const double> y, double tau0, double time_s, double block_s,
                                         std::string* why) {
   const auto n = static_cast<std::int64_t>(y.size());
@@ -452,8 +452,10 @@ std::optional<EffectInstance> LocalStep(std::span<const double> y, double tau0, 
     *why = "the located step is at the record's edge";
     return std::nullopt;
   }
+  const double before = prefix[best_k] / static_cast<double>(best_k);
+  const double after = (prefix[n] - prefix[best_k]) / static_cast<double>(n - best_k);
   return EffectInstance{Effect::kBiasStep,
-                        {{"size_rad_per_s", best}, {"time_s", static_cast<double>(best_k) * tau0}}};
+                        {{"size_rad_per_s", after - before}, {"time_s", static_cast<double>(best_k) * tau0}}};
 }
 
 std::optional<EffectInstance> Spikes(std::span<const double> y, double tau0, std::string* why) {
