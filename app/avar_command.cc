@@ -613,6 +613,35 @@ int ReadRateFromFile(const AvarCommandOptions& options, const std::string& comma
   return kExitOk;
 }
 
+int ReadRatesFromFile(const AvarCommandOptions& options, const std::string& command,
+                      std::vector<std::vector<double>>* rates, RecordInfo* info, std::string* error) {
+  Plan plan;
+  if (std::optional<Failure> failure = MakePlan(options, &plan)) {
+    *error = failure->message;
+    return failure->code;
+  }
+  RecordError read_error;
+  if (!ReadRecordColumns(plan.read, rates, info, &read_error)) {
+    *error = read_error.message;
+    return read_error.exit_code;
+  }
+  for (std::size_t k = 0; k < rates->size(); ++k) {
+    const ColumnInfo& c = info->columns[k];
+    if (c.sensor == ImuSensor::kAccelerometer) {
+      AccelUnit unit;
+      ParseAccelUnit(c.units, &unit, nullptr);  // canonical: always parses
+      AccelToSi(unit, (*rates)[k]);
+      continue;
+    }
+    InputScale(plan.input, c.units).Apply((*rates)[k]);
+    if (plan.input == InputKind::kAngle) {
+      (*rates)[k] = estimators::AngleToRate((*rates)[k], 1.0 / info->sample_rate_hz);
+    }
+  }
+  WarnAboutRecord(*info, command);
+  return kExitOk;
+}
+
 int RunAvar(const AvarCommandOptions& options, const std::string& command_line) {
   return RunCommand(kCommand, " (for records larger than memory, use --stream)", [&] { return Avar(options, command_line); });
 }

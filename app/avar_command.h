@@ -84,4 +84,10 @@ struct RecordInfo;
 int ReadRateFromFile(const AvarCommandOptions& options, const std::string& command,
                      std::vector<double>* rate_rad_per_s, RecordInfo* info, std::string* error);
 
+// Several columns read once as ReadRateFromFile reads one: rates[k] is column k in SI (a gyro's
+// rate in rad/s, angle input differenced; an accelerometer's acceleration in m/s^2);
+// info->columns names each column, its sensor and units.
+int ReadRatesFromFile(const AvarCommandOptions& options, const std::string& command,
+                      std::vector<std::vector<double>>* rates, RecordInfo* info, std::string* error);
+
 }  // namespace allanlab::app

@@ -12,6 +12,7 @@
 
 #include "app/allan_plot.h"
 #include "app/atomic_file.h"
+#include "app/avar_command.h"
 #include "app/constant_stretch.h"
 #include "app/curve_table.h"
 #include "app/output_paths.h"
@@ -378,6 +379,86 @@ AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
   return plot;
 }
 
+// Several gyro columns of one record: a diagnosis each, one JSON and report with a section per
+// column, one PNG with a panel per column. The diagnosis speaks in gyro units and effects, so
+// accelerometer columns are refused when named and left out (with a warning) under --imu.
+std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const DiagnoseOptions& d,
+                                       const std::string& command_line, AtomicFile* json, AtomicFile* report,
+                                       AtomicFile* png) {
+  std::string why;
+  std::vector<std::vector<double>> rates;
+  RecordInfo info;
+  if (const int code = ReadRatesFromFile(o.record, kCommand, &rates, &info, &why); code != kExitOk) {
+    return Failure{code, why};
+  }
+  std::vector<std::size_t> gyro;
+  std::string accel;
+  for (std::size_t k = 0; k < info.columns.size(); ++k) {
+    if (info.columns[k].sensor == ImuSensor::kGyro) gyro.push_back(k);
+    else accel += (accel.empty() ? "" : ", ") + info.columns[k].name;
+  }
+  if (!accel.empty() && !o.record.imu) {
+    return UsageFailure(info.path + ": " + accel + ": accelerometer column(s); diagnose works on gyro columns "
+                        "(its effects and units are a gyro's): name gyro columns only");
+  }
+  if (gyro.empty()) return UsageFailure(info.path + ": --imu found no gyro column to diagnose");
+  if (!accel.empty()) {
+    std::cerr << "allanlab diagnose: warning: " << info.path << ": accelerometer column(s) " << accel
+              << " not diagnosed (diagnose works on gyro columns)" << std::endl;
+  }
+  Provenance p = MakeProvenance(kCommand, command_line);
+  p.Add("input", info.path);
+  std::string columns;
+  for (std::size_t k : gyro) {
+    columns += (columns.empty() ? "" : ", ") + info.columns[k].name + " " + info.columns[k].units + " (" +
+               info.columns[k].units_source + ")";
+  }
+  p.Add("columns", columns);
+  p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
+  p.Add("samples", std::to_string(info.samples));
+  if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
+  p.Add("baseline", BaselineDescription(o));
+  if (o.model) p.Add("model", *o.model);
+  p.Add("trials", std::to_string(o.trials));
+  p.Add("seed", std::to_string(o.seed));
+  p.Add("false_alarm", ShortestDecimal(o.false_alarm));
+  Json entries = Json::array();
+  std::vector<AllanPlot> panels;
+  std::ostringstream markdown;
+  for (std::size_t i = 0; i < gyro.size(); ++i) {
+    const ColumnInfo& c = info.columns[gyro[i]];
+    DiagnosisSummary s;
+    if (!DiagnoseRecord(d, rates[gyro[i]], 1.0 / info.sample_rate_hz, &s)) {
+      return RuntimeFailure(info.path + ": column " + c.name + ": " + s.message);
+    }
+    if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+      s.notes.push_back("record: " + *stuck);
+    }
+    std::cout << (i ? "\n" : "") << "# column " << c.name << "\n";
+    WriteText(std::cout, s, false);
+    Json one = DiagnosisJson(s, p, Json());
+    one.erase("provenance");
+    Json entry = {{"column", c.name}, {"units", c.units}};
+    entry.update(one);
+    entries.push_back(std::move(entry));
+    markdown << (i ? "\n" : "") << "# column " << c.name << "\n\n";
+    WriteText(markdown, s, true);
+    panels.push_back(DiagnosePlot(s, "allanlab diagnose: " + info.path + ", " + c.name));
+  }
+  std::cout.flush();
+  if (json->is_open()) json->stream() << Json{{"provenance", ProvenanceJson(p)}, {"columns", entries}}.dump(2) << "\n";
+  if (report->is_open()) {
+    report->stream() << markdown.str() << "\n## provenance\n\n";
+    for (const auto& [k, v] : p.fields) report->stream() << "- " << k << ": " << v << "\n";
+    report->stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
+  }
+  if (png->is_open() && !RenderAllanPlots(panels, png, &why)) return RuntimeFailure(why);
+  for (AtomicFile* file : {json, report, png}) {
+    if (file->is_open() && !file->Commit(&why)) return RuntimeFailure(why);
+  }
+  return std::nullopt;
+}
+
 std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::string& command_line) {
   std::string why;
   DiagnoseOptions d;
@@ -406,6 +487,11 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   if (!o.report_path.empty() && !report.Open(o.report_path, &why)) return RuntimeFailure(why);
   if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return RuntimeFailure(why);
 
+  if (SeveralColumns(o.record)) {
+    if (curve_mode) return UsageFailure("--curve is one curve: drop --columns/--imu");
+    if (!o.validate_path.empty()) return UsageFailure("--validate-on checks one column: drop --columns/--imu");
+    return DiagnoseSeveral(o, d, command_line, &json, &report, &png);
+  }
   Provenance p = MakeProvenance(kCommand, command_line);
   DiagnosisSummary s;
   if (curve_mode) {

@@ -19,6 +19,8 @@
 //   --report OUT.md     the same for people;  --plot OUT.png  ADEV: record, baseline, verdict model
 //   --validate-on FILE2 a second recording of the same sensor: the verdict's model (linear terms
 //                       refitted on FILE, effect included) scored on FILE2's OAVAR
+// Several gyro columns (--columns, --imu; accelerometer columns are not diagnosed): the record read
+// once, a diagnosis per column, one JSON (columns[]), report and plot (a panel per column).
 // Curve mode (no record): --curve CSV --record-length S --rate HZ [--curve-column adev_x]
 // [--curve-units deg/h]: an Allan-deviation table (tau_s, deviation columns) as published by
 // other tools; OAVAR view only.

@@ -19,7 +19,9 @@
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
+#include "app/imu_report.h"
 #include "app/record_support.h"
+#include "app/sensor_coefficients.h"
 #include "estimators/fit/bandwidth_estimate.h"
 #include "estimators/fit/fit_model.h"
 
@@ -115,7 +117,7 @@ const estimators::ParametricEstimate* FittedBandLimit(const std::vector<estimato
 }
 
 // What the extended terms did on a poor fit, in one line ("" when the fit is not poor).
-std::string PoorFitLine(const estimators::ModelFitSummary& m) {
+std::string PoorFitLine(const estimators::ModelFitSummary& m, ImuSensor sensor) {
   if (!m.poor_fit) return "";
   std::ostringstream os;
   os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof << " dof is above its "
@@ -130,8 +132,9 @@ std::string PoorFitLine(const estimators::ModelFitSummary& m) {
   bool first = true;
   for (const auto& e : x.extra) {
     for (std::size_t q = 0; q < e.parameters.size(); ++q) {
+      const ParameterUnit u = SensorParameterUnit(sensor, e.parameters[q]);
       os << (first ? "" : ", ") << e.short_name << " " << e.parameters[q].name << " "
-         << Format(e.value_si[q] / e.parameters[q].si_per_datasheet) << " " << e.parameters[q].datasheet_unit;
+         << Format(e.value_si[q] / u.si_per_unit) << " " << u.unit;
       first = false;
     }
   }
@@ -142,7 +145,7 @@ std::string PoorFitLine(const estimators::ModelFitSummary& m) {
 }
 
 void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::ModelFitSummary& m,
-                const estimators::BandwidthEstimate& bw) {
+                const estimators::BandwidthEstimate& bw, ImuSensor sensor = ImuSensor::kGyro) {
   const estimators::FitSummary& s = m.fit;
   const std::vector<estimators::ParametricEstimate>& extra = m.extra;
   os << "coefficient  value          +- sigma      95 % interval         unit            slope method\n";
@@ -150,7 +153,7 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
     const auto& e = s.at(c);
     if (!e.asked) continue;
     const auto& slope = s.slope.at(c);
-    auto unit = [c](double si) { return Format(estimators::ToDatasheetUnit(c, si)); };
+    auto unit = [c, sensor](double si) { return Format(SensorDatasheetValue(sensor, c, si)); };
     std::string value = "-", sigma, interval;
     if (e.fitted) {
       value = unit(e.value_si);
@@ -163,7 +166,7 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
     char line[320];
     std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-21s %-15s %s\n",
                   std::string(estimators::CoefficientId(c)).c_str(), value.c_str(), sigma.c_str(),
-                  interval.c_str(), std::string(estimators::DatasheetUnit(c)).c_str(),
+                  interval.c_str(), std::string(SensorDatasheetUnit(sensor, c)).c_str(),
                   slope.found ? unit(slope.value_si).c_str() : "-");
     os << line;
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
@@ -171,11 +174,12 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   for (const auto& e : extra) {
     for (std::size_t q = 0; q < e.parameters.size(); ++q) {
       const auto& spec = e.parameters[q];
+      const ParameterUnit u = SensorParameterUnit(sensor, spec);
       char line[256];
       std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-21s %-15s %s\n", (e.short_name + " " + spec.name).c_str(),
-                    e.fitted ? Format(e.value_si[q] / spec.si_per_datasheet).c_str() : "-",
-                    e.fitted ? ("+- " + Format(e.sigma_si[q] / spec.si_per_datasheet)).c_str() : "", "",
-                    spec.datasheet_unit.c_str(), "-");
+                    e.fitted ? Format(e.value_si[q] / u.si_per_unit).c_str() : "-",
+                    e.fitted ? ("+- " + Format(e.sigma_si[q] / u.si_per_unit)).c_str() : "", "",
+                    u.unit.c_str(), "-");
       os << line;
     }
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
@@ -184,7 +188,7 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
      << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
      << s.message << "\n";
-  if (m.poor_fit) os << PoorFitLine(m) << "\n";
+  if (m.poor_fit) os << PoorFitLine(m, sensor) << "\n";
   if (!m.method_disagreement.empty()) {
     os << "method check: GLS and log-WLS differ by more than 3 sigma: " << m.method_disagreement
        << " (the curve departs from the model's shape; the GLS sigmas are too small)\n";
@@ -210,7 +214,8 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
 }
 
 nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::ModelFitSummary& m,
-                               const estimators::BandwidthEstimate& bw, const Provenance& p) {
+                               const estimators::BandwidthEstimate& bw, const Provenance& p,
+                               ImuSensor sensor = ImuSensor::kGyro) {
   const estimators::FitSummary& s = m.fit;
   const std::vector<estimators::ParametricEstimate>& extra = m.extra;
   nlohmann::ordered_json j;
@@ -230,7 +235,7 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
     const auto& e = s.at(c);
     if (!e.asked) continue;
     nlohmann::ordered_json entry;
-    auto unit = [c](double si) { return estimators::ToDatasheetUnit(c, si); };
+    auto unit = [c, sensor](double si) { return SensorDatasheetValue(sensor, c, si); };
     if (e.fitted || !e.has_upper_limit) {
       entry["value"] = e.fitted ? unit(e.value_si) : 0.0;
       entry["sigma"] = unit(e.sigma_si);
@@ -247,14 +252,15 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
     }
     if (e.has_intervals || e.has_upper_limit) entry["interval_method"] = "profile likelihood";
     if (bootstrapped && e.fitted) {
-      entry["covariance_sigma"] = estimators::ToDatasheetUnit(c, e.covariance_sigma_si);
-      entry["bootstrap_bias"] = estimators::ToDatasheetUnit(c, e.bootstrap_bias_si);
+      entry["covariance_sigma"] = unit(e.covariance_sigma_si);
+      entry["bootstrap_bias"] = unit(e.bootstrap_bias_si);
     }
-    entry["unit"] = std::string(estimators::DatasheetUnit(c));
+    entry["unit"] = std::string(SensorDatasheetUnit(sensor, c));
+    if (sensor == ImuSensor::kAccelerometer) entry["name"] = std::string(SensorCoefficientName(sensor, c));
     entry["fitted"] = e.fitted;
     if (!e.note.empty()) entry["note"] = e.note;
     const auto& slope = s.slope.at(c);
-    if (slope.found) entry["slope_method"] = estimators::ToDatasheetUnit(c, slope.value_si);
+    if (slope.found) entry["slope_method"] = unit(slope.value_si);
     coefficients[std::string(estimators::CoefficientId(c))] = entry;
   }
   for (const auto& e : extra) {
@@ -263,12 +269,13 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
     entry["fitted"] = e.fitted;
     for (std::size_t q = 0; q < e.parameters.size(); ++q) {
       const auto& spec = e.parameters[q];
-      entry[spec.name] = {{"value", e.fitted ? e.value_si[q] / spec.si_per_datasheet : 0.0},
-                          {"sigma", e.fitted ? e.sigma_si[q] / spec.si_per_datasheet : 0.0},
-                          {"unit", spec.datasheet_unit}};
+      const ParameterUnit u = SensorParameterUnit(sensor, spec);
+      entry[spec.name] = {{"value", e.fitted ? e.value_si[q] / u.si_per_unit : 0.0},
+                          {"sigma", e.fitted ? e.sigma_si[q] / u.si_per_unit : 0.0},
+                          {"unit", u.unit}};
       if (bootstrapped && e.fitted && q < e.bootstrap_bias_si.size()) {
-        entry[spec.name]["covariance_sigma"] = e.covariance_sigma_si[q] / spec.si_per_datasheet;
-        entry[spec.name]["bootstrap_bias"] = e.bootstrap_bias_si[q] / spec.si_per_datasheet;
+        entry[spec.name]["covariance_sigma"] = e.covariance_sigma_si[q] / u.si_per_unit;
+        entry[spec.name]["bootstrap_bias"] = e.bootstrap_bias_si[q] / u.si_per_unit;
       }
     }
     if (!e.note.empty()) entry["note"] = e.note;
@@ -315,14 +322,14 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
                                   {"best", static_cast<int>(i) == m.best_extended}};
       for (const auto& e : x.extra) {
         for (std::size_t q = 0; q < e.parameters.size(); ++q) {
-          t[e.short_name + " " + e.parameters[q].name] = {
-              {"value", e.value_si[q] / e.parameters[q].si_per_datasheet}, {"unit", e.parameters[q].datasheet_unit}};
+          const ParameterUnit u = SensorParameterUnit(sensor, e.parameters[q]);
+          t[e.short_name + " " + e.parameters[q].name] = {{"value", e.value_si[q] / u.si_per_unit}, {"unit", u.unit}};
         }
       }
       tried.push_back(t);
     }
     j["fit"]["extended_models"] = tried;
-    j["fit"]["poor_fit_summary"] = PoorFitLine(m);
+    j["fit"]["poor_fit_summary"] = PoorFitLine(m, sensor);
     const bool swapped = m.best_extended >= 0 && m.extended[static_cast<std::size_t>(m.best_extended)].fits;
     j["fit"]["reported_model"] =
         swapped ? "IEEE terms + " + m.extended[static_cast<std::size_t>(m.best_extended)].name : std::string("IEEE terms");
@@ -336,7 +343,7 @@ AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
                   const estimators::FitSummary& s, const sim::SensorModel* fitted_model) {
   AllanPlot plot = AvarPlot(report);  // data with interval bars
   plot.title = "allanlab fit: " + report.record.path;
-  const double unit = FromRadPerSecond(report.output_unit, 1.0);
+  const double unit = DeviationFactor(report);
   std::vector<double> total(curve.size(), 0.0);
   for (Coefficient c : estimators::kAllCoefficients) {
     const auto& e = s.at(c);
@@ -418,6 +425,152 @@ int FitInput(const FitCommandOptions& o, const AvarCommandOptions& curve_options
   return kExitOk;
 }
 
+// One curve's fit and everything printed from it.
+struct FittedAxis {
+  estimators::AvarCurve curve;  // the taus fitted
+  estimators::ModelFitSummary fitted;
+  std::optional<sim::SensorModel> fitted_model;  // with parametric terms
+  estimators::BandwidthEstimate bandwidth;
+};
+
+// The record, and the column when several are fitted, for messages.
+std::string Where(const AvarReport& report) {
+  return report.record.columns.size() > 1 ? report.record.path + ": column " + report.record.column
+                                          : report.record.path;
+}
+
+std::optional<Failure> FitAxis(const FitCommandOptions& o, const estimators::ModelFitOptions& fit, double max_tau,
+                               const AvarReport* report, FittedAxis* axis) {
+  std::string why;
+  int parameters = static_cast<int>(fit.terms.size());
+  for (const auto& t : fit.extra) parameters += static_cast<int>(t->parameters().size());
+  if (!CheckRecordSupportsFit(report->summary.num_samples, report->record.sample_rate_hz, parameters, &why)) {
+    return Failure{kExitRuntimeError, Where(*report) + ": " + why};
+  }
+  const estimators::AvarCurve full_curve = CurveOf(*report);
+  if (full_curve.size() < 2) {
+    return Failure{kExitRuntimeError, Where(*report) + ": the record gives " +
+                                          std::to_string(full_curve.size()) +
+                                          " usable taus (constant or too short): nothing to fit"};
+  }
+  axis->curve = estimators::TauRange(full_curve, o.min_tau_s, max_tau);
+  const estimators::AvarCurve& curve = axis->curve;
+  if (curve.size() < 2) {
+    std::ostringstream os;
+    os << Where(*report) << ": " << curve.size() << " of the curve's " << full_curve.size()
+       << " taus (" << full_curve.tau_s.front() << " s to " << full_curve.tau_s.back()
+       << " s) lie in the --min-tau/--max-tau range: nothing to fit";
+    return Failure{kExitRuntimeError, os.str()};
+  }
+  estimators::ModelFitSummary& fitted = axis->fitted;
+  if (!estimators::FitModel(fit, curve, &fitted)) {
+    return Failure{kExitRuntimeError, Where(*report) + ": " + fitted.fit.message};
+  }
+  const estimators::FitSummary& summary = fitted.fit;
+  if (!fitted.extra_terms.empty()) axis->fitted_model = estimators::FittedModel(curve, fitted);
+  axis->bandwidth = estimators::EstimateBandwidth(curve);
+  std::vector<FittedTermAvar> fitted_terms;
+  for (Coefficient c : estimators::kAllCoefficients) {
+    const auto& e = summary.at(c);
+    if (!e.fitted) continue;
+    FittedTermAvar& t = fitted_terms.emplace_back(FittedTermAvar{std::string(estimators::CoefficientId(c)),
+                                                                 estimators::TermShape(c, curve, true)});
+    for (double& v : t.avar) v *= e.value_si * e.value_si;
+  }
+  for (const std::string& w : WeaklySupportedTerms(curve.tau_s, curve.m, curve.num_samples, fitted_terms)) {
+    std::cerr << "allanlab fit: warning: " << Where(*report) << ": " << w << std::endl;
+  }
+  return std::nullopt;
+}
+
+Provenance FitProvenance(const FitCommandOptions& o, const AvarReport& report, const estimators::FitSummary& summary,
+                         const std::string& command_line) {
+  Provenance p = MakeProvenance(kCommand, command_line);
+  p.Add("input", report.record.path);
+  p.Add("column", report.record.column);
+  p.Add("units", report.input_units + " (" + report.record.units_source + ")");
+  if (!o.published.path.empty()) p.Add("curve", DescribeCurve(o.published, report.record.sample_rate_hz));
+  p.Add("sample_rate", ShortestDecimal(report.record.sample_rate_hz) + " Hz (" + report.record.rate_source + ")");
+  p.Add("samples", std::to_string(report.summary.num_samples));
+  p.Add("taus", o.published.path.empty() ? o.curve.taus : "the curve's own");
+  p.Add("noise_identification", "per tau, from at most " + std::to_string(kIdentificationMaxAverages) +
+                                    " averages (the middle of the record; EDFs of the pilot fit)");
+  p.Add("method", o.method);
+  p.Add("terms", o.terms + (o.select_terms ? " (with term selection)" : ""));
+  p.Add("uncertainty", UncertaintyText(summary, o));
+  p.Add("band_limit", o.band_limit + " (" + o.bw_sampling + " output, L = " + std::to_string(o.bw_oversampling) + ")");
+  if (o.min_tau_s > 0.0 || o.max_tau_s > 0.0) {
+    p.Add("tau_range", ShortestDecimal(o.min_tau_s) + " s to " +
+                           (o.max_tau_s > 0.0 ? ShortestDecimal(o.max_tau_s) + " s" : std::string("end")));
+  }
+
+  return p;
+}
+
+// Several columns of one record (an IMU): a table per column, one JSON, one Kalibr YAML for the
+// whole IMU and one plot with every axis (app/imu_report.h).
+std::optional<Failure> FitSeveral(const FitCommandOptions& o, const estimators::ModelFitOptions& fit, double max_tau,
+                                  const AvarCommandOptions& curve_options, const std::string& command_line,
+                                  AtomicFile* json, AtomicFile* kalibr, AtomicFile* png) {
+  std::string why;
+  std::vector<AvarReport> reports;
+  if (const int code = ComputeCurvesFromFile(curve_options, kCommand, &reports, &why); code != kExitOk) {
+    return Failure{code, why};
+  }
+  std::vector<FittedAxis> axes(reports.size());
+  for (std::size_t k = 0; k < reports.size(); ++k) {
+    if (auto failure = FitAxis(o, fit, max_tau, &reports[k], &axes[k])) return failure;
+  }
+  Provenance p = FitProvenance(o, reports.front(), axes.front().fitted.fit, command_line);
+  p.Add("columns", DescribeColumns(reports));
+  nlohmann::ordered_json columns = nlohmann::ordered_json::array();
+  std::vector<KalibrAxisNoise> noise;
+  std::vector<ImuFitCurve> curves;
+  bool any_poor = false;
+  for (std::size_t k = 0; k < reports.size(); ++k) {
+    const AvarReport& r = reports[k];
+    const FittedAxis& a = axes[k];
+    std::cout << (k ? "\n" : "") << "# column " << r.record.column << " (" << ImuSensorName(r.sensor) << ", "
+              << r.input_units << " in)\n";
+    if (r.sensor == ImuSensor::kAccelerometer) std::cout << "# " << AccelerometerTermsLine() << "\n";
+    WriteTable(std::cout, o, a.fitted, a.bandwidth, r.sensor);
+    nlohmann::ordered_json one = FitJson(o, a.fitted, a.bandwidth, p, r.sensor);
+    one.erase("provenance");
+    nlohmann::ordered_json entry = {{"column", r.record.column}, {"sensor", ImuSensorName(r.sensor)},
+                                    {"units", r.input_units}};
+    entry.update(one);
+    columns.push_back(std::move(entry));
+    noise.push_back({r.record.column, r.sensor, KalibrNoise(a.fitted, r.record.sample_rate_hz)});
+    if (png->is_open()) {
+      const AllanPlot plot = FitPlot(r, a.curve, a.fitted.fit, a.fitted_model ? &*a.fitted_model : nullptr);
+      curves.push_back({&r, plot.series.front(), plot.series.back()});
+    }
+    any_poor |= a.fitted.poor_fit;
+  }
+  std::cout.flush();
+  if (json->is_open()) {
+    nlohmann::ordered_json j;
+    j["provenance"] = ProvenanceJson(p);
+    j["columns"] = std::move(columns);
+    json->stream() << j.dump(2) << "\n";
+  }
+  if (kalibr->is_open()) kalibr->stream() << KalibrImuYaml(noise, p);
+  if (png->is_open() && !RenderAllanPlots(ImuFitPlots(curves, "allanlab fit"), png, &why)) {
+    return Failure{kExitRuntimeError, why};
+  }
+  for (AtomicFile* file : {json, kalibr, png}) {
+    if (file->is_open() && !file->Commit(&why)) return Failure{kExitRuntimeError, why};
+  }
+  if (o.strict && any_poor) {
+    std::string poor;
+    for (std::size_t k = 0; k < reports.size(); ++k) {
+      if (axes[k].fitted.poor_fit) poor += (poor.empty() ? "" : ", ") + reports[k].record.column;
+    }
+    return Failure{kExitRuntimeError, o.curve.path + ": poor fit (--strict) of column(s) " + poor};
+  }
+  return std::nullopt;
+}
+
 std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& command_line) {
   std::string why;
   if (o.published.path.empty() == o.curve.path.empty()) {
@@ -487,66 +640,20 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   // noise type per tau from at most 2^15 averages instead of the whole record at every short tau
   // (results/benchmarks/fit.md: the CPU it spares, and that the fitted values do not move).
   curve_options.identification_max_averages = kIdentificationMaxAverages;
+  if (SeveralColumns(o.curve)) {
+    if (!o.published.path.empty()) return Failure{kExitUsageError, "--curve is one curve: drop --columns/--imu"};
+    return FitSeveral(o, fit, max_tau, curve_options, command_line, &json, &kalibr, &png);
+  }
   AvarReport report;
   if (const int code = FitInput(o, curve_options, &report, &why); code != kExitOk) return Failure{code, why};
-  int parameters = static_cast<int>(fit.terms.size());
-  for (const auto& t : fit.extra) parameters += static_cast<int>(t->parameters().size());
-  if (!CheckRecordSupportsFit(report.summary.num_samples, report.record.sample_rate_hz, parameters, &why)) {
-    return Failure{kExitRuntimeError, report.record.path + ": " + why};
-  }
-  const estimators::AvarCurve full_curve = CurveOf(report);
-  if (full_curve.size() < 2) {
-    return Failure{kExitRuntimeError, report.record.path + ": the record gives " +
-                                          std::to_string(full_curve.size()) +
-                                          " usable taus (constant or too short): nothing to fit"};
-  }
-  const estimators::AvarCurve curve = estimators::TauRange(full_curve, o.min_tau_s, max_tau);
-  if (curve.size() < 2) {
-    std::ostringstream os;
-    os << report.record.path << ": " << curve.size() << " of the curve's " << full_curve.size()
-       << " taus (" << full_curve.tau_s.front() << " s to " << full_curve.tau_s.back()
-       << " s) lie in the --min-tau/--max-tau range: nothing to fit";
-    return Failure{kExitRuntimeError, os.str()};
-  }
-  estimators::ModelFitSummary fitted;
-  if (!estimators::FitModel(fit, curve, &fitted)) {
-    return Failure{kExitRuntimeError, report.record.path + ": " + fitted.fit.message};
-  }
+  FittedAxis axis;
+  if (auto failure = FitAxis(o, fit, max_tau, &report, &axis)) return failure;
+  const estimators::AvarCurve& curve = axis.curve;
+  const estimators::ModelFitSummary& fitted = axis.fitted;
   const estimators::FitSummary& summary = fitted.fit;
-  std::optional<sim::SensorModel> fitted_model;
-  if (!fitted.extra_terms.empty()) fitted_model = estimators::FittedModel(curve, fitted);
-  const estimators::BandwidthEstimate bandwidth = estimators::EstimateBandwidth(curve);
-  std::vector<FittedTermAvar> fitted_terms;
-  for (Coefficient c : estimators::kAllCoefficients) {
-    const auto& e = summary.at(c);
-    if (!e.fitted) continue;
-    FittedTermAvar& t = fitted_terms.emplace_back(FittedTermAvar{std::string(estimators::CoefficientId(c)),
-                                                                 estimators::TermShape(c, curve, true)});
-    for (double& v : t.avar) v *= e.value_si * e.value_si;
-  }
-  for (const std::string& w : WeaklySupportedTerms(curve.tau_s, curve.m, curve.num_samples, fitted_terms)) {
-    std::cerr << "allanlab fit: warning: " << report.record.path << ": " << w << std::endl;
-  }
-
-  Provenance& p = report.provenance;
-  p = MakeProvenance(kCommand, command_line);
-  p.Add("input", report.record.path);
-  p.Add("column", report.record.column);
-  p.Add("units", report.input_units + " (" + report.record.units_source + ")");
-  if (!o.published.path.empty()) p.Add("curve", DescribeCurve(o.published, report.record.sample_rate_hz));
-  p.Add("sample_rate", ShortestDecimal(report.record.sample_rate_hz) + " Hz (" + report.record.rate_source + ")");
-  p.Add("samples", std::to_string(report.summary.num_samples));
-  p.Add("taus", o.published.path.empty() ? o.curve.taus : "the curve's own");
-  p.Add("noise_identification", "per tau, from at most " + std::to_string(kIdentificationMaxAverages) +
-                                    " averages (the middle of the record; EDFs of the pilot fit)");
-  p.Add("method", o.method);
-  p.Add("terms", o.terms + (o.select_terms ? " (with term selection)" : ""));
-  p.Add("uncertainty", UncertaintyText(summary, o));
-  p.Add("band_limit", o.band_limit + " (" + o.bw_sampling + " output, L = " + std::to_string(o.bw_oversampling) + ")");
-  if (o.min_tau_s > 0.0 || o.max_tau_s > 0.0) {
-    p.Add("tau_range", ShortestDecimal(o.min_tau_s) + " s to " +
-                           (o.max_tau_s > 0.0 ? ShortestDecimal(o.max_tau_s) + " s" : std::string("end")));
-  }
+  const std::optional<sim::SensorModel>& fitted_model = axis.fitted_model;
+  const estimators::BandwidthEstimate& bandwidth = axis.bandwidth;
+  const Provenance& p = report.provenance = FitProvenance(o, report, summary, command_line);
 
   WriteTable(std::cout, o, fitted, bandwidth);
   std::cout.flush();
@@ -622,7 +729,9 @@ Subcommand AddFitCommand(CLI::App* parent) {
       ->type_name("OUT.json");
   cmd->add_option("--kalibr", options->kalibr_path,
                   "also write gyroscope_noise_density / gyroscope_random_walk YAML (Kalibr, VINS, "
-                  "OpenVINS)")
+                  "OpenVINS); with several columns (--imu) one file for the IMU, with the "
+                  "accelerometer_noise_density / accelerometer_random_walk keys, each the largest "
+                  "of its axes")
       ->type_name("OUT.yaml");
   cmd->add_option("--plot", options->plot_path,
                   "also draw the data with intervals, the fitted total and each term (PNG, gnuplot)")

@@ -12,7 +12,9 @@
 // bounds under a warning on a poor fit); --plot (data with intervals, fitted total and each term).
 // --strict: exit 1 on a poor fit (chi2 above its 99.9 % quantile) after writing the outputs. A short-tau band-limit is detected and fitted by default (--band-limit auto), the
 // fitted cutoff reported beside the inflection reading; --min-tau/--max-tau restrict the taus.
-// Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2.
+// Units: Q urad, N deg/sqrt(h), B deg/h, K deg/h/sqrt(h), R deg/h^2 (an accelerometer column's:
+// app/sensor_coefficients.h). Several columns (--columns, --imu): the record read once, a fit and
+// a table per column, one JSON (columns[]), one Kalibr YAML for the IMU, one plot with every axis.
 // --uncertainty bootstrap replaces the covariance sigmas by a parametric bootstrap
 // (estimators/fit/parametric_bootstrap.h); table and JSON say which one was used.
 // Exit codes as app/subcommand.h: 2 usage, 1 unreadable file, curve or fit failure.

@@ -33,9 +33,47 @@ void WriteImuAvarCsv(std::ostream& os, const std::vector<AvarReport>& reports, c
   }
 }
 
-std::vector<AllanPlot> ImuAvarPlots(const std::vector<AvarReport>& reports, const std::string& what) {
+namespace {
+
+const char* AxisColor(std::size_t axis) {
   static const char* const kAxisColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                             "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+  return kAxisColors[axis % (sizeof kAxisColors / sizeof kAxisColors[0])];
+}
+
+std::string PanelTitle(const std::string& what, const AvarReport& r) {
+  return what + ": " + r.record.path + ", " + std::string(ImuSensorName(r.sensor)) + " (" +
+         std::to_string(r.summary.num_samples) + " samples at " + ShortestDecimal(r.record.sample_rate_hz) + " Hz)";
+}
+
+}  // namespace
+
+std::vector<AllanPlot> ImuFitPlots(const std::vector<ImuFitCurve>& axes, const std::string& what) {
+  std::vector<AllanPlot> panels;
+  for (ImuSensor sensor : {ImuSensor::kGyro, ImuSensor::kAccelerometer}) {
+    AllanPlot panel;
+    std::size_t count = 0;
+    for (const ImuFitCurve& a : axes) {
+      if (a.report->sensor != sensor) continue;
+      if (count == 0) {
+        panel = AvarPlot(*a.report);
+        panel.series.clear();
+        panel.title = PanelTitle(what, *a.report);
+      }
+      PlotSeries data = a.data, fitted = a.fitted_total;
+      data.title = a.report->record.column;
+      fitted.title = a.report->record.column + " fitted";
+      data.color = fitted.color = AxisColor(count);
+      panel.series.push_back(std::move(data));
+      panel.series.push_back(std::move(fitted));
+      ++count;
+    }
+    if (count > 0) panels.push_back(std::move(panel));
+  }
+  return panels;
+}
+
+std::vector<AllanPlot> ImuAvarPlots(const std::vector<AvarReport>& reports, const std::string& what) {
   std::vector<AllanPlot> panels;
   for (ImuSensor sensor : {ImuSensor::kGyro, ImuSensor::kAccelerometer}) {
     AllanPlot panel;
@@ -46,13 +84,11 @@ std::vector<AllanPlot> ImuAvarPlots(const std::vector<AvarReport>& reports, cons
       if (axes == 0) {
         panel = one;
         panel.series.clear();
-        panel.title = what + ": " + r.record.path + ", " + std::string(ImuSensorName(sensor)) + " (" +
-                      std::to_string(r.summary.num_samples) + " samples at " +
-                      ShortestDecimal(r.record.sample_rate_hz) + " Hz)";
+        panel.title = PanelTitle(what, r);
       }
       PlotSeries series = one.series.front();
       series.title = r.record.column;
-      series.color = kAxisColors[axes % (sizeof kAxisColors / sizeof kAxisColors[0])];
+      series.color = AxisColor(axes);
       panel.series.push_back(std::move(series));
       ++axes;
     }

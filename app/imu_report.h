@@ -24,6 +24,15 @@ void WriteImuAvarCsv(std::ostream& os, const std::vector<AvarReport>& reports, c
 // interval bars; `what` heads the titles ("allanlab avar").
 std::vector<AllanPlot> ImuAvarPlots(const std::vector<AvarReport>& reports, const std::string& what);
 
+// A fitted axis as `allanlab fit` draws it: its curve with intervals and the fitted total.
+struct ImuFitCurve {
+  const AvarReport* report = nullptr;
+  PlotSeries data;
+  PlotSeries fitted_total;
+};
+// One panel per sensor present, each axis in its own colour: data points and the fitted line.
+std::vector<AllanPlot> ImuFitPlots(const std::vector<ImuFitCurve>& axes, const std::string& what);
+
 // The provenance line naming every column with its sensor and units ("Gyro_X gyro deg/s (--units),
 // Accel_X accelerometer g (--accel-units)").
 std::string DescribeColumns(const std::vector<AvarReport>& reports);

@@ -6,7 +6,9 @@
 // density: that is not what is written here.)
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "app/imu_columns.h"
 #include "app/provenance.h"
 
 namespace allanlab::app {
@@ -32,5 +34,21 @@ struct KalibrGyroNoise {
 // whether it is an estimate or an upper bound), update_rate, and a comment that the accelerometer
 // keys are not estimated by this file.
 std::string KalibrImuYaml(const KalibrGyroNoise& noise, const Provenance& provenance);
+
+// One axis of an IMU: a gyro's noise in the SI units above, an accelerometer's as
+// accelerometer_noise_density [m/s^2/sqrt(Hz)] = VRW N in m/s/sqrt(s) and
+// accelerometer_random_walk [m/s^3/sqrt(Hz)] = acceleration random walk K in m/s^2/sqrt(s).
+struct KalibrAxisNoise {
+  std::string column;
+  ImuSensor sensor = ImuSensor::kGyro;
+  KalibrGyroNoise noise;
+};
+
+// The whole IMU in one file: for each sensor present, the largest noise density and the largest
+// random walk over its axes (one value per sensor is what these tools take; a filter told less
+// noise than an axis has is overconfident, so the largest, where imu_utils averages the axes),
+// each axis's values as comments, the warning of any axis, and update_rate. A sensor with no
+// axis gets a comment saying its keys are not estimated here.
+std::string KalibrImuYaml(const std::vector<KalibrAxisNoise>& axes, const Provenance& provenance);
 
 }  // namespace allanlab::app
