@@ -217,6 +217,17 @@ std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   return std::nullopt;
 }
 
+// One column of a several-column read to SI: a gyro's as InputScale, an accelerometer's to m/s^2.
+void ColumnToSi(const Plan& plan, const ColumnInfo& c, std::vector<double>* values) {
+  if (c.sensor == ImuSensor::kGyro) {
+    InputScale(plan.input, c.units).Apply(*values);
+    return;
+  }
+  AccelUnit unit;
+  ParseAccelUnit(c.units, &unit, nullptr);  // canonical: always parses
+  AccelToSi(unit, *values);
+}
+
 // Every asked column in SI (rad/s, rad or m/s^2), one report each, from one read of the record.
 std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::string& taus_text,
                                               std::vector<AvarReport>* reports) {
@@ -241,14 +252,9 @@ std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::strin
     r.accel_output_unit = plan.accel_output_unit;
     r.taus_text = taus_text;
     estimators::AvarOptions options = plan.avar;
-    if (c.sensor == ImuSensor::kAccelerometer) {
-      AccelUnit unit;
-      ParseAccelUnit(c.units, &unit, nullptr);  // canonical: always parses
-      AccelToSi(unit, columns[k]);
-      options.input = InputKind::kRate;  // acceleration samples: the rate of velocity
-    } else {
-      InputScale(plan.input, c.units).Apply(columns[k]);
-    }
+    ColumnToSi(plan, c, &columns[k]);
+    // Acceleration samples are the rate of velocity.
+    if (c.sensor == ImuSensor::kAccelerometer) options.input = InputKind::kRate;
     options.sample_period_s = 1.0 / info.sample_rate_hz;
     if (!estimators::ComputeAvarInPlace(options, &columns[k], &r.summary)) {
       return Runtime(plan.read.path + ": column " + c.name + ": " + r.summary.message);
@@ -626,15 +632,8 @@ int ReadRatesFromFile(const AvarCommandOptions& options, const std::string& comm
     return read_error.exit_code;
   }
   for (std::size_t k = 0; k < rates->size(); ++k) {
-    const ColumnInfo& c = info->columns[k];
-    if (c.sensor == ImuSensor::kAccelerometer) {
-      AccelUnit unit;
-      ParseAccelUnit(c.units, &unit, nullptr);  // canonical: always parses
-      AccelToSi(unit, (*rates)[k]);
-      continue;
-    }
-    InputScale(plan.input, c.units).Apply((*rates)[k]);
-    if (plan.input == InputKind::kAngle) {
+    ColumnToSi(plan, info->columns[k], &(*rates)[k]);
+    if (info->columns[k].sensor == ImuSensor::kGyro && plan.input == InputKind::kAngle) {
       (*rates)[k] = estimators::AngleToRate((*rates)[k], 1.0 / info->sample_rate_hz);
     }
   }

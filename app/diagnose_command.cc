@@ -379,6 +379,15 @@ AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
   return plot;
 }
 
+// The diagnosis settings, for the provenance.
+void AddDiagnosisSettings(const DiagnoseCommandOptions& o, Provenance* p) {
+  p->Add("baseline", BaselineDescription(o));
+  if (o.model) p->Add("model", *o.model);
+  p->Add("trials", std::to_string(o.trials));
+  p->Add("seed", std::to_string(o.seed));
+  p->Add("false_alarm", ShortestDecimal(o.false_alarm));
+}
+
 // Several gyro columns of one record: a diagnosis each, one JSON and report with a section per
 // column, one PNG with a panel per column. The diagnosis speaks in gyro units and effects, so
 // accelerometer columns are refused when named and left out (with a warning) under --imu.
@@ -417,11 +426,7 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
   p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
   p.Add("samples", std::to_string(info.samples));
   if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
-  p.Add("baseline", BaselineDescription(o));
-  if (o.model) p.Add("model", *o.model);
-  p.Add("trials", std::to_string(o.trials));
-  p.Add("seed", std::to_string(o.seed));
-  p.Add("false_alarm", ShortestDecimal(o.false_alarm));
+  AddDiagnosisSettings(o, &p);
   Json entries = Json::array();
   std::vector<AllanPlot> panels;
   std::ostringstream markdown;
@@ -519,11 +524,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     p.Add("samples", std::to_string(rate.size()));
     if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
   }
-  p.Add("baseline", BaselineDescription(o));
-  if (o.model) p.Add("model", *o.model);
-  p.Add("trials", std::to_string(o.trials));
-  p.Add("seed", std::to_string(o.seed));
-  p.Add("false_alarm", ShortestDecimal(o.false_alarm));
+  AddDiagnosisSettings(o, &p);
 
   Json validation;
   if (!o.validate_path.empty()) {
