@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "estimators/avar.h"
-#include "estimators/confidence.h"
+#include "experiments/interval_coverage.h"
 #include "experiments/plain_noise.h"
 #include "experiments/report_files.h"
 
@@ -99,14 +99,7 @@ std::vector<double> DefaultIntervalsDriver::Run(const SweepSpec& spec, const Swe
           ratio_written = true;
         }
         row.push_back(p && p->edf > 0.0 ? p->edf : kNaN);
-        for (double level : spec.confidence_levels) {
-          if (!p || !(p->edf > 0.0)) {
-            row.push_back(kNaN);
-            continue;
-          }
-          const estimators::Interval ci = estimators::ChiSquareInterval(p->value, p->edf, level);
-          row.push_back(ci.low <= expected && expected <= ci.high ? 1.0 : 0.0);
-        }
+        AppendCoverageHits(p, expected, spec.confidence_levels, &row);
       }
     }
   }

@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "estimators/avar.h"
-#include "estimators/confidence.h"
 #include "experiments/family_expectation.h"
+#include "experiments/interval_coverage.h"
 #include "experiments/plain_noise.h"
 #include "experiments/report_files.h"
 
@@ -162,14 +162,7 @@ std::vector<double> EstimatorCoverageDriver::Run(const SweepSpec& spec, const Sw
           if (candidate.m == m) p = &candidate;
         }
         row.push_back(p ? p->value / expected : kNaN);
-        for (double level : spec.confidence_levels) {
-          if (!p || !(p->edf > 0.0)) {
-            row.push_back(kNaN);
-            continue;
-          }
-          const estimators::Interval ci = estimators::ChiSquareInterval(p->value, p->edf, level);
-          row.push_back(ci.low <= expected && expected <= ci.high ? 1.0 : 0.0);
-        }
+        AppendCoverageHits(p, expected, spec.confidence_levels, &row);
       }
     }
   }
