@@ -122,9 +122,9 @@ std::string PoorFitLine(const estimators::ModelFitSummary& m, ImuSensor sensor) 
   std::ostringstream os;
   os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof << " dof is above its "
      << Format(100.0 * (1.0 - estimators::kPoorFitP)) << " % quantile (p < " << Format(estimators::kPoorFitP)
-     << "): the IEEE terms do not describe this record";
+     << "): the fitted model does not describe this record";
   if (m.best_extended < 0) {
-    os << (m.extended.empty() ? "" : "; no extended model could be fitted");
+    os << (m.extended.empty() ? "" : "; no extra term (GM, H, BW, BW2) lowers its AIC");
     return os.str();
   }
   const estimators::ExtendedFit& x = m.extended[static_cast<std::size_t>(m.best_extended)];
@@ -158,7 +158,11 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
     if (e.fitted) {
       value = unit(e.value_si);
       if (e.sigma_si > 0) sigma = "+- " + unit(e.sigma_si);
-      if (e.has_intervals) interval = "[" + unit(e.interval95_si[0]) + ", " + unit(e.interval95_si[1]) + "]";
+      if (e.has_intervals) {
+        // An upper end the profile never reached: the data bound the term from below only.
+        const std::string upper = std::isfinite(e.interval95_si[1]) ? unit(e.interval95_si[1]) : "unbounded";
+        interval = "[" + unit(e.interval95_si[0]) + ", " + upper + "]";
+      }
     } else if (e.has_upper_limit) {
       value = "< " + unit(e.upper_limit_si);
       interval = "(95 % upper limit)";
@@ -170,6 +174,11 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
                   slope.found ? unit(slope.value_si).c_str() : "-");
     os << line;
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
+    if (e.fitted && e.has_intervals && e.interval95_si[0] <= 0.0 && e.value_si > 2.0 * e.sigma_si) {
+      // The sigma is the curvature at the fit; the profile shows that zero is still allowed.
+      os << "             (the 95 % interval reaches 0: the data do not exclude "
+         << estimators::CoefficientId(c) << " = 0; +- sigma is the curvature at the fit, not a bound)\n";
+    }
   }
   for (const auto& e : extra) {
     for (std::size_t q = 0; q < e.parameters.size(); ++q) {
@@ -186,8 +195,7 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   }
   os << "uncertainty: " << UncertaintyText(s, o) << "\n";
   os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
-     << (s.converged ? "converged" : "NOT converged") << ", " << s.taus_used << " taus; "
-     << s.message << "\n";
+     << s.taus_used << " taus; " << s.message << "\n";
   if (m.poor_fit) os << PoorFitLine(m, sensor) << "\n";
   if (!m.method_disagreement.empty()) {
     os << "method check: GLS and log-WLS differ by more than 3 sigma: " << m.method_disagreement
@@ -387,7 +395,7 @@ KalibrGyroNoise KalibrNoise(const estimators::ModelFitSummary& m, double rate_hz
     if (e.fitted && !m.poor_fit) {
       v.value = e.value_si;
       if (e.sigma_si > 0) v.sigma = e.sigma_si;
-    } else if (e.fitted && e.has_intervals) {
+    } else if (e.fitted && e.has_intervals && std::isfinite(e.interval95_si[1])) {
       v.value = e.interval95_si[1];
       v.upper_bound = true;
     } else if (e.has_upper_limit) {
@@ -404,7 +412,7 @@ KalibrGyroNoise KalibrNoise(const estimators::ModelFitSummary& m, double rate_hz
   noise.update_rate_hz = rate_hz;
   if (m.poor_fit) {
     noise.warning = "poor fit (chi2 " + Format(m.poor_chi2) + " on " + std::to_string(m.poor_dof) +
-                    " dof): the IEEE terms do not describe this record; the values are 95 % upper "
+                    " dof): the fitted model does not describe this record; the values are 95 % upper "
                     "bounds, not estimates. Check the record (allanlab diagnose) before trusting them.";
   }
   return noise;

@@ -144,15 +144,6 @@ std::string PoorFitRule() {
   return os.str();
 }
 
-std::string PoorFitNote(const FitSummary& s) {
-  if (!IsPoorFit(s)) return "";
-  std::ostringstream os;
-  os << "; POOR FIT: chi2 = " << s.chi2 << " on " << s.dof << " dof (p = " << s.p_value
-     << "), the model does not describe this curve (sigmas are not meaningful; look for effects "
-        "beyond the model)";
-  return os.str();
-}
-
 std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact) {
   if (!exact || curve.num_samples <= 0) {
     std::vector<double> s;
@@ -372,7 +363,6 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
   if (options.method == FitMethod::kLogWls) {
     message += "; log-WLS: subsets and profile ranges on the quadratic expansion of its cost";
   }
-  message += PoorFitNote(*summary);
   summary->message = message;
   return true;
 }
@@ -604,7 +594,6 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
     summary->p_value =
         boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), chi2));
   }
-  summary->message += PoorFitNote(*summary);
   return true;
 }
 

@@ -127,8 +127,6 @@ inline constexpr double kPoorFitP = 1e-3;
 bool IsPoorFit(const FitSummary& s);  // dof > 0 and p_value < kPoorFitP
 // The rule in words, for outputs: "chi2 above the 99.9 % quantile of chi2 on its dof (p < 0.001)".
 std::string PoorFitRule();
-// "" or the message's "; POOR FIT: chi2 = ... on ... dof (p = ...), ..." clause.
-std::string PoorFitNote(const FitSummary& s);
 
 // Returns summary->ok. A curve too short for the requested terms, invalid options or a solver
 // failure give ok = false with a message; a fit that converged poorly is ok with

@@ -96,6 +96,9 @@ void TryExtended(const ModelFitOptions& options, const AvarCurve& curve, ModelFi
                                   MakeBandLimitTerm(kind, options.bw_sampling, options.bw_oversampling)});
     }
   }
+  // An extended model is reported only when it lowers the AIC of the fit it extends: a nested
+  // model whose chi2 came out higher is a local minimum, not evidence for the extra term.
+  const double base_aic = summary->fit.chi2 + 2.0 * FittedParameters(summary->fit);
   for (auto& [name, terms] : candidates) {
     ModelFitOptions o = options;
     o.extra = terms;
@@ -113,6 +116,7 @@ void TryExtended(const ModelFitOptions& options, const AvarCurve& curve, ModelFi
     x.aic = s.fit.chi2 + 2.0 * FittedParameters(s.fit);
     x.fits = s.fit.dof > 0 && !IsPoorFit(s.fit);
     summary->extended.push_back(x);
+    if (x.aic >= base_aic) continue;
     if (summary->best_extended < 0 || x.aic < summary->extended[summary->best_extended].aic) {
       summary->best_extended = static_cast<int>(summary->extended.size()) - 1;
     }

@@ -46,8 +46,8 @@ struct ModelFitOptions {
   std::shared_ptr<const AvarCovarianceModel> covariance;
   // On a poor fit without parametric terms: also fit the terms with each of GM, H, BW and BW2
   // (RTS has GM's Allan variance, so it is not tried apart; the band-limit found, if any, kept)
-  // and report the best by AIC in ModelFitSummary::extended; when it fits, it becomes the
-  // reported fit (poor_fit stays true: it is about the terms alone).
+  // and report the best by AIC in ModelFitSummary::extended, if its AIC is below the fit's own;
+  // when it fits, it becomes the reported fit (poor_fit stays true: it is about the terms alone).
   bool try_extended_on_poor_fit = false;
   // GLS: also fit by log-WLS (same terms, same selection) and name the coefficients where the
   // two differ by more than 3 GLS sigmas, in ModelFitSummary::method_disagreement.
@@ -79,7 +79,7 @@ struct ModelFitSummary {
   double poor_chi2 = 0.0;     // poor fit: that fit's chi2 and dof
   int poor_dof = 0;
   // try_extended_on_poor_fit: every extended model tried (failed fits left out), and the index
-  // of the best by AIC (-1: none).
+  // of the best by AIC (-1: none lowers the AIC of the fit of the listed terms).
   std::vector<ExtendedFit> extended;
   int best_extended = -1;
   // cross_check_log_wls: "" or e.g. "N: GLS 2.956, log-WLS 2.485 (4.8 sigma)" per coefficient.
