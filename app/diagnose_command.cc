@@ -3,18 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <omp.h>
 
 #include "app/allan_plot.h"
 #include "app/atomic_file.h"
 #include "app/avar_command.h"
 #include "app/constant_stretch.h"
 #include "app/curve_table.h"
+#include "app/diagnose_progress.h"
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
@@ -433,7 +436,12 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
   for (std::size_t i = 0; i < gyro.size(); ++i) {
     const ColumnInfo& c = info.columns[gyro[i]];
     DiagnosisSummary s;
-    if (!DiagnoseRecord(d, rates[gyro[i]], 1.0 / info.sample_rate_hz, &s)) {
+    DiagnoseProgress progress(c.name, !o.quiet);
+    DiagnoseOptions with_progress = d;
+    with_progress.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
+    const bool diagnosed = DiagnoseRecord(with_progress, rates[gyro[i]], 1.0 / info.sample_rate_hz, &s);
+    progress.Clear();
+    if (!diagnosed) {
       return RuntimeFailure(info.path + ": column " + c.name + ": " + s.message);
     }
     if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
@@ -472,6 +480,8 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   d.seed = o.seed;
   d.false_alarm = o.false_alarm;
   if (!d.IsValid(&why)) return UsageFailure(why);
+  if (o.jobs < 0 || o.jobs > 256) return UsageFailure("--jobs must be in [1, 256] (0 or unset: every core)");
+  if (o.jobs > 0) omp_set_num_threads(o.jobs);
   const bool curve_mode = !o.curve.path.empty();
   if (curve_mode && !o.record.path.empty()) return UsageFailure("give FILE or --curve, not both");
   if (!curve_mode && o.record.path.empty()) return UsageFailure("FILE (or --curve) is required");
@@ -512,7 +522,12 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     if (const int code = ReadRateFromFile(o.record, kCommand, &rate, &info, &why); code != kExitOk) {
       return Failure{code, why};
     }
-    if (!DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s)) return RuntimeFailure(o.record.path + ": " + s.message);
+    DiagnoseProgress progress(std::filesystem::path(o.record.path).filename().string(), !o.quiet);
+    d.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
+    const bool diagnosed = DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s);
+    d.progress = nullptr;
+    progress.Clear();
+    if (!diagnosed) return RuntimeFailure(o.record.path + ": " + s.message);
     // Warned about by the reader too (avar_command.cc); the report keeps it beside the verdict.
     if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
       s.notes.push_back("record: " + *stuck);
@@ -587,6 +602,8 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_option("--trials", options->trials, "simulated records per Monte Carlo envelope (default 30; 0: OAVAR view only)")->type_name("N");
   cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)")->type_name("N");
   cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)")->type_name("P");
+  cmd->add_option("--jobs", options->jobs, "threads (default: every core; the output is the same for any N)")->type_name("N");
+  cmd->add_flag("--quiet", options->quiet, "no progress line on stderr (shown only when stderr is a terminal)");
   cmd->add_option("--json", options->json_path, "write the diagnosis as JSON (stable keys)")->type_name("OUT.json");
   cmd->add_option("--report", options->report_path, "write a Markdown report")->type_name("OUT.md");
   cmd->add_option("--plot", options->plot_path, "draw record, baseline and verdict model (PNG, gnuplot)")->type_name("OUT.png");

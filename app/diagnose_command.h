@@ -10,6 +10,8 @@
 //   --model LIST        a free IEEE baseline: only these terms, fitted (no band-limit)
 //   --trials N --seed S simulated records per Monte Carlo envelope (default 30; 0: OAVAR only)
 //   --false-alarm A     chance that a record of the model itself is flagged (default 0.05)
+//   --jobs N            threads (default: every core; same output for any N)
+//   --quiet             no progress line on stderr (there is none when stderr is not a terminal)
 //   --json OUT          stable keys (add, never rename): gap{significant, threshold_z, regions[{view,
 //                       tau_min_s, tau_max_s, max_abs_z}], views}, verdict{effect, params,
 //                       also_consistent, separating_views}, candidates[{effect, params,
@@ -43,6 +45,8 @@ struct DiagnoseCommandOptions {
   int trials = 30;
   std::uint64_t seed = 1;
   double false_alarm = 0.05;
+  int jobs = 0;        // threads (0: every core); the result is the same for any count
+  bool quiet = false;  // no progress line on stderr
   std::string json_path, report_path, plot_path, validate_path;
   CurveCommandOptions curve;  // --curve mode (app/curve_options.h)
 };

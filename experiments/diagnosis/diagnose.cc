@@ -1,6 +1,7 @@
 #include "experiments/diagnosis/diagnose.h"
 
 #include <cmath>
+#include <thread>
 
 #include "experiments/diagnosis/baseline.h"
 #include "experiments/diagnosis/block_means.h"
@@ -13,6 +14,10 @@
 
 namespace allanlab::experiments {
 namespace detail {
+
+void ReportProgress(const Context& ctx, std::string_view stage, int done, int total) {
+  if (ctx.options->progress && std::this_thread::get_id() == ctx.caller) ctx.options->progress(stage, done, total);
+}
 
 std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
                                            const ViewValues& observed, const sim::SensorModel& model,
@@ -177,6 +182,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   s.num_samples = static_cast<std::int64_t>(rate.size());
   s.sample_period_s = tau0;
   std::string why;
+  ReportProgress(ctx, "baseline", 0, 0);
   if (!RecordCurve(rate, tau0, &ctx.curve, &why)) {
     s.message = why;
     return false;
@@ -211,6 +217,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   }
   ctx.curve_edf = ExactOavar(s.baseline_model, ctx.curve.m, ctx.curve.num_samples).edf;
   std::string note;
+  ReportProgress(ctx, "views", 0, 0);
   s.before = Assess(ctx, s.baseline_model, true, options.seed, &note);
   if (!note.empty()) s.notes.push_back("envelope: " + note);
   if (ctx.have_halves) {

@@ -28,9 +28,11 @@
 //    candidates within 2 of the best penalised score (which the record cannot tell apart), the
 //    one with the largest held-out shrink.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "estimators/fit/avar_curve.h"
@@ -60,6 +62,10 @@ struct DiagnoseOptions {
   int envelope_candidates = 3;  // best candidates that also get the Monte Carlo views
   bool try_pairs = true;
   std::vector<Effect> effects = {std::begin(kAllEffects), std::end(kAllEffects)};
+  // Told as the diagnosis advances: the stage ("baseline", "views", "candidates", "Monte Carlo
+  // views", "pairs"), and how many of its steps are done of `total` (0: one step). Called from the
+  // calling thread only; empty: silent. Changes nothing in the result.
+  std::function<void(std::string_view stage, int done, int total)> progress;
   bool IsValid(std::string* why) const;
 };
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "estimators/fit/avar_curve.h"
@@ -36,6 +37,7 @@ struct HeldoutBefore {
 // Everything the candidates share.
 struct Context {
   const DiagnoseOptions* options = nullptr;
+  std::thread::id caller = std::this_thread::get_id();  // the thread progress is told on
   BaselineSpec spec;  // what refits fit and hold
   estimators::AvarCurve curve;
   std::vector<double> curve_edf;  // exact EDFs of `curve` under the baseline model
@@ -50,6 +52,10 @@ struct Context {
   // Each half against the other half's baseline (computed once, when a candidate needs it).
   mutable std::optional<HeldoutBefore> heldout_before[2];
 };
+
+// Tells options->progress (when set) that `stage` has `done` of `total` steps behind it; a no-op
+// off the calling thread.
+void ReportProgress(const Context& ctx, std::string_view stage, int done, int total);
 
 // A record's views against a model: OAVAR and the block-mean views exact (block_means.h), the
 // others from a Monte Carlo envelope when `monte_carlo` (and trials >= 3).

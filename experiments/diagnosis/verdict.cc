@@ -1,6 +1,8 @@
 #include "experiments/diagnosis/verdict.h"
 
 #include <algorithm>
+#include <atomic>
+#include <optional>
 
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/diagnosis/block_means.h"
@@ -15,24 +17,30 @@ using estimators::Coefficient;
 bool ByScore(const CandidateResult& a, const CandidateResult& b) { return a.score > b.score; }
 
 // Each effect's candidate from its start, refitted and scored on the exact views, best
-// first; effects without a start (or whose refit fails) are listed as skipped.
+// first; effects without a start (or whose refit fails) are listed as skipped. The effects are
+// independent, so they run in parallel; results are kept in effect order, so the outcome is the
+// same for any thread count.
 void RankSingles(const Context& ctx, DiagnosisSummary* s) {
-  for (Effect effect : ctx.options->effects) {
-    const auto base = s->baseline_model.ExpectedAvar(ctx.curve.m, {ctx.curve.num_samples, ctx.curve.estimator});
-    EstimateInputs in{&ctx.curve, base, ctx.rate, &s->baseline_model};
-    LocatedStep(s->before.views, s->threshold, &in.step_time_s, &in.step_block_s);
-    std::string why;
-    const auto est = EstimateEffect(effect, in, &why);
-    if (!est) {
-      s->skipped.push_back({effect, why});
-      continue;
+  const std::vector<Effect>& effects = ctx.options->effects;
+  const int n = static_cast<int>(effects.size());
+  std::vector<std::optional<CandidateResult>> results(n);
+  std::vector<std::string> reasons(n);
+  const auto base = s->baseline_model.ExpectedAvar(ctx.curve.m, {ctx.curve.num_samples, ctx.curve.estimator});
+  EstimateInputs in{&ctx.curve, base, ctx.rate, &s->baseline_model};
+  LocatedStep(s->before.views, s->threshold, &in.step_time_s, &in.step_block_s);
+  std::atomic<int> done{0};
+  ReportProgress(ctx, "candidates", 0, n);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int i = 0; i < n; ++i) {
+    if (const auto est = EstimateEffect(effects[i], in, &reasons[i])) results[i] = TryCandidate(ctx, *s, {*est}, &reasons[i]);
+    ReportProgress(ctx, "candidates", done.fetch_add(1) + 1, n);
+  }
+  for (int i = 0; i < n; ++i) {
+    if (results[i]) {
+      s->candidates.push_back(std::move(*results[i]));
+    } else {
+      s->skipped.push_back({effects[i], reasons[i]});
     }
-    auto c = TryCandidate(ctx, *s, {*est}, &why);
-    if (!c) {
-      s->skipped.push_back({effect, why});
-      continue;
-    }
-    s->candidates.push_back(std::move(*c));
   }
   std::stable_sort(s->candidates.begin(), s->candidates.end(), ByScore);
 }
@@ -56,11 +64,16 @@ void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* 
 // outside the Allan view, so its score alone cannot rank them. Allan-equivalent pairs
 // (telegraph / Gauss-Markov) share their score and so are assessed together.
 void AssessMonteCarlo(const Context& ctx, DiagnosisSummary* s) {
+  std::vector<std::size_t> chosen;
   for (std::size_t i = 0; i < s->candidates.size(); ++i) {
-    CandidateResult& c = s->candidates[i];
+    const CandidateResult& c = s->candidates[i];
     const int k = ParameterCount(c.effects);
     if (c.score < -2.0 * k - 2.0 && static_cast<int>(i) >= ctx.options->envelope_candidates) continue;
-    FullAssess(ctx, *s, &c, 1000 + i);
+    chosen.push_back(i);
+  }
+  for (std::size_t j = 0; j < chosen.size(); ++j) {
+    ReportProgress(ctx, "Monte Carlo views", static_cast<int>(j), static_cast<int>(chosen.size()));
+    FullAssess(ctx, *s, &s->candidates[chosen[j]], 1000 + chosen[j]);
   }
   for (CandidateResult& c : s->candidates) {
     if (!c.full_views) c.full_score = c.score;
@@ -109,17 +122,27 @@ void TryPairs(const Context& ctx, DiagnosisSummary* s) {
   for (std::size_t i = 0; i < s->candidates.size() && top.size() < 3; ++i) {
     if (s->candidates[i].effects.size() == 1 && s->candidates[i].score > 0.0) top.push_back(i);
   }
-  std::vector<CandidateResult> pairs;
+  std::vector<std::vector<EffectInstance>> sets;
   for (std::size_t a = 0; a < top.size(); ++a) {
     for (std::size_t b = a + 1; b < top.size(); ++b) {
       const auto& ea = s->candidates[top[a]].effects[0];
       const auto& eb = s->candidates[top[b]].effects[0];
       bool equivalent = false;
       for (const auto& eq : AllanEquivalents(ea.effect)) equivalent |= eq.other == eb.effect;
-      if (equivalent) continue;
-      std::string why;
-      if (auto c = TryCandidate(ctx, *s, {ea, eb}, &why)) pairs.push_back(std::move(*c));
+      if (!equivalent) sets.push_back({ea, eb});
     }
+  }
+  // Independent refits, in parallel; kept in the order above.
+  std::vector<std::optional<CandidateResult>> tried(sets.size());
+  ReportProgress(ctx, "pairs", 0, static_cast<int>(sets.size()));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    std::string why;
+    tried[i] = TryCandidate(ctx, *s, sets[i], &why);
+  }
+  std::vector<CandidateResult> pairs;
+  for (auto& c : tried) {
+    if (c) pairs.push_back(std::move(*c));
   }
   std::stable_sort(pairs.begin(), pairs.end(), ByScore);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
