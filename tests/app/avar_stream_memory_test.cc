@@ -65,8 +65,10 @@ long PeakKiB(const std::vector<std::string>& args) {
 }
 
 TEST(AvarStreamMemoryTest, PeakMemoryDoesNotGrowWithTheRecord) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "avar_stream_memory_test";
-  fs::create_directories(dir);
+  // A folder of its own: two suites running at once (two worktrees) must not share the files.
+  std::string pattern = (fs::path(::testing::TempDir()) / "avar_stream_memory_test.XXXXXX").string();
+  ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+  const fs::path dir = pattern;
   const fs::path small = dir / "1e6.f32", large = dir / "1e7.f32";
   WriteF32(small, 1000000);
   WriteF32(large, 10000000);
