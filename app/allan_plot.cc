@@ -114,6 +114,10 @@ std::string TerminalLines(int width_px, int height_px, const std::string& output
 
 // The commands that draw one diagram (after the terminal is set).
 std::string Body(const AllanPlot& plot) {
+  // A linear y axis shows zero and negative values; a log one only positive ones.
+  const auto Plottable = [&](double x, double y) {
+    return plot.log_y ? allanlab::app::Plottable(x, y) : std::isfinite(x) && std::isfinite(y) && x > 0;
+  };
   std::vector<const PlotSeries*> kept;
   std::vector<std::vector<std::pair<double, double>>> points;
   std::vector<std::vector<std::pair<double, double>>> bars;  // (low, high) per kept point
@@ -152,18 +156,32 @@ std::string Body(const AllanPlot& plot) {
   }
   // Guides must not stretch the axes, so the ranges come from the data alone.
   if (x_hi <= x_lo) x_hi = x_lo * 2;
-  if (y_hi <= y_lo) y_hi = y_lo * 2;
+  for (double y : plot.y_lines) {
+    if (!plot.log_y && std::isfinite(y)) y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+  }
+  if (y_hi <= y_lo) y_hi = plot.log_y ? y_lo * 2 : y_lo + 1;
+  const double y_pad = 0.08 * (y_hi - y_lo);
   std::ostringstream os;
   os << "set title " << Quoted(plot.title) << "\n"
      << "set xlabel " << Quoted(plot.x_label) << "\n"
      << "set ylabel " << Quoted(plot.y_label) << "\n"
-     << "set logscale xy\n"
+     << (plot.log_y ? "set logscale xy\n" : "unset logscale y\nset logscale x\n")
      << "set format x '%g'\nset format y '%g'\n"
      << "set grid xtics ytics mxtics mytics lc rgb '#e8e8e8' lw 1\n"
-     << "set key top right opaque\n"
+     << "set key " << plot.key << "\n"
      << "set samples 200\n"
-     << "set xrange [" << ShortestDecimal(x_lo / 1.5) << ":" << ShortestDecimal(x_hi * 1.5) << "]\n"
-     << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
+     << "set xrange [" << ShortestDecimal(x_lo / 1.5) << ":" << ShortestDecimal(x_hi * 1.5) << "]\n";
+  if (plot.log_y) {
+    os << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
+  } else {
+    os << "set yrange [" << ShortestDecimal(y_lo - y_pad) << ":" << ShortestDecimal(y_hi + y_pad) << "]\n";
+  }
+  for (double y : plot.y_lines) {
+    if (std::isfinite(y)) {
+      os << "set arrow from graph 0, first " << ShortestDecimal(y) << " to graph 1, first " << ShortestDecimal(y)
+         << " nohead lc rgb '#999999' dt 2\n";
+    }
+  }
   // Spans: rectangles behind the curves, each with a dummy keyed clause when titled (objects
   // have no key entry of their own).
   std::vector<std::string> span_keys;
@@ -263,23 +281,27 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   return TerminalLines(plot.width_px, plot.height_px, output_path) + Body(plot) + "unset output\n";
 }
 
-// Panels side by side, each with its own axes, labels and objects.
-std::string Script(const std::vector<AllanPlot>& panels, const std::string& output_path) {
+// Panels in a grid of `columns`, each with its own axes, labels and objects.
+std::string Script(const std::vector<AllanPlot>& panels, int columns, const std::string& output_path) {
+  columns = std::clamp(columns, 1, static_cast<int>(panels.size()));
+  const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
   int width = 0, height = 0;
   for (const AllanPlot& p : panels) {
-    width += p.width_px;
+    width = std::max(width, p.width_px);
     height = std::max(height, p.height_px);
   }
-  std::string out = TerminalLines(width, height, output_path);
-  out += "set multiplot layout 1," + std::to_string(panels.size()) + "\n";
-  for (const AllanPlot& p : panels) out += Body(p) + "unset object\nunset label\n";
+  std::string out = TerminalLines(width * columns, height * rows, output_path);
+  out += "set multiplot layout " + std::to_string(rows) + "," + std::to_string(columns) + "\n";
+  for (const AllanPlot& p : panels) out += Body(p) + "unset object\nunset label\nunset arrow\n";
   return out + "unset multiplot\nunset output\n";
 }
 
 bool AnyPlottable(const AllanPlot& plot) {
   for (const PlotSeries& s : plot.series) {
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
-      if (Plottable(s.x[i], s.y[i])) return true;
+      if (plot.log_y ? Plottable(s.x[i], s.y[i]) : std::isfinite(s.x[i]) && s.x[i] > 0 && std::isfinite(s.y[i])) {
+        return true;
+      }
     }
   }
   return false;
@@ -371,14 +393,18 @@ bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
   return RunGnuplot(Script(plot, png->temp_path()), png, why);
 }
 
-bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why) {
+bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, AtomicFile* png, std::string* why) {
   if (panels.size() == 1) return RenderAllanPlot(panels.front(), png, why);
   if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
   if (panels.empty()) return Fail(why, "nothing to plot: no panel");
   for (const AllanPlot& p : panels) {
     if (!AnyPlottable(p)) return Fail(why, "nothing to plot in panel '" + p.title + "': no positive, finite point");
   }
-  return RunGnuplot(Script(panels, png->temp_path()), png, why);
+  return RunGnuplot(Script(panels, columns, png->temp_path()), png, why);
+}
+
+bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why) {
+  return RenderAllanPlotGrid(panels, static_cast<int>(panels.size()), png, why);
 }
 
 bool WriteAllanPlotPng(const AllanPlot& plot, const std::string& png_path, std::string* why) {

@@ -48,6 +48,9 @@ struct AllanPlot {
   // guide hugs the curve where that noise type dominates. guide_series < 0: no guides.
   std::vector<double> slope_guides = {-1.0, -0.5, 0.0, 0.5, 1.0};
   int guide_series = 0;
+  bool log_y = true;                     // false: a linear y axis (e.g. standardised residuals)
+  std::string key = "top right opaque";  // gnuplot key placement ("outside right top", ...)
+  std::vector<double> y_lines = {};      // faint horizontal reference lines (e.g. +-threshold)
   int width_px = 900;
   int height_px = 650;
 };
@@ -64,6 +67,9 @@ bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why);
 // Several diagrams side by side in one PNG (e.g. an IMU's gyro and accelerometer axes, whose
 // units differ), each `width_px` wide; one panel is RenderAllanPlot.
 bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why);
+
+// Panels in a grid of `columns` (rows filled left to right), each `width_px` x `height_px`.
+bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, AtomicFile* png, std::string* why);
 
 // RenderAllanPlot into a file of its own: on any failure, no file at `png_path` is created or
 // changed.

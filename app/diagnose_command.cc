@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -17,7 +18,10 @@
 #include "app/avar_command.h"
 #include "app/constant_stretch.h"
 #include "app/curve_table.h"
+#include "app/diagnose_html.h"
+#include "app/diagnose_plot.h"
 #include "app/diagnose_progress.h"
+#include "app/diagnose_summary.h"
 #include "app/output_paths.h"
 #include "app/provenance.h"
 #include "app/rate_units.h"
@@ -146,8 +150,18 @@ Json CoefficientsJson(const estimators::FitSummary& fit) {
   return j;
 }
 
-Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation) {
+// The unit a record was read in, when it is a rate unit (for the plain summary).
+std::optional<RateUnit> RecordRateUnit(const std::string& units) {
+  RateUnit unit;
+  std::string ignored;
+  if (!ParseRateUnit(units, &unit, &ignored)) return std::nullopt;
+  return unit;
+}
+
+Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
+                   std::optional<RateUnit> unit = std::nullopt) {
   Json j;
+  j["summary"] = PlainJson(MakePlainSummary(s, unit));
   Json regions = Json::array();
   for (const GapRegion& r : s.regions) {
     Json region{{"view", std::string(ViewId(r.view))}};
@@ -236,9 +250,18 @@ std::string RegionMeaning(const GapRegion& r) {
   return r.mean_z > 0 ? " (record above model)" : " (record below model)";
 }
 
-void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
+// The report: the plain-words summary (diagnose_summary.h; left out with plain = false, for the
+// HTML page that shows it itself), then the detail.
+void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown,
+               std::optional<RateUnit> unit = std::nullopt, bool plain = true) {
   const std::string h = markdown ? "## " : "";
   if (markdown) os << "# allanlab diagnose\n\n";
+  if (plain && markdown) {
+    WritePlainMarkdown(os, MakePlainSummary(s, unit));
+  } else if (plain) {
+    WritePlainText(os, MakePlainSummary(s, unit));
+    os << "\n";
+  }
   os << h << "verdict: " << s.verdict;
   if (s.verdict_candidate >= 0) {
     const auto& c = s.candidates[s.verdict_candidate];
@@ -300,88 +323,6 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown) {
   for (const auto& n : s.notes) os << (markdown ? "- " : "  ") << "note: " << n << "\n";
 }
 
-// The record's OAVAR with the 95 % band of each model (the exact chi-square distribution of the
-// OAVAR view, envelope.h) and the gap regions of every view shaded. PSD regions are drawn at
-// tau = 1/(2 f): a convention (the Allan filter's response to a sinusoid of frequency f peaks near
-// f tau = 0.37 and has its first null at f tau = 1), so the shading says where to look, not an
-// exact tau range; the key says so.
-AllanPlot DiagnosePlot(const DiagnosisSummary& s, const std::string& title) {
-  AllanPlot plot;
-  plot.title = title;
-  const double unit = FromRadPerSecond(RateUnit::kDegPerHour, 1.0);
-  auto adev = [&](const std::vector<double>& avar) {
-    std::vector<double> y;
-    for (double v : avar) y.push_back(std::sqrt(v) * unit);
-    return y;
-  };
-  // A model's mean curve and its 95 % band, both as ADEV.
-  auto band = [&](const sim::SensorModel& model, const std::string& name, const std::string& color,
-                  PlotSeries* line) {
-    const OavarTheory t = ExactOavar(model, s.curve.m, s.num_samples);
-    PlotSeries b{name + " 95 % band", PlotStyle::kBand, s.curve.tau_s, adev(t.mean)};
-    for (std::size_t i = 0; i < t.mean.size(); ++i) {
-      const bool ok = t.mean[i] > 0.0 && t.edf[i] > 0.0;
-      const Band r = ok ? ChiSquareBand(t.mean[i], t.edf[i], 0.95) : Band{};
-      b.y_low.push_back(std::sqrt(r.low) * unit);
-      b.y_high.push_back(std::sqrt(r.high) * unit);
-    }
-    b.color = color;
-    *line = PlotSeries{name, PlotStyle::kDashedLine, s.curve.tau_s, adev(t.mean)};
-    line->color = color;
-    return b;
-  };
-  PlotSeries baseline_line, candidate_line;
-  plot.series.push_back(band(s.baseline_model, "baseline model", "#1f77b4", &baseline_line));
-  const bool have_candidate = s.verdict_candidate >= 0;
-  if (have_candidate) {
-    const auto& c = s.candidates[s.verdict_candidate];
-    const std::string name = (s.verdict == "unexplained" ? "best tried: with " : "with ") + c.id();
-    plot.series.push_back(band(c.model, name, "#2ca02c", &candidate_line));
-    candidate_line.style = PlotStyle::kLine;
-  }
-  PlotSeries record{"record", PlotStyle::kPoints, s.curve.tau_s, adev(s.curve.avar)};
-  record.color = "#000000";
-  plot.guide_series = static_cast<int>(plot.series.size());
-  plot.series.push_back(record);
-  plot.series.push_back(baseline_line);
-  if (have_candidate) plot.series.push_back(candidate_line);
-  for (const GapRegion& r : s.regions) {
-    PlotSpan span;
-    span.x_min = r.x_min;
-    span.x_max = r.x_max;
-    switch (r.view) {
-      case View::kOavar:
-        span.color = "#d62728";
-        span.title = "gap: oavar";
-        break;
-      case View::kHadamard:
-        span.color = "#9467bd";
-        span.title = "gap: hadamard";
-        break;
-      case View::kPsd:
-        span.x_min = 1.0 / (2.0 * r.x_max);
-        span.x_max = 1.0 / (2.0 * r.x_min);
-        span.color = "#ff7f0e";
-        span.title = "gap: psd, drawn at tau = 1/(2f) (a convention)";
-        break;
-      case View::kChangePoint:
-        span.color = "#e377c2";
-        span.title = "gap: change_point, step at t = " + Format(r.time_s) + " s (shaded: block lengths)";
-        break;
-      case View::kTrend:
-        span.color = "#bcbd22";
-        span.title = "gap: trend, settling time constant " + Format(r.time_s) + " s (shaded: block lengths)";
-        break;
-      default:
-        span.color = "#8c564b";
-        span.title = "gap: halves / dynamic / kurtosis";
-        break;
-    }
-    plot.spans.push_back(span);
-  }
-  return plot;
-}
-
 // The diagnosis settings, for the provenance.
 void AddDiagnosisSettings(const DiagnoseCommandOptions& o, Provenance* p) {
   p->Add("baseline", BaselineDescription(o));
@@ -391,12 +332,40 @@ void AddDiagnosisSettings(const DiagnoseCommandOptions& o, Provenance* p) {
   p->Add("false_alarm", ShortestDecimal(o.false_alarm));
 }
 
+// The plot's PNG for the HTML page: the --plot file's (already rendered into `png`), else
+// rendered into a temporary next to the page and removed.
+bool PlotBytes(const std::vector<AllanPlot>& panels, AtomicFile* png, const std::string& html_path,
+               std::string* bytes, std::string* why) {
+  AtomicFile scratch;
+  AtomicFile* from = png;
+  if (!png->is_open()) {
+    if (!scratch.Open(html_path + ".png", why) || !RenderAllanPlotGrid(panels, 2, &scratch, why)) return false;
+    from = &scratch;
+  }
+  std::ifstream in(from->temp_path(), std::ios::binary);
+  std::ostringstream data;
+  data << in.rdbuf();
+  *bytes = data.str();
+  if (bytes->empty()) {
+    *why = "the plot for the HTML page is empty";
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::pair<std::string, std::string>> ProvenancePairs(const Provenance& p) {
+  std::vector<std::pair<std::string, std::string>> out(p.fields.begin(), p.fields.end());
+  out.emplace_back("command", p.command_line);
+  out.emplace_back("git", p.git_sha);
+  return out;
+}
+
 // Several gyro columns of one record: a diagnosis each, one JSON and report with a section per
 // column, one PNG with a panel per column. The diagnosis speaks in gyro units and effects, so
 // accelerometer columns are refused when named and left out (with a warning) under --imu.
 std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const DiagnoseOptions& d,
                                        const std::string& command_line, AtomicFile* json, AtomicFile* report,
-                                       AtomicFile* png) {
+                                       AtomicFile* png, AtomicFile* html) {
   std::string why;
   std::vector<std::vector<double>> rates;
   RecordInfo info;
@@ -432,6 +401,7 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
   AddDiagnosisSettings(o, &p);
   Json entries = Json::array();
   std::vector<AllanPlot> panels;
+  std::vector<HtmlSection> sections;
   std::ostringstream markdown;
   for (std::size_t i = 0; i < gyro.size(); ++i) {
     const ColumnInfo& c = info.columns[gyro[i]];
@@ -448,15 +418,21 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
       s.notes.push_back("record: " + *stuck);
     }
     std::cout << (i ? "\n" : "") << "# column " << c.name << "\n";
-    WriteText(std::cout, s, false);
-    Json one = DiagnosisJson(s, p, Json());
+    const std::optional<RateUnit> unit = RecordRateUnit(c.units);
+    WriteText(std::cout, s, false, unit);
+    Json one = DiagnosisJson(s, p, Json(), unit);
     one.erase("provenance");
     Json entry = {{"column", c.name}, {"units", c.units}};
     entry.update(one);
     entries.push_back(std::move(entry));
     markdown << (i ? "\n" : "") << "# column " << c.name << "\n\n";
-    WriteText(markdown, s, true);
-    panels.push_back(DiagnosePlot(s, "allanlab diagnose: " + info.path + ", " + c.name));
+    WriteText(markdown, s, true, unit);
+    for (AllanPlot& panel : DiagnosePanels(s, "allanlab diagnose: " + info.path + ", " + c.name)) {
+      panels.push_back(std::move(panel));
+    }
+    std::ostringstream detail;
+    WriteText(detail, s, false, unit, false);
+    sections.push_back({"column " + c.name, MakePlainSummary(s, unit), detail.str()});
   }
   std::cout.flush();
   if (json->is_open()) json->stream() << Json{{"provenance", ProvenanceJson(p)}, {"columns", entries}}.dump(2) << "\n";
@@ -465,8 +441,13 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
     for (const auto& [k, v] : p.fields) report->stream() << "- " << k << ": " << v << "\n";
     report->stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
   }
-  if (png->is_open() && !RenderAllanPlots(panels, png, &why)) return RuntimeFailure(why);
-  for (AtomicFile* file : {json, report, png}) {
+  if (png->is_open() && !RenderAllanPlotGrid(panels, 2, png, &why)) return RuntimeFailure(why);
+  if (html->is_open()) {
+    std::string bytes;
+    if (!PlotBytes(panels, png, html->path(), &bytes, &why)) return RuntimeFailure(why);
+    WriteDiagnoseHtml(html->stream(), "allanlab diagnose: " + info.path, sections, bytes, ProvenancePairs(p));
+  }
+  for (AtomicFile* file : {json, report, png, html}) {
     if (file->is_open() && !file->Commit(&why)) return RuntimeFailure(why);
   }
   return std::nullopt;
@@ -495,9 +476,11 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   if (!o.json_path.empty()) outputs.emplace_back("--json", o.json_path);
   if (!o.report_path.empty()) outputs.emplace_back("--report", o.report_path);
   if (!o.plot_path.empty()) outputs.emplace_back("--plot", o.plot_path);
+  if (!o.html_path.empty()) outputs.emplace_back("--html", o.html_path);
   if (!CheckDistinctOutputs(outputs, &why)) return UsageFailure(why);
-  if (!o.plot_path.empty() && !FindGnuplot(&why)) return RuntimeFailure(why);
-  AtomicFile json, report, png;
+  if ((!o.plot_path.empty() || !o.html_path.empty()) && !FindGnuplot(&why)) return RuntimeFailure(why);
+  AtomicFile json, report, png, html;
+  if (!o.html_path.empty() && !html.Open(o.html_path, &why)) return RuntimeFailure(why);
   if (!o.json_path.empty() && !json.Open(o.json_path, &why)) return RuntimeFailure(why);
   if (!o.report_path.empty() && !report.Open(o.report_path, &why)) return RuntimeFailure(why);
   if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return RuntimeFailure(why);
@@ -505,10 +488,11 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
   if (SeveralColumns(o.record)) {
     if (curve_mode) return UsageFailure("--curve is one curve: drop --columns/--imu");
     if (!o.validate_path.empty()) return UsageFailure("--validate-on checks one column: drop --columns/--imu");
-    return DiagnoseSeveral(o, d, command_line, &json, &report, &png);
+    return DiagnoseSeveral(o, d, command_line, &json, &report, &png, &html);
   }
   Provenance p = MakeProvenance(kCommand, command_line);
   DiagnosisSummary s;
+  std::optional<RateUnit> unit;
   if (curve_mode) {
     if (!DiagnoseCurve(d, table.curve, &s)) return RuntimeFailure(o.curve.path + ": " + s.message);
     if (!table.skipped.empty()) {
@@ -532,6 +516,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
       s.notes.push_back("record: " + *stuck);
     }
+    unit = RecordRateUnit(info.units);
     p.Add("input", info.path);
     p.Add("column", info.column);
     p.Add("units", info.units + " (" + info.units_source + ")");
@@ -558,20 +543,28 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     p.Add("validate_on", o.validate_path);
   }
 
-  WriteText(std::cout, s, false);
+  WriteText(std::cout, s, false, unit);
   if (!validation.is_null()) std::cout << "validation on " << o.validate_path << ": " << validation.dump() << "\n";
   std::cout.flush();
-  if (json.is_open()) json.stream() << DiagnosisJson(s, p, validation).dump(2) << "\n";
+  if (json.is_open()) json.stream() << DiagnosisJson(s, p, validation, unit).dump(2) << "\n";
   if (report.is_open()) {
-    WriteText(report.stream(), s, true);
+    WriteText(report.stream(), s, true, unit);
     report.stream() << "\n## provenance\n\n";
     for (const auto& [k, v] : p.fields) report.stream() << "- " << k << ": " << v << "\n";
     report.stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
   }
-  if (png.is_open() && !RenderAllanPlot(DiagnosePlot(s, "allanlab diagnose: " + (curve_mode ? o.curve.path : o.record.path)), &png, &why)) {
-    return RuntimeFailure(why);
+  const std::string title = "allanlab diagnose: " + (curve_mode ? o.curve.path : o.record.path);
+  const std::vector<AllanPlot> panels = DiagnosePanels(s, title);
+  if (png.is_open() && !RenderAllanPlotGrid(panels, 2, &png, &why)) return RuntimeFailure(why);
+  if (html.is_open()) {
+    std::string bytes;
+    if (!PlotBytes(panels, &png, html.path(), &bytes, &why)) return RuntimeFailure(why);
+    std::ostringstream detail;
+    WriteText(detail, s, false, unit, false);
+    if (!validation.is_null()) detail << "validation on " << o.validate_path << ": " << validation.dump() << "\n";
+    WriteDiagnoseHtml(html.stream(), title, {{"", MakePlainSummary(s, unit), detail.str()}}, bytes, ProvenancePairs(p));
   }
-  for (AtomicFile* file : {&json, &report, &png}) {
+  for (AtomicFile* file : {&json, &report, &png, &html}) {
     if (file->is_open() && !file->Commit(&why)) return RuntimeFailure(why);
   }
   return std::nullopt;
@@ -606,6 +599,9 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_flag("--quiet", options->quiet, "no progress line on stderr (shown only when stderr is a terminal)");
   cmd->add_option("--json", options->json_path, "write the diagnosis as JSON (stable keys)")->type_name("OUT.json");
   cmd->add_option("--report", options->report_path, "write a Markdown report")->type_name("OUT.md");
+  cmd->add_option("--html", options->html_path,
+                  "write the report as one self-contained HTML page, plots inline (needs gnuplot)")
+      ->type_name("OUT.html");
   cmd->add_option("--plot", options->plot_path, "draw record, baseline and verdict model (PNG, gnuplot)")->type_name("OUT.png");
   cmd->add_option("--validate-on", options->validate_path, "score the verdict's model on a second recording of the same sensor")->type_name("FILE2");
   AddCurveOptions(cmd, &options->curve);

@@ -18,7 +18,9 @@
 //                       gap_before, gap_after, heldout_gap_before, heldout_gap_after, score}],
 //                       baseline{coefficients}, provenance. PSD regions also carry
 //                       frequency_min_hz/frequency_max_hz, with tau = 1/(2 f).
-//   --report OUT.md     the same for people;  --plot OUT.png  ADEV: record, baseline, verdict model
+//   --report OUT.md     the same for people, the plain-words summary first (diagnose_summary.h)
+//   --plot OUT.png      ADEV: record, baseline, verdict model; a panel per other departing view
+//   --html OUT.html     one self-contained page: the summary, the detail and the plot inline
 //   --validate-on FILE2 a second recording of the same sensor: the verdict's model (linear terms
 //                       refitted on FILE, effect included) scored on FILE2's OAVAR
 // Several gyro columns (--columns, --imu; accelerometer columns are not diagnosed): the record read
@@ -47,7 +49,7 @@ struct DiagnoseCommandOptions {
   double false_alarm = 0.05;
   int jobs = 0;        // threads (0: every core); the result is the same for any count
   bool quiet = false;  // no progress line on stderr
-  std::string json_path, report_path, plot_path, validate_path;
+  std::string json_path, report_path, plot_path, html_path, validate_path;
   CurveCommandOptions curve;  // --curve mode (app/curve_options.h)
 };
 

@@ -1,0 +1,16 @@
+#pragma once
+// The panels of `diagnose --plot`: the record's Allan deviation with the baseline and the verdict
+// model (each with its 95 % band), the points where the record leaves the baseline marked on
+// top, and one panel per other view that departs, as standardised residuals z of the record
+// against the baseline and against the verdict model with the gap level +-threshold drawn.
+#include <string>
+#include <vector>
+
+#include "app/allan_plot.h"
+#include "experiments/diagnosis/diagnose.h"
+
+namespace allanlab::app {
+
+std::vector<AllanPlot> DiagnosePanels(const experiments::DiagnosisSummary& s, const std::string& title);
+
+}  // namespace allanlab::app

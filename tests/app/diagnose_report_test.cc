@@ -1,0 +1,205 @@
+// `allanlab diagnose`: stdout, the Markdown report, the JSON and the HTML page say the same thing
+// in the same units (the plain-words summary first), the HTML page is self-contained and renders
+// in a real browser (headless Chromium, when installed), and --jobs does not change the result.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "sim/sensor_model.h"
+#include "tests/support/command_test.h"
+
+namespace allanlab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+class DiagnoseReportTest : public testing_support::CommandTest {
+ protected:
+  DiagnoseReportTest() : CommandTest("allanlab_diagnose_report", "diagnose") {}
+  // White rate noise (1e-4 rad/s per sample at 100 Hz) with a step of 6e-5 rad/s at 60 % of a
+  // 16384-sample record: ~20 sigma in 1024-sample block means against a white-noise baseline.
+  void WriteStepRecord() {
+    sim::SensorModel model;
+    model.sample_rate_hz = 100.0;
+    sim::WhiteRateNoise white;
+    white.arw_rad_per_sqrt_s = 1e-5;
+    model.terms = {white};
+    const std::vector<double> rate = model.Generate(3, 0, 16384);
+    std::ofstream out(dir_ / "rec.csv");
+    out << "rate_deg_per_s\n";
+    for (std::size_t k = 0; k < rate.size(); ++k) out << (rate[k] + (k >= 9830 ? 6e-5 : 0.0)) * 180.0 / M_PI << "\n";
+  }
+};
+
+// Every "name value -> value" of a line, and every "name value unit" pair.
+std::map<std::string, std::pair<double, double>> Arrows(const std::string& line) {
+  std::map<std::string, std::pair<double, double>> out;
+  static const std::regex re(R"(([A-Za-z_-]+) ([-+0-9.e]+) -> ([-+0-9.e]+))");
+  for (auto it = std::sregex_iterator(line.begin(), line.end(), re); it != std::sregex_iterator(); ++it) {
+    out[(*it)[1]] = {std::stod((*it)[2]), std::stod((*it)[3])};
+  }
+  return out;
+}
+
+std::string LineWith(const std::string& text, const std::string& start) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const auto at = line.find(start);
+    if (at != std::string::npos && line.find_first_not_of(" -", 0) == at) return line;
+  }
+  return "";
+}
+
+// Equal at the 4 significant digits the text prints.
+void ExpectPrinted(double printed, double exact, const std::string& what) {
+  EXPECT_NEAR(printed, exact, 6e-4 * std::abs(exact) + 1e-12) << what;
+}
+
+TEST_F(DiagnoseReportTest, StdoutMarkdownAndJsonAgreeInTheSameUnits) {
+  WriteStepRecord();
+  ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N --trials 5 --json " + Path("d.json") + " --report " +
+                Path("d.md")),
+            0)
+      << Read("err.txt");
+  const Json j = Json::parse(Read("d.json"));
+  const std::string out = Read("out.txt"), md = Read("d.md");
+  ASSERT_TRUE(j["gap"]["significant"].get<bool>());
+  const Json& summary = j["summary"];
+  // The plain words come first on stdout and in the report.
+  EXPECT_EQ(out.rfind("in plain words:", 0), 0u) << out;
+  EXPECT_LT(md.find("## In plain words"), md.find("## verdict"));
+  // Where: the step's time, as the detail's change-point region gives it.
+  bool step_region = false;
+  for (const Json& r : j["gap"]["regions"]) {
+    if (r["view"] != "change_point") continue;
+    step_region = true;
+    char t[32];
+    std::snprintf(t, sizeof t, "%.4g", r["time_s"].get<double>());
+    EXPECT_NE(out.find("at t = " + std::string(t) + " s from the start"), std::string::npos) << out;
+    EXPECT_NE(md.find("at t = " + std::string(t) + " s from the start"), std::string::npos);
+  }
+  EXPECT_TRUE(step_region) << j["gap"]["regions"].dump();
+  // How far the gap shrinks: the same numbers in the three forms, and the JSON's from the detail.
+  const std::string shrink_out = LineWith(out, "gap chi2 before -> after"), shrink_md = LineWith(md, "gap chi2 before -> after");
+  ASSERT_FALSE(shrink_out.empty()) << out;
+  const auto a_out = Arrows(shrink_out), a_md = Arrows(shrink_md);
+  ASSERT_FALSE(summary["shrink"].empty());
+  const int verdict_index = [&] {
+    const std::string id = j["verdict"].contains("best_tried") ? j["verdict"]["best_tried"].get<std::string>()
+                                                              : j["verdict"]["effect"].get<std::string>();
+    for (std::size_t i = 0; i < j["candidates"].size(); ++i) {
+      if (j["candidates"][i]["effect"] == id) return static_cast<int>(i);
+    }
+    return -1;
+  }();
+  ASSERT_GE(verdict_index, 0);
+  const Json& candidate = j["candidates"][verdict_index];
+  for (const Json& v : summary["shrink"]) {
+    const std::string view = v["view"];
+    ASSERT_TRUE(a_out.count(view)) << view << " in " << shrink_out;
+    ASSERT_TRUE(a_md.count(view)) << view << " in " << shrink_md;
+    ExpectPrinted(a_out.at(view).first, v["chi2_before"], view + " before, stdout");
+    ExpectPrinted(a_out.at(view).second, v["chi2_after"], view + " after, stdout");
+    ExpectPrinted(a_md.at(view).first, v["chi2_before"], view + " before, markdown");
+    ExpectPrinted(a_md.at(view).second, v["chi2_after"], view + " after, markdown");
+    if (view == "held-out") {
+      EXPECT_EQ(v["chi2_before"], candidate["heldout_gap_before"]["chi2"]);
+      EXPECT_EQ(v["chi2_after"], candidate["heldout_gap_after"]["chi2"]);
+    } else {
+      EXPECT_EQ(v["chi2_before"], j["gap"]["views"][view]["chi2"]);
+      EXPECT_EQ(v["chi2_after"], candidate["gap_after"][view]["chi2"]);
+    }
+  }
+  // The effect in sensor units: rates in deg/h and in the record's deg/s, from the SI parameters.
+  ASSERT_FALSE(summary["effects"].empty());
+  const Json& effect = summary["effects"][0];
+  const Json& params = candidate["params"];
+  for (const Json& q : effect["quantities"]) {
+    const std::string name = q["name"];
+    std::string key = name;
+    for (char& c : key) c = c == ' ' ? '_' : c;
+    char printed[48];
+    std::snprintf(printed, sizeof printed, "%s %.4g %s", name.c_str(), q["value"].get<double>(), q["unit"].get<std::string>().c_str());
+    EXPECT_NE(out.find(printed), std::string::npos) << printed << " in\n" << out;
+    EXPECT_NE(md.find(printed), std::string::npos) << printed;
+    if (q["unit"] == "deg/h") {
+      const double si = params[key + "_rad_per_s"];
+      EXPECT_NEAR(q["value"].get<double>(), si * 180.0 / M_PI * 3600.0, 1e-9 * std::abs(si * 2.1e5));
+      ASSERT_EQ(q["record_unit"], "deg/s");
+      EXPECT_NEAR(q["record_value"].get<double>(), si * 180.0 / M_PI, 1e-9 * std::abs(si * 60));
+    } else if (q["unit"] == "s") {
+      EXPECT_EQ(q["value"].get<double>(), params[key + "_s"].get<double>());
+    }
+  }
+  // Coefficients side by side: the baseline's as the detail JSON gives them, in the same unit.
+  for (const Json& c : summary["coefficients"]) {
+    const std::string id = c["id"];
+    EXPECT_EQ(c["unit"], j["baseline"]["coefficients"][id]["unit"]);
+    if (c["baseline"].is_null()) continue;
+    EXPECT_EQ(c["baseline"]["value"], j["baseline"]["coefficients"][id]["value"]);
+    EXPECT_EQ(c["model"]["value"], candidate["coefficients"][id]["value"]);
+    const std::string line = LineWith(out, id + " ");
+    std::smatch m;
+    const std::regex re("^ *" + id + " ([-+0-9.e]+) \\+- [-+0-9.e]+ -> ([-+0-9.e]+) \\+- [-+0-9.e]+ (.*)$");
+    ASSERT_TRUE(std::regex_match(line, m, re)) << line;
+    ExpectPrinted(std::stod(m[1]), c["baseline"]["value"], id + " baseline, stdout");
+    ExpectPrinted(std::stod(m[2]), c["model"]["value"], id + " model, stdout");
+    EXPECT_EQ(m[3], c["unit"].get<std::string>()) << line;
+  }
+}
+
+// --jobs N: the candidates run in parallel, and the JSON is the same for one thread and two
+// (every simulated record is drawn from (seed, trial), results are kept in effect order).
+TEST_F(DiagnoseReportTest, SameJsonForOneAndTwoThreads) {
+  WriteStepRecord();
+  Json runs[2];
+  for (int jobs = 1; jobs <= 2; ++jobs) {
+    ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N --trials 5 --jobs " + std::to_string(jobs) + " --json " +
+                  Path("d.json")),
+              0)
+        << Read("err.txt");
+    runs[jobs - 1] = Json::parse(Read("d.json"));
+    runs[jobs - 1].erase("provenance");
+  }
+  ASSERT_TRUE(runs[0]["gap"]["significant"].get<bool>()) << runs[0].dump(1);
+  ASSERT_GE(runs[0]["candidates"].size(), 2u);
+  EXPECT_EQ(runs[0].dump(), runs[1].dump());
+  EXPECT_EQ(Run(Path("rec.csv") + " --rate 100 --jobs -1"), 2);
+}
+
+TEST_F(DiagnoseReportTest, HtmlIsSelfContainedAndRendersInABrowser) {
+  WriteStepRecord();
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N --trials 5 --html " + Path("d.html")), 0) << Read("err.txt");
+  const std::string html = Read("d.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // a PNG inline
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_NE(html.find("In plain words"), std::string::npos);
+  EXPECT_NE(html.find("from the start"), std::string::npos);
+  const char* browser = std::system("command -v chromium > /dev/null 2>&1") == 0 ? "chromium" : nullptr;
+  if (browser == nullptr) GTEST_SKIP() << "chromium not installed: the page was not rendered";
+  const fs::path shot = dir_ / "shot.png";
+  std::ostringstream cmd;
+  cmd << browser << " --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1200,2400 --screenshot='"
+      << shot.string() << "' 'file://" << (dir_ / "d.html").string() << "' > '" << (dir_ / "chromium.txt").string()
+      << "' 2>&1";
+  ASSERT_EQ(std::system(cmd.str().c_str()), 0) << Read("chromium.txt");
+  ASSERT_TRUE(fs::exists(shot)) << Read("chromium.txt");
+  // A blank page compresses to a few kB; text, tables and the plot give far more.
+  EXPECT_GT(fs::file_size(shot), 60000u);
+  if (const char* keep = std::getenv("ALLANLAB_KEEP_SCREENSHOT")) fs::copy_file(shot, keep, fs::copy_options::overwrite_existing);
+}
+
+}  // namespace
+}  // namespace allanlab::app
