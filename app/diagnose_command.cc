@@ -158,12 +158,9 @@ std::optional<RateUnit> RecordRateUnit(const std::string& units) {
   return unit;
 }
 
-Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
-                   std::optional<RateUnit> unit = std::nullopt) {
-  Json j;
-  j["summary"] = PlainJson(MakePlainSummary(s, unit));
+Json RegionsJson(const std::vector<GapRegion>& found) {
   Json regions = Json::array();
-  for (const GapRegion& r : s.regions) {
+  for (const GapRegion& r : found) {
     Json region{{"view", std::string(ViewId(r.view))}};
     if (r.view == View::kPsd) {
       region["tau_min_s"] = 1.0 / (2.0 * r.x_max);
@@ -180,6 +177,54 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
     region["mean_z"] = r.mean_z;
     regions.push_back(region);
   }
+  return regions;
+}
+
+// The models scored on a second recording: OAVAR ("baseline", "with_ID", as before) and every
+// view with the shrink baseline / candidate chi2.
+Json ValidationJson(const std::string& path, const ValidationScores& scores) {
+  auto metrics = [](const std::optional<GapMetrics>& m) { return m ? MetricsJson(*m) : Json(nullptr); };
+  Json v = {{"file", path}, {"baseline", metrics(scores.baseline)}};
+  if (scores.candidate_id.empty()) return v;
+  v["with_" + scores.candidate_id] = metrics(scores.candidate);
+  v["model"] = scores.candidate_id;
+  Json views = Json::object();
+  for (const ViewResiduals& b : scores.baseline_views) {
+    for (const ViewResiduals& c : scores.candidate_views) {
+      if (c.view != b.view) continue;
+      const GapMetrics mb = Metrics(b.z), mc = Metrics(c.z);
+      views[std::string(ViewId(b.view))] = {{"baseline", MetricsJson(mb)}, {"model", MetricsJson(mc)},
+                                             {"shrink", mc.chi2 > 0.0 ? mb.chi2 / mc.chi2 : 0.0}};
+    }
+  }
+  v["views"] = views;
+  return v;
+}
+
+void WriteValidation(std::ostream& os, const Json& v, bool markdown) {
+  os << (markdown ? "\n## " : "") << "validation on " << v["file"].get<std::string>() << "\n";
+  if (!v.contains("views")) {
+    os << (markdown ? "\n" : "  ") << "no candidate to score\n";
+    return;
+  }
+  if (markdown) os << "\n| view | points | chi2 baseline | chi2 with " << v["model"].get<std::string>() << " | shrink |\n|---|---|---|---|---|\n";
+  for (const auto& [view, m] : v["views"].items()) {
+    const double b = m["baseline"]["chi2"], c = m["model"]["chi2"];
+    if (markdown) {
+      os << "| " << view << " | " << m["baseline"]["points"] << " | " << Format(b) << " | " << Format(c) << " | "
+         << Format(m["shrink"].get<double>()) << " |\n";
+    } else {
+      os << "  " << view << ": chi2 " << Format(b) << " -> " << Format(c) << " with " << v["model"].get<std::string>()
+         << " (" << Format(m["shrink"].get<double>()) << "x)\n";
+    }
+  }
+}
+
+Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
+                   std::optional<RateUnit> unit = std::nullopt) {
+  Json j;
+  j["summary"] = PlainJson(MakePlainSummary(s, unit));
+  const Json regions = RegionsJson(s.regions);
   j["gap"] = {{"significant", s.significant}, {"regions", regions}, {"threshold_z", s.threshold},
               {"points", s.total_points}, {"views", GapJson(s.before)}};
   if (s.before.has_heldout) j["gap"]["heldout"] = MetricsJson(s.before.heldout);
@@ -197,6 +242,18 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   verdict["separating_views"] = separating;
   if (s.verdict == "unexplained" && s.verdict_candidate >= 0) {
     verdict["best_tried"] = s.candidates[s.verdict_candidate].id();
+  }
+  if (s.significant) verdict["explains"] = s.verdict == "unexplained" ? "none" : (s.explains_all ? "all" : "part");
+  if (s.verdict_candidate >= 0) {
+    Json steps = Json::array();
+    for (const auto& st : s.candidates[s.verdict_candidate].steps) {
+      steps.push_back({{"added", std::string(EffectId(st.added))},
+                       {"heldout_chi2_before", st.heldout_before.chi2},
+                       {"heldout_chi2_after", st.heldout_after.chi2},
+                       {"heldout_points", st.heldout_after.points}});
+    }
+    verdict["steps"] = steps;
+    verdict["remaining"] = RegionsJson(s.remaining);
   }
   j["verdict"] = verdict;
   Json candidates = Json::array();
@@ -272,6 +329,21 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown,
     }
   }
   os << "\n";
+  if (s.verdict_candidate >= 0) {
+    const auto& c = s.candidates[s.verdict_candidate];
+    if (s.verdict != "unexplained" && !s.explains_all) os << "  explains most of the gap, not all (what remains is below)\n";
+    if (c.steps.size() > 1 || (s.verdict != "unexplained" && !c.steps.empty())) {
+      for (const auto& st : c.steps) {
+        os << (markdown ? "- " : "  ") << "adds " << EffectId(st.added) << ": held-out chi2 " << Format(st.heldout_before.chi2)
+           << " -> " << Format(st.heldout_after.chi2) << " (" << st.heldout_after.points << " points)\n";
+      }
+    }
+    for (const GapRegion& r : s.remaining) {
+      os << (markdown ? "- " : "  ") << "remains: " << ViewId(r.view) << " " << Format(r.x_min) << " .. " << Format(r.x_max)
+         << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << Format(r.max_abs_z)
+         << (r.mean_z > 0 ? " (record above model)" : " (record below model)") << "\n";
+    }
+  }
   for (const auto& a : s.also_consistent) {
     os << "  also consistent: " << a.effect
        << (a.separating_view.empty() ? "" : " (the " + a.separating_view + " view could separate them)") << "\n";
@@ -534,21 +606,20 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     RecordInfo info2;
     if (const int code = ReadRateFromFile(v, kCommand, &rate2, &info2, &why); code != kExitOk) return Failure{code, why};
     ValidationScores scores;
-    if (!ScoreOnSecondRecord(s, rate2, 1.0 / info2.sample_rate_hz, &scores, &why)) {
+    if (!ScoreOnSecondRecord(d, s, rate2, 1.0 / info2.sample_rate_hz, &scores, &why)) {
       return RuntimeFailure(o.validate_path + ": " + why);
     }
-    auto metrics = [](const std::optional<GapMetrics>& m) { return m ? MetricsJson(*m) : Json(nullptr); };
-    validation = {{"file", o.validate_path}, {"baseline", metrics(scores.baseline)}};
-    if (!scores.candidate_id.empty()) validation["with_" + scores.candidate_id] = metrics(scores.candidate);
+    validation = ValidationJson(o.validate_path, scores);
     p.Add("validate_on", o.validate_path);
   }
 
   WriteText(std::cout, s, false, unit);
-  if (!validation.is_null()) std::cout << "validation on " << o.validate_path << ": " << validation.dump() << "\n";
+  if (!validation.is_null()) WriteValidation(std::cout, validation, false);
   std::cout.flush();
   if (json.is_open()) json.stream() << DiagnosisJson(s, p, validation, unit).dump(2) << "\n";
   if (report.is_open()) {
     WriteText(report.stream(), s, true, unit);
+    if (!validation.is_null()) WriteValidation(report.stream(), validation, true);
     report.stream() << "\n## provenance\n\n";
     for (const auto& [k, v] : p.fields) report.stream() << "- " << k << ": " << v << "\n";
     report.stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
@@ -606,7 +677,9 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_option("--validate-on", options->validate_path, "score the verdict's model on a second recording of the same sensor")->type_name("FILE2");
   AddCurveOptions(cmd, &options->curve);
   cmd->footer("Verdict: none (no significant gap), an effect id (bandwidth, gauss_markov, random_telegraph, harmonic,\n"
-              "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers, resonance) or unexplained.\n"
+              "angle_quantization, rate_quantization, exponential_drift, bias_step, outliers, resonance), a set of up\n"
+              "to three (bandwidth+resonance: what each adds is listed), or unexplained. A verdict that explains most\n"
+              "of the gap but not all says so and lists what remains.\n"
               "Exit status: 0 ok (any verdict), 1 bad file or unusable record, 2 usage error.");
   return {cmd, [options](const std::string& command_line) { return RunDiagnose(*options, command_line); }};
 }

@@ -20,13 +20,18 @@
 //    holding a one-off event such as a step, which is located there; else the second half), on
 //    OAVAR and, for the candidates with Monte Carlo views, on the views in which that half
 //    departs from the other half's baseline.
-//    Pairs of the best three are tried when no single effect closes the gap.
+//    When no single effect closes the gap, a set of up to `max_effects` is grown by forward
+//    selection on the held-out score (verdict.cc GrowSet, docs/theory.md §6.4): each added
+//    effect must shrink the held-out chi2, and the chi2 of a view it shows in that still
+//    departs, by `set_margin`, and move no view beyond the threshold.
 //    Allan-equivalent effects (telegraph / Gauss-Markov) that both pass are decided by the view
 //    that separates them (kurtosis: lower chi2 wins); the other is listed as also consistent.
-// 5. Verdict: "none" (no significant gap), the effect that closes the gap (every view within
-//    the threshold) with a positive score and a held-out improvement, or "unexplained". Of
-//    candidates within 2 of the best penalised score (which the record cannot tell apart), the
-//    one with the largest held-out shrink.
+// 5. Verdict: "none" (no significant gap), the effect (or set) that closes the gap (every view
+//    within the threshold) with a positive score and a held-out improvement; of candidates
+//    within 2 of the best penalised score (which the record cannot tell apart), the one with the
+//    largest held-out shrink. Else the one that explains most of it (explains_all false): held-out
+//    chi2 and the chi2 of every view where the baseline departs down by `partial_shrink`, what
+//    remains listed (`remaining`). Else "unexplained".
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -60,7 +65,9 @@ struct DiagnoseOptions {
   int trials = 30;            // simulated records per Monte Carlo envelope (>= 3; 0: OAVAR only)
   std::uint64_t seed = 1;     // of the simulated records
   int envelope_candidates = 3;  // best candidates that also get the Monte Carlo views
-  bool try_pairs = true;
+  int max_effects = 3;        // members of a set verdict (1: single effects only)
+  double set_margin = 0.2;    // relative chi2 drop an added member must bring (see GrowSet)
+  double partial_shrink = 5.0;  // held-out and per-view chi2 shrink that names a partial verdict
   std::vector<Effect> effects = {std::begin(kAllEffects), std::end(kAllEffects)};
   // Told as the diagnosis advances: the stage ("baseline", "views", "candidates", "Monte Carlo
   // views", "pairs"), and how many of its steps are done of `total` (0: one step). Called from the
@@ -97,6 +104,13 @@ struct CandidateResult {
   double full_score = 0.0;       // all assessed views: chi2 improvement - 2 k
   bool full_views = false;       // Monte Carlo views assessed
   bool closes_gap = false;       // every assessed |z| <= threshold
+  // What each member added, in the order forward selection took them: the held-out chi2 before
+  // (the baseline, then the set so far, scored on this candidate's half and views) and after.
+  struct Step {
+    Effect added;
+    GapMetrics heldout_before, heldout_after;
+  };
+  std::vector<Step> steps;
   std::string id() const;        // "gauss_markov" or "bias_step+outliers"
 };
 
@@ -126,7 +140,9 @@ struct DiagnosisSummary {
   std::vector<GapRegion> regions;
   std::vector<CandidateResult> candidates;  // best first
   std::vector<SkippedEffect> skipped;
-  std::string verdict;  // "none", an effect id, or "unexplained"
+  std::string verdict;  // "none", an effect id or set ("a+b"), or "unexplained"
+  bool explains_all = true;  // false: the verdict explains most of the gap, not all (see 5. above)
+  std::vector<GapRegion> remaining;  // the verdict's (or best tried) model against the record
   int verdict_candidate = -1;  // index into candidates (also for "unexplained": the best tried)
   std::vector<AlsoConsistent> also_consistent;
   std::vector<std::string> notes;  // fallbacks taken
@@ -150,10 +166,15 @@ struct ValidationScores {
   std::optional<GapMetrics> baseline;
   std::string candidate_id;  // empty when the diagnosis has no candidate
   std::optional<GapMetrics> candidate;
+  // Every view of the second record (OAVAR exact, the others against `trials` simulated records
+  // of each model): baseline and candidate, view by view (empty when a model has no score).
+  std::vector<ViewResiduals> baseline_views, candidate_views;
 };
 // False with *why when the second record gives no usable curve.
-bool ScoreOnSecondRecord(const DiagnosisSummary& summary, std::span<const double> rate_rad_per_s,
-                         double sample_period_s, ValidationScores* scores, std::string* why);
+// `options` gives the Monte Carlo views' trials and seed (trials 0: OAVAR only).
+bool ScoreOnSecondRecord(const DiagnoseOptions& options, const DiagnosisSummary& summary,
+                         std::span<const double> rate_rad_per_s, double sample_period_s,
+                         ValidationScores* scores, std::string* why);
 
 // The record's overlapping Allan curve on 10 taus per decade with Greenhall-Riley EDFs
 // (positive values only), as the baseline fit uses it.

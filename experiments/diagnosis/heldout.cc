@@ -109,26 +109,39 @@ void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std:
   c->heldout_in_gap_views = true;
 }
 
+GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorModel& model, int h, bool gap_views,
+                        std::uint64_t seed) {
+  const HalfRecord& scored = ctx.halves[h];
+  if (!gap_views) return CurveMetrics(model, scored.curve);
+  std::string ignored;
+  return MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, model, true, ctx.options->trials, seed, &ignored),
+                   HeldoutBaseline(ctx, h, threshold).gap_views);
+}
+
 }  // namespace allanlab::experiments::detail
 
 namespace allanlab::experiments {
 
-bool ScoreOnSecondRecord(const DiagnosisSummary& summary, std::span<const double> rate, double tau0,
-                         ValidationScores* scores, std::string* why) {
+bool ScoreOnSecondRecord(const DiagnoseOptions& options, const DiagnosisSummary& summary,
+                         std::span<const double> rate, double tau0, ValidationScores* scores, std::string* why) {
   estimators::AvarCurve curve;
   if (!RecordCurve(rate, tau0, &curve, why)) return false;
-  auto score = [&](sim::SensorModel model) -> std::optional<GapMetrics> {
+  const ViewLayout layout = MakeViewLayout(tau0, static_cast<std::int64_t>(rate.size()), curve.m);
+  ViewValues observed;
+  if (!ComputeViews(layout, rate, &observed, why)) return false;
+  auto score = [&](sim::SensorModel model, std::uint64_t salt, std::vector<ViewResiduals>* views) -> std::optional<GapMetrics> {
     model.sample_rate_hz = 1.0 / tau0;
     std::string ignored;
     if (!model.IsValid(&ignored)) return std::nullopt;
+    *views = detail::RecordResiduals(rate, layout, observed, model, true, options.trials, options.seed + salt, &ignored);
     return detail::CurveMetrics(model, curve);
   };
   *scores = ValidationScores{};
-  scores->baseline = score(summary.baseline_model);
+  scores->baseline = score(summary.baseline_model, 7000, &scores->baseline_views);
   if (summary.verdict_candidate >= 0) {
     const CandidateResult& c = summary.candidates[summary.verdict_candidate];
     scores->candidate_id = c.id();
-    scores->candidate = score(c.model);
+    scores->candidate = score(c.model, 7001, &scores->candidate_views);
   }
   return true;
 }

@@ -19,4 +19,9 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
 // scored half departs from the other half's baseline beyond `threshold`.
 void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std::uint64_t seed);
 
+// `model` scored on half `h`: on the views in which that half departs from the other half's
+// baseline (`gap_views`, as HeldoutViews) or on OAVAR.
+GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorModel& model, int h, bool gap_views,
+                        std::uint64_t seed);
+
 }  // namespace allanlab::experiments::detail

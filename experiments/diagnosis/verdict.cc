@@ -96,6 +96,26 @@ double HeldoutShrink(const CandidateResult& c) {
   return c.after.has_heldout && c.after.heldout.chi2 > 0.0 ? c.heldout_before.chi2 / c.after.heldout.chi2 : 0.0;
 }
 
+// When no candidate closes the gap: the one that explains most of it, if it explains enough to be
+// named. Every view assessed, a positive penalised score, the held-out chi2 down by at least
+// ctx.options->partial_shrink, and on every view where the baseline departs (a point beyond the threshold) the
+// record's chi2 down by that factor too; of those, the best penalised score. -1 when none.
+int PickPartial(const Context& ctx, const DiagnosisSummary& s) {
+  int best = -1;
+  for (std::size_t i = 0; i < s.candidates.size(); ++i) {
+    const CandidateResult& c = s.candidates[i];
+    if (!c.full_views || c.full_score <= 0.0 || HeldoutShrink(c) < ctx.options->partial_shrink) continue;
+    bool every_view = true;
+    for (const ViewResiduals& r : s.before.views) {
+      const GapMetrics before = Metrics(r.z), after = c.after.View(r.view);
+      if (before.max_abs_z > s.threshold && after.points > 0) every_view &= after.chi2 * ctx.options->partial_shrink <= before.chi2;
+    }
+    if (!every_view) continue;
+    if (best < 0 || c.full_score > s.candidates[best].full_score) best = static_cast<int>(i);
+  }
+  return best;
+}
+
 // The acceptable candidate with the best penalised score; of those within 2 of it (which the
 // record cannot tell apart: a telegraph whose dwell outlasts the record is one step), the data the
 // fit did not see decide, the largest held-out shrink. -1 when none is acceptable.
@@ -115,41 +135,160 @@ int Pick(const Context& ctx, const DiagnosisSummary& s) {
   return chosen;
 }
 
-// Pairs of the best three single effects with a positive score (Allan-equivalent pairs skipped),
-// appended to the candidates; the best pair gets the Monte Carlo views.
-void TryPairs(const Context& ctx, DiagnosisSummary* s) {
-  std::vector<std::size_t> top;
-  for (std::size_t i = 0; i < s->candidates.size() && top.size() < 3; ++i) {
-    if (s->candidates[i].effects.size() == 1 && s->candidates[i].score > 0.0) top.push_back(i);
+// The held-out score of `current` on the half and views `next` is scored on, so that the two
+// compare (the same numbers when both are scored alike; else current's model for that half,
+// scored there the same way).
+GapMetrics HeldoutOnSameFooting(const Context& ctx, double threshold, const CandidateResult& current,
+                                const CandidateResult& next, std::uint64_t seed) {
+  if (current.heldout_half == next.heldout_half && current.heldout_in_gap_views == next.heldout_in_gap_views) {
+    return current.after.heldout;
   }
-  std::vector<std::vector<EffectInstance>> sets;
-  for (std::size_t a = 0; a < top.size(); ++a) {
-    for (std::size_t b = a + 1; b < top.size(); ++b) {
-      const auto& ea = s->candidates[top[a]].effects[0];
-      const auto& eb = s->candidates[top[b]].effects[0];
-      bool equivalent = false;
-      for (const auto& eq : AllanEquivalents(ea.effect)) equivalent |= eq.other == eb.effect;
-      if (!equivalent) sets.push_back({ea, eb});
+  sim::SensorModel model = current.heldout_model;
+  std::string ignored;
+  if (current.heldout_half != next.heldout_half &&
+      !HeldoutModel(ctx, current.effects, next.heldout_half, &model, &ignored)) {
+    return current.heldout_before;
+  }
+  return HeldoutScore(ctx, threshold, model, next.heldout_half, next.heldout_in_gap_views, seed);
+}
+
+// Whether `next` (current plus one effect) earns its place: the held-out chi2 falls by the
+// margin and by the added effect's AIC penalty; on some view the added effect shows in (the
+// registry's views) where the current set still departs, the record's chi2 falls by the margin
+// (the effect explains something it is known by); and no view within the threshold before
+// leaves it.
+bool EarnsItsPlace(const Context& ctx, double threshold, const CandidateResult& current, const CandidateResult& next,
+                   const GapMetrics& heldout_before, std::string* why) {
+  const double margin = ctx.options->set_margin;
+  const EffectInstance& added = next.effects.back();
+  const double penalty = 2.0 * static_cast<double>(EffectParameterNames(added.effect).size());
+  if (!next.after.has_heldout || !(next.after.heldout.chi2 <= (1.0 - margin) * heldout_before.chi2 - penalty)) {
+    *why = "held-out chi2 " + std::to_string(heldout_before.chi2) + " -> " + std::to_string(next.after.heldout.chi2);
+    return false;
+  }
+  const auto& shows = SpecOf(added.effect).views;
+  bool explains = false;
+  std::string unexplained;
+  for (const ViewResiduals& r : next.after.views) {
+    const GapMetrics was = current.after.View(r.view), now = Metrics(r.z);
+    if (was.points == 0) continue;
+    if (was.max_abs_z > threshold && std::find(shows.begin(), shows.end(), r.view) != shows.end()) {
+      if (now.chi2 <= (1.0 - margin) * was.chi2) {
+        explains = true;
+      } else if (unexplained.empty()) {
+        unexplained = std::string(ViewId(r.view)) + " chi2 " + std::to_string(was.chi2) + " -> " + std::to_string(now.chi2);
+      }
+    }
+    if (was.max_abs_z <= threshold && now.max_abs_z > threshold) {
+      *why = std::string(ViewId(r.view)) + " leaves the threshold";
+      return false;
     }
   }
-  // Independent refits, in parallel; kept in the order above.
-  std::vector<std::optional<CandidateResult>> tried(sets.size());
-  ReportProgress(ctx, "pairs", 0, static_cast<int>(sets.size()));
+  if (!explains) *why = unexplained.empty() ? "no view of the effect departs" : unexplained;
+  return explains;
+}
+
+bool Clashes(const std::vector<EffectInstance>& members, Effect e) {
+  for (const EffectInstance& member : members) {
+    if (member.effect == e) return true;
+    for (const auto& eq : AllanEquivalents(member.effect)) {
+      if (eq.other == e) return true;
+    }
+  }
+  return false;
+}
+
+// A single's standing for a set: the better of its penalised scores on the exact views and on
+// every view (an effect seen outside the exact views, as spikes in the kurtosis, takes part; one
+// the Monte Carlo views' noise hides, as a step beside spikes, too).
+double PoolScore(const CandidateResult& c) { return std::max(c.score, c.full_score); }
+
+// The single candidates a set may add: a positive PoolScore, one of each Allan-equivalent pair,
+// the best kPoolSize.
+std::vector<std::size_t> SetPool(const DiagnosisSummary& s) {
+  constexpr std::size_t kPoolSize = 5;
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < s.candidates.size(); ++i) {
+    const CandidateResult& c = s.candidates[i];
+    if (c.effects.size() == 1 && PoolScore(c) > 0.0) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return PoolScore(s.candidates[a]) > PoolScore(s.candidates[b]); });
+  std::vector<std::size_t> pool;
+  std::vector<EffectInstance> taken;
+  for (std::size_t i : order) {
+    if (pool.size() == kPoolSize || Clashes(taken, s.candidates[i].effects[0].effect)) continue;
+    pool.push_back(i);
+    taken.push_back(s.candidates[i].effects[0]);
+  }
+  return pool;
+}
+
+// Forward selection when no single effect closes the gap: from the single with the largest
+// held-out shrink (positive score, all views assessed), each round joins every pool effect
+// (SetPool, not already a member nor Allan-equivalent to one) to the set, refits, and takes, of
+// the kTriesPerRound joins that shrink the held-out chi2 most, the first (in that order) that earns
+// its place (EarnsItsPlace); it stops when none does, the set closes the gap or has max_effects
+// members. Every set kept is appended to the candidates with its steps (what each member added,
+// held-out chi2 before -> after).
+void GrowSet(const Context& ctx, DiagnosisSummary* s) {
+  constexpr std::size_t kTriesPerRound = 3;
+  const int max_effects = ctx.options->max_effects;
+  int seed = -1;
+  for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+    const CandidateResult& c = s->candidates[i];
+    if (c.effects.size() != 1 || !c.full_views || !c.after.has_heldout || c.full_score <= 0.0) continue;
+    if (seed < 0 || HeldoutShrink(c) > HeldoutShrink(s->candidates[seed])) seed = static_cast<int>(i);
+  }
+  if (seed < 0 || max_effects < 2) return;
+  const std::vector<std::size_t> pool = SetPool(*s);
+  CandidateResult current = s->candidates[seed];
+  current.steps = {{current.effects[0].effect, current.heldout_before, current.after.heldout}};
+  s->candidates[seed].steps = current.steps;
+  for (std::uint64_t round = 0; static_cast<int>(current.effects.size()) < max_effects && !current.closes_gap; ++round) {
+    std::vector<std::vector<EffectInstance>> sets;
+    for (std::size_t i : pool) {
+      const EffectInstance& e = s->candidates[i].effects[0];
+      if (Clashes(current.effects, e.effect)) continue;
+      sets.push_back(current.effects);
+      sets.back().push_back(e);
+    }
+    // Independent refits, in parallel; kept in pool order, so the outcome is the same for any
+    // thread count.
+    std::vector<std::optional<CandidateResult>> tried(sets.size());
+    ReportProgress(ctx, "sets", 0, static_cast<int>(sets.size()));
 #pragma omp parallel for schedule(dynamic, 1)
-  for (std::size_t i = 0; i < sets.size(); ++i) {
-    std::string why;
-    tried[i] = TryCandidate(ctx, *s, sets[i], &why);
-  }
-  std::vector<CandidateResult> pairs;
-  for (auto& c : tried) {
-    if (c) pairs.push_back(std::move(*c));
-  }
-  std::stable_sort(pairs.begin(), pairs.end(), ByScore);
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    if (i == 0 && pairs[i].score > 0.0) FullAssess(ctx, *s, &pairs[i], 2000);
-    if (!pairs[i].full_views) pairs[i].full_score = pairs[i].score;
-    pairs[i].closes_gap = ClosesGap(pairs[i].after, s->threshold);
-    s->candidates.push_back(std::move(pairs[i]));
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      std::string why;
+      tried[i] = TryCandidate(ctx, *s, sets[i], &why);
+    }
+    std::vector<CandidateResult> trials;
+    for (auto& c : tried) {
+      if (c) trials.push_back(std::move(*c));
+    }
+    std::stable_sort(trials.begin(), trials.end(), [](const CandidateResult& a, const CandidateResult& b) {
+      return HeldoutShrink(a) > HeldoutShrink(b);
+    });
+    if (trials.size() > kTriesPerRound) trials.resize(kTriesPerRound);
+    bool kept = false;
+    for (std::size_t t = 0; t < trials.size() && !kept; ++t) {
+      CandidateResult& next = trials[t];
+      FullAssess(ctx, *s, &next, 2000 + 10 * round + t);
+      next.closes_gap = ClosesGap(next.after, s->threshold);
+      const GapMetrics before =
+          HeldoutOnSameFooting(ctx, s->threshold, current, next, ctx.options->seed + 3000 + 10 * round + t);
+      std::string why;
+      if (!EarnsItsPlace(ctx, s->threshold, current, next, before, &why)) {
+        s->notes.push_back("set: " + next.id() + " not kept over " + current.id() + " (" + why + ")");
+        continue;
+      }
+      next.steps = current.steps;
+      next.steps.push_back({next.effects.back().effect, before, next.after.heldout});
+      current = next;
+      s->candidates.push_back(next);
+      kept = true;
+    }
+    if (!kept) return;
   }
 }
 
@@ -223,9 +362,13 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
   RankSingles(ctx, s);
   AssessMonteCarlo(ctx, s);
   int best = Pick(ctx, *s);
-  if (best < 0 && o.try_pairs) {
-    TryPairs(ctx, s);
+  if (best < 0 && o.max_effects > 1) {
+    GrowSet(ctx, s);
     best = Pick(ctx, *s);
+  }
+  if (best < 0) {
+    best = PickPartial(ctx, *s);
+    s->explains_all = false;
   }
   if (best < 0) {
     s->verdict = "unexplained";
@@ -235,11 +378,18 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
         s->verdict_candidate = static_cast<int>(i);
       }
     }
-    return;
+  } else {
+    s->verdict_candidate = ResolveEquivalents(ctx, *s, best);
+    s->verdict = s->candidates[s->verdict_candidate].id();
+    ListAlsoConsistent(ctx, s);
   }
-  s->verdict_candidate = ResolveEquivalents(ctx, *s, best);
-  s->verdict = s->candidates[s->verdict_candidate].id();
-  ListAlsoConsistent(ctx, s);
+  if (s->verdict_candidate >= 0) {
+    CandidateResult& c = s->candidates[s->verdict_candidate];
+    if (c.steps.empty() && c.effects.size() == 1 && c.after.has_heldout) {
+      c.steps = {{c.effects[0].effect, c.heldout_before, c.after.heldout}};
+    }
+    s->remaining = FindGapRegions(c.after.views, s->threshold);
+  }
 }
 
 }  // namespace allanlab::experiments::detail

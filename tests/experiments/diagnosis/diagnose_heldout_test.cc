@@ -25,7 +25,7 @@ DiagnosisSummary DiagnoseStepAt(double time_s) {
   const std::vector<double> record = model.Generate(31, 0, 60000);
   DiagnoseOptions options;
   options.trials = 12;
-  options.try_pairs = false;
+  options.max_effects = 1;
   DiagnosisSummary s;
   EXPECT_TRUE(DiagnoseRecord(options, record, 0.01, &s)) << s.message;
   return s;

@@ -23,7 +23,7 @@ TEST(DiagnoseStatTest, ControlsAreCleanAtTheStatedRate) {
   DiagnoseOptions options;
   options.trials = 0;
   options.false_alarm = 0.05;
-  options.try_pairs = false;
+  options.max_effects = 1;
   options.envelope_candidates = 1;
   int flagged = 0;
   for (int r = 0; r < 20; ++r) {

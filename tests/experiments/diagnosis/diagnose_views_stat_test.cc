@@ -26,7 +26,7 @@ TEST(DiagnoseViewsStatTest, MonteCarloViewsFlagControlsAtMostAtTheStatedRate) {
   DiagnoseOptions options;
   options.trials = 8;
   options.false_alarm = 0.05;
-  options.try_pairs = false;
+  options.max_effects = 1;
   options.effects.clear();  // where, not which: no candidate refits
   int flagged = 0, with_all_views = 0;
   for (int r = 0; r < 40; ++r) {
