@@ -21,11 +21,9 @@ bool AddTerm(Term t, sim::SensorModel* model, std::string* why) {
   return true;
 }
 
+// Replaces a band-limit the model holds (the baseline's first-order fit, or the user's sensor's):
+// the candidate is the record's filter, not a second one in series.
 bool AddBandwidth(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
-  if (model->band_limit.enabled()) {
-    *why = "the model already has a band-limit";
-    return false;
-  }
   const double order = Param(e, "order");
   if (order != 1.0 && order != 2.0) {
     *why = "bandwidth: order must be 1 or 2";

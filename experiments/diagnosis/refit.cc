@@ -193,6 +193,9 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     if (free_parameters && !kept.empty()) term_sets.push_back(without_ramp(kept));
   }
   const estimators::AvarCurve fit_curve = spec.WithoutHeldAdditive(curve);
+  const bool replaces_band_limit = std::any_of(effects->begin(), effects->end(), [](const EffectInstance& e) {
+    return e.effect == Effect::kBandwidth;
+  });
   double best_aic = 0.0;
   for (const auto& term_set : term_sets)
   for (const auto& start : starts) {
@@ -200,7 +203,8 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     po.method = estimators::FitMethod::kGls;
     po.terms = term_set;
     for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
-    if (auto band = spec.HeldBandLimitTerm()) po.extra.push_back(std::move(band));
+    // A band-limit candidate replaces the held one (AddBandwidth): not both in series.
+    if (auto band = spec.HeldBandLimitTerm(); band && !replaces_band_limit) po.extra.push_back(std::move(band));
     estimators::ParametricFitSummary ps;
     if (!estimators::FitAvarModelWithTerms(po, fit_curve, &ps)) {
       // As the baseline: WLS when the GLS covariance is singular.
