@@ -199,22 +199,62 @@ class InputScale {
   double angle_to_si_ = 1.0;
 };
 
-// Reads the record in SI units (rad/s or rad) and computes the curve in memory.
+// The curve of values in the record's units (report->record says which, and the sample rate),
+// converted to SI (rad/s or rad) in place.
+std::optional<Failure> CurveOfValues(const Plan& plan, std::vector<double>* values, AvarReport* report) {
+  InputScale(plan.input, report->record.units).Apply(*values);
+  report->input_units = report->record.units;
+  estimators::AvarOptions options = plan.avar;
+  options.sample_period_s = 1.0 / report->record.sample_rate_hz;
+  // The record is not needed afterwards: its storage becomes the integrated record.
+  if (!estimators::ComputeAvarInPlace(options, values, &report->summary)) {
+    return Runtime(plan.read.path + ": " + report->summary.message);
+  }
+  return std::nullopt;
+}
+
+// Reads the record and computes its curve in memory.
 std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   std::vector<double> values;
   RecordError error;
   if (!ReadRecordValues(plan.read, &values, &report->record, &error)) {
     return Failure{error.exit_code, error.message};
   }
-  InputScale(plan.input, report->record.units).Apply(values);
-  report->input_units = report->record.units;
-  estimators::AvarOptions options = plan.avar;
-  options.sample_period_s = 1.0 / report->record.sample_rate_hz;
-  // The record is not needed afterwards: its storage becomes the integrated record.
-  if (!estimators::ComputeAvarInPlace(options, &values, &report->summary)) {
-    return Runtime(plan.read.path + ": " + report->summary.message);
+  return CurveOfValues(plan, &values, report);
+}
+
+// A record handed over in memory (ComputeCurveFromSamples): described as the reader describes a
+// file, after the checks the reader makes (units stated, finite values, enough samples).
+std::optional<Failure> DescribeSamples(const AvarCommandOptions& o, const Plan& plan,
+                                       const std::vector<double>& values, RecordInfo* info) {
+  if (plan.read.units.empty()) {
+    return Usage(o.path + ": units are needed (" +
+                 std::string(plan.input == InputKind::kAngle ? "deg, rad or arcsec" : "deg/s, deg/h or rad/s") + ")");
   }
+  if (!o.rate_hz) return Usage(o.path + ": the sample rate is needed");
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      return Runtime(o.path + ": sample " + std::to_string(i) + " is not finite (" + ShortestDecimal(values[i]) + ")");
+    }
+  }
+  if (static_cast<std::int64_t>(values.size()) < plan.read.min_samples) {
+    return Runtime(o.path + ": " + std::to_string(values.size()) + " samples; at least " +
+                   std::to_string(plan.read.min_samples) + " are needed");
+  }
+  info->path = o.path;
+  info->column = o.path;
+  info->units = plan.read.units;
+  info->units_source = "units";
+  info->samples = static_cast<std::int64_t>(values.size());
+  info->sample_rate_hz = *o.rate_hz;
+  info->rate_source = "rate";
   return std::nullopt;
+}
+
+// A single column's values in the record's units to a rate in rad/s (angle input differenced).
+void RateToSi(const Plan& plan, const RecordInfo& info, std::vector<double>* values) {
+  InputScale(plan.input, info.units).Apply(*values);
+  if (plan.input == InputKind::kAngle) *values = estimators::AngleToRate(*values, 1.0 / info.sample_rate_hz);
 }
 
 // One column of a several-column read to SI: a gyro's as InputScale, an accelerometer's to m/s^2.
@@ -580,6 +620,41 @@ int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& c
   return kExitOk;
 }
 
+int ComputeCurveFromSamples(const AvarCommandOptions& options, std::vector<double> values,
+                            AvarReport* report, std::string* error) {
+  Plan plan;
+  std::optional<Failure> failure;
+  if (SeveralColumns(options) || options.stream) failure = Usage("one column in memory: no columns, imu or stream");
+  if (!failure) failure = MakePlan(options, &plan);
+  if (!failure) failure = DescribeSamples(options, plan, values, &report->record);
+  if (!failure) {
+    report->output_unit = plan.output_unit;
+    report->taus_text = options.taus;
+    failure = CurveOfValues(plan, &values, report);
+  }
+  if (failure) {
+    *error = failure->message;
+    return failure->code;
+  }
+  report->input_units = report->record.units;
+  return kExitOk;
+}
+
+int RateFromSamples(const AvarCommandOptions& options, std::vector<double>* values, RecordInfo* info,
+                    std::string* error) {
+  Plan plan;
+  std::optional<Failure> failure;
+  if (SeveralColumns(options) || options.stream) failure = Usage("one column in memory: no columns, imu or stream");
+  if (!failure) failure = MakePlan(options, &plan);
+  if (!failure) failure = DescribeSamples(options, plan, *values, info);
+  if (failure) {
+    *error = failure->message;
+    return failure->code;
+  }
+  RateToSi(plan, *info, values);
+  return kExitOk;
+}
+
 bool SeveralColumns(const AvarCommandOptions& options) {
   return options.imu || !options.columns.empty() || options.column.find(',') != std::string::npos;
 }
@@ -613,8 +688,7 @@ int ReadRateFromFile(const AvarCommandOptions& options, const std::string& comma
     *error = read_error.message;
     return read_error.exit_code;
   }
-  InputScale(plan.input, info->units).Apply(*rate);
-  if (plan.input == InputKind::kAngle) *rate = estimators::AngleToRate(*rate, 1.0 / info->sample_rate_hz);
+  RateToSi(plan, *info, rate);
   WarnAboutRecord(*info, command);
   return kExitOk;
 }

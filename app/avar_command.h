@@ -29,6 +29,9 @@
 
 namespace allanlab::app {
 
+struct AvarReport;
+struct RecordInfo;
+
 struct AvarCommandOptions {
   std::string path;
   std::string column;  // a comma list reads several columns, as `columns`
@@ -65,9 +68,18 @@ int RunAvar(const AvarCommandOptions& options, const std::string& command_line);
 void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options);
 // ... and reading + computing it in memory as `avar` does (warnings printed under `command`).
 // Returns kExitOk, or the exit code with *error set. report->provenance is left to the caller.
-struct AvarReport;
 int ComputeCurveFromFile(const AvarCommandOptions& options, const std::string& command,
                          AvarReport* report, std::string* error);
+
+// A record already in memory (the Python module): `values` in options.units (rate or angle, as
+// options.type), sampled at *options.rate_hz; options.path names it in messages. The curve is
+// computed as ComputeCurveFromFile computes a file's; the same checks give the same errors (units
+// and rate required, every value finite, enough samples). Nothing is printed.
+int ComputeCurveFromSamples(const AvarCommandOptions& options, std::vector<double> values,
+                            AvarReport* report, std::string* error);
+// ... and its rate in rad/s as ReadRateFromFile gives a file's (angle input differenced).
+int RateFromSamples(const AvarCommandOptions& options, std::vector<double>* values, RecordInfo* info,
+                    std::string* error);
 
 // Several columns asked (--columns, a comma list in --column, or --imu).
 bool SeveralColumns(const AvarCommandOptions& options);
@@ -80,7 +92,6 @@ int ComputeCurvesFromFile(const AvarCommandOptions& options, const std::string& 
 // Reading the record alone, as `avar` reads it, converted to rate samples in rad/s (angle input
 // differenced); *info describes the file (sample rate, dropped values, time steps). Returns
 // kExitOk, or the exit code with *error set. Warnings are printed under `command`.
-struct RecordInfo;
 int ReadRateFromFile(const AvarCommandOptions& options, const std::string& command,
                      std::vector<double>* rate_rad_per_s, RecordInfo* info, std::string* error);
 

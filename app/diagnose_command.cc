@@ -220,8 +220,10 @@ void WriteValidation(std::ostream& os, const Json& v, bool markdown) {
   }
 }
 
+}  // namespace
+
 Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
-                   std::optional<RateUnit> unit = std::nullopt) {
+                   std::optional<RateUnit> unit) {
   Json j;
   j["summary"] = PlainJson(MakePlainSummary(s, unit));
   const Json regions = RegionsJson(s.regions);
@@ -292,6 +294,8 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   j["provenance"] = ProvenanceJson(p);
   return j;
 }
+
+namespace {
 
 // How a gap region departs: the record above or below the model, or for the block-mean views
 // (x: block length) the step's time or the settling's time constant.
@@ -394,6 +398,20 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown,
   for (const auto& k : s.skipped) os << (markdown ? "- " : "  ") << "not tried: " << EffectId(k.effect) << " (" << k.reason << ")\n";
   for (const auto& n : s.notes) os << (markdown ? "- " : "  ") << "note: " << n << "\n";
 }
+
+}  // namespace
+
+std::optional<CommandFailure> MakeDiagnoseOptions(const DiagnoseCommandOptions& o, DiagnoseOptions* d) {
+  if (auto f = BaselineOptions(o, d)) return f;
+  d->trials = o.trials;
+  d->seed = o.seed;
+  d->false_alarm = o.false_alarm;
+  std::string why;
+  if (!d->IsValid(&why)) return UsageFailure(why);
+  return std::nullopt;
+}
+
+namespace {
 
 // The diagnosis settings, for the provenance.
 void AddDiagnosisSettings(const DiagnoseCommandOptions& o, Provenance* p) {
@@ -528,11 +546,7 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
 std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::string& command_line) {
   std::string why;
   DiagnoseOptions d;
-  if (auto f = BaselineOptions(o, &d)) return f;
-  d.trials = o.trials;
-  d.seed = o.seed;
-  d.false_alarm = o.false_alarm;
-  if (!d.IsValid(&why)) return UsageFailure(why);
+  if (auto f = MakeDiagnoseOptions(o, &d)) return f;
   if (o.jobs < 0 || o.jobs > 256) return UsageFailure("--jobs must be in [1, 256] (0 or unset: every core)");
   if (o.jobs > 0) omp_set_num_threads(o.jobs);
   const bool curve_mode = !o.curve.path.empty();

@@ -31,12 +31,16 @@
 // Exit codes: 2 usage, 1 unreadable file or a record the diagnosis cannot use (too short,
 // constant, non-finite values without --drop-nonfinite), 0 otherwise (whatever the verdict).
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "app/avar_command.h"
 #include "app/curve_options.h"
+#include "app/provenance.h"
+#include "app/rate_units.h"
 #include "app/subcommand.h"
+#include "experiments/diagnosis/diagnose.h"
 
 namespace allanlab::app {
 
@@ -52,6 +56,17 @@ struct DiagnoseCommandOptions {
   std::string json_path, report_path, plot_path, html_path, validate_path;
   CurveCommandOptions curve;  // --curve mode (app/curve_options.h)
 };
+
+// Shared with the Python module (python/), which diagnoses a record in memory: the diagnosis
+// options the command line asks for (baseline, trials, seed, false alarm; a failure is the error
+// `diagnose` reports) ...
+std::optional<CommandFailure> MakeDiagnoseOptions(const DiagnoseCommandOptions& o,
+                                                  experiments::DiagnoseOptions* d);
+// ... and the JSON `diagnose --json` writes for one column (validation: null, or the scores on a
+// second record; unit: the record's rate unit for the plain summary, none for deg/h only).
+nlohmann::ordered_json DiagnosisJson(const experiments::DiagnosisSummary& s, const Provenance& p,
+                                     const nlohmann::ordered_json& validation,
+                                     std::optional<RateUnit> unit = std::nullopt);
 
 Subcommand AddDiagnoseCommand(CLI::App* parent);
 int RunDiagnose(const DiagnoseCommandOptions& options, const std::string& command_line);

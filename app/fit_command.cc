@@ -221,9 +221,11 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
   }
 }
 
+}  // namespace
+
 nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::ModelFitSummary& m,
                                const estimators::BandwidthEstimate& bw, const Provenance& p,
-                               ImuSensor sensor = ImuSensor::kGyro) {
+                               ImuSensor sensor) {
   const estimators::FitSummary& s = m.fit;
   const std::vector<estimators::ParametricEstimate>& extra = m.extra;
   nlohmann::ordered_json j;
@@ -347,6 +349,8 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
   return j;
 }
 
+namespace {
+
 AllanPlot FitPlot(const AvarReport& report, const estimators::AvarCurve& curve,
                   const estimators::FitSummary& s, const sim::SensorModel* fitted_model) {
   AllanPlot plot = AvarPlot(report);  // data with interval bars
@@ -433,22 +437,16 @@ int FitInput(const FitCommandOptions& o, const AvarCommandOptions& curve_options
   return kExitOk;
 }
 
-// One curve's fit and everything printed from it.
-struct FittedAxis {
-  estimators::AvarCurve curve;  // the taus fitted
-  estimators::ModelFitSummary fitted;
-  std::optional<sim::SensorModel> fitted_model;  // with parametric terms
-  estimators::BandwidthEstimate bandwidth;
-};
-
 // The record, and the column when several are fitted, for messages.
 std::string Where(const AvarReport& report) {
   return report.record.columns.size() > 1 ? report.record.path + ": column " + report.record.column
                                           : report.record.path;
 }
 
-std::optional<Failure> FitAxis(const FitCommandOptions& o, const estimators::ModelFitOptions& fit, double max_tau,
-                               const AvarReport* report, FittedAxis* axis) {
+}  // namespace
+
+std::optional<CommandFailure> FitAxis(const FitCommandOptions& o, const estimators::ModelFitOptions& fit,
+                                      double max_tau, const AvarReport* report, FittedAxis* axis) {
   std::string why;
   int parameters = static_cast<int>(fit.terms.size());
   for (const auto& t : fit.extra) parameters += static_cast<int>(t->parameters().size());
@@ -514,6 +512,71 @@ Provenance FitProvenance(const FitCommandOptions& o, const AvarReport& report, c
 
   return p;
 }
+
+std::optional<CommandFailure> MakeModelFitOptions(const FitCommandOptions& o, estimators::ModelFitOptions* fit_out,
+                                                  double* max_tau_out) {
+  std::string why;
+  estimators::ModelFitOptions& fit = *fit_out;
+  fit = estimators::ModelFitOptions();
+  if (!ParseMethod(o.method, &fit.method)) {
+    return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
+  }
+  fit.terms.clear();
+  if (o.band_limit == "auto") fit.band_limit = estimators::BandLimitPolicy::kAuto;
+  else if (o.band_limit == "off") fit.band_limit = estimators::BandLimitPolicy::kOff;
+  else return Failure{kExitUsageError, "--band-limit: unknown '" + o.band_limit + "' (expected auto or off)"};
+  if (o.bw_sampling == "average") fit.bw_sampling = sim::OutputSampling::kAverage;
+  else if (o.bw_sampling == "point") fit.bw_sampling = sim::OutputSampling::kPoint;
+  else return Failure{kExitUsageError, "--bw-sampling: unknown '" + o.bw_sampling + "' (expected average or point)"};
+  if (o.bw_oversampling < 1 || o.bw_oversampling > 256) {
+    return Failure{kExitUsageError, "--bw-oversampling: must be an integer in [1, 256], got " +
+                                        std::to_string(o.bw_oversampling)};
+  }
+  fit.bw_oversampling = o.bw_oversampling;
+  if (!std::isfinite(o.min_tau_s) || o.min_tau_s < 0.0) {
+    return Failure{kExitUsageError, "--min-tau: must be a finite number >= 0 s"};
+  }
+  if (!std::isfinite(o.max_tau_s) || o.max_tau_s < 0.0) {
+    return Failure{kExitUsageError, "--max-tau: must be a finite number > 0 s (0: no limit)"};
+  }
+  const double max_tau = o.max_tau_s > 0.0 ? o.max_tau_s : std::numeric_limits<double>::infinity();
+  if (o.min_tau_s >= max_tau) {
+    return Failure{kExitUsageError, "--min-tau must be below --max-tau"};
+  }
+  *max_tau_out = max_tau;
+  if (!ParseTerms(o.terms, fit.bw_sampling, fit.bw_oversampling, &fit.terms, &fit.extra, &why)) {
+    return Failure{kExitUsageError, "--terms: " + why};
+  }
+  if (!fit.extra.empty() && fit.method == FitMethod::kSlope) {
+    return Failure{kExitUsageError, "--terms: H, GM, RTS and BW need a fit method (gls, wls or logwls), not slope"};
+  }
+  fit.select_terms = o.select_terms;
+  fit.try_extended_on_poor_fit = true;
+  fit.cross_check_log_wls = true;
+  if (o.uncertainty == "bootstrap") {
+    fit.uncertainty = estimators::FitUncertainty::kBootstrap;
+  } else if (o.uncertainty != "covariance") {
+    return Failure{kExitUsageError, "--uncertainty: unknown '" + o.uncertainty + "' (expected covariance or bootstrap)"};
+  }
+  fit.bootstrap.trials = o.bootstrap_trials;
+  fit.bootstrap.seed = o.seed;
+  if (fit.uncertainty == estimators::FitUncertainty::kBootstrap && !fit.bootstrap.IsValid(&why)) {
+    return Failure{kExitUsageError, "--bootstrap-trials: " + why};
+  }
+  return std::nullopt;
+}
+
+AvarCommandOptions FitCurveOptions(const FitCommandOptions& o) {
+  AvarCommandOptions curve_options = o.curve;
+  curve_options.estimator = "overlapping";
+  // The curve's EDFs only seed the pilot fit (GLS weighs by the covariance model): identify the
+  // noise type per tau from at most 2^15 averages instead of the whole record at every short tau
+  // (results/benchmarks/fit.md: the CPU it spares, and that the fitted values do not move).
+  curve_options.identification_max_averages = kIdentificationMaxAverages;
+  return curve_options;
+}
+
+namespace {
 
 // Several columns of one record (an IMU): a table per column, one JSON, one Kalibr YAML for the
 // whole IMU and one plot with every axis (app/imu_report.h).
@@ -585,50 +648,8 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     return Failure{kExitUsageError, "give FILE or --curve CSV (with --record-length and --rate), one of them"};
   }
   estimators::ModelFitOptions fit;
-  if (!ParseMethod(o.method, &fit.method)) {
-    return Failure{kExitUsageError, "--method: unknown '" + o.method + "' (expected slope, wls, logwls or gls)"};
-  }
-  fit.terms.clear();
-  if (o.band_limit == "auto") fit.band_limit = estimators::BandLimitPolicy::kAuto;
-  else if (o.band_limit == "off") fit.band_limit = estimators::BandLimitPolicy::kOff;
-  else return Failure{kExitUsageError, "--band-limit: unknown '" + o.band_limit + "' (expected auto or off)"};
-  if (o.bw_sampling == "average") fit.bw_sampling = sim::OutputSampling::kAverage;
-  else if (o.bw_sampling == "point") fit.bw_sampling = sim::OutputSampling::kPoint;
-  else return Failure{kExitUsageError, "--bw-sampling: unknown '" + o.bw_sampling + "' (expected average or point)"};
-  if (o.bw_oversampling < 1 || o.bw_oversampling > 256) {
-    return Failure{kExitUsageError, "--bw-oversampling: must be an integer in [1, 256], got " +
-                                        std::to_string(o.bw_oversampling)};
-  }
-  fit.bw_oversampling = o.bw_oversampling;
-  if (!std::isfinite(o.min_tau_s) || o.min_tau_s < 0.0) {
-    return Failure{kExitUsageError, "--min-tau: must be a finite number >= 0 s"};
-  }
-  if (!std::isfinite(o.max_tau_s) || o.max_tau_s < 0.0) {
-    return Failure{kExitUsageError, "--max-tau: must be a finite number > 0 s (0: no limit)"};
-  }
-  const double max_tau = o.max_tau_s > 0.0 ? o.max_tau_s : std::numeric_limits<double>::infinity();
-  if (o.min_tau_s >= max_tau) {
-    return Failure{kExitUsageError, "--min-tau must be below --max-tau"};
-  }
-  if (!ParseTerms(o.terms, fit.bw_sampling, fit.bw_oversampling, &fit.terms, &fit.extra, &why)) {
-    return Failure{kExitUsageError, "--terms: " + why};
-  }
-  if (!fit.extra.empty() && fit.method == FitMethod::kSlope) {
-    return Failure{kExitUsageError, "--terms: H, GM, RTS and BW need a fit method (gls, wls or logwls), not slope"};
-  }
-  fit.select_terms = o.select_terms;
-  fit.try_extended_on_poor_fit = true;
-  fit.cross_check_log_wls = true;
-  if (o.uncertainty == "bootstrap") {
-    fit.uncertainty = estimators::FitUncertainty::kBootstrap;
-  } else if (o.uncertainty != "covariance") {
-    return Failure{kExitUsageError, "--uncertainty: unknown '" + o.uncertainty + "' (expected covariance or bootstrap)"};
-  }
-  fit.bootstrap.trials = o.bootstrap_trials;
-  fit.bootstrap.seed = o.seed;
-  if (fit.uncertainty == estimators::FitUncertainty::kBootstrap && !fit.bootstrap.IsValid(&why)) {
-    return Failure{kExitUsageError, "--bootstrap-trials: " + why};
-  }
+  double max_tau = 0.0;
+  if (auto failure = MakeModelFitOptions(o, &fit, &max_tau)) return failure;
 
   std::vector<std::pair<std::string, std::string>> outputs = {
       {"FILE", o.published.path.empty() ? o.curve.path : o.published.path}};
@@ -642,12 +663,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   if (!o.kalibr_path.empty() && !kalibr.Open(o.kalibr_path, &why)) return Failure{kExitRuntimeError, why};
   if (!o.plot_path.empty() && !png.Open(o.plot_path, &why)) return Failure{kExitRuntimeError, why};
 
-  AvarCommandOptions curve_options = o.curve;
-  curve_options.estimator = "overlapping";
-  // The curve's EDFs only seed the pilot fit (GLS weighs by the covariance model): identify the
-  // noise type per tau from at most 2^15 averages instead of the whole record at every short tau
-  // (results/benchmarks/fit.md: the CPU it spares, and that the fitted values do not move).
-  curve_options.identification_max_averages = kIdentificationMaxAverages;
+  const AvarCommandOptions curve_options = FitCurveOptions(o);
   if (SeveralColumns(o.curve)) {
     if (!o.published.path.empty()) return Failure{kExitUsageError, "--curve is one curve: drop --columns/--imu"};
     return FitSeveral(o, fit, max_tau, curve_options, command_line, &json, &kalibr, &png);
@@ -684,7 +700,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
 
 Subcommand AddFitCommand(CLI::App* parent) {
   auto options = std::make_shared<FitCommandOptions>();
-  options->curve.taus = "dense:10";
+  options->curve.taus = kFitTaus;
   CLI::App* cmd = parent->add_subcommand(
       kCommand,
       "IEEE 952 coefficients (Q, N, B, K, R) of a recorded gyro with uncertainties, from its "

@@ -20,13 +20,24 @@
 // Exit codes as app/subcommand.h: 2 usage, 1 unreadable file, curve or fit failure.
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "app/avar_command.h"
+#include "app/avar_report.h"
+#include "app/imu_columns.h"
+#include "app/provenance.h"
 #include "app/curve_options.h"
 #include "app/subcommand.h"
+#include "estimators/fit/bandwidth_estimate.h"
+#include "estimators/fit/fit_model.h"
+#include "sim/sensor_model.h"
 
 namespace allanlab::app {
+
+// The tau grid `fit` computes the curve on unless --taus says otherwise.
+inline constexpr const char* kFitTaus = "dense:10";
 
 struct FitCommandOptions {
   AvarCommandOptions curve;  // record and curve (estimator fixed to overlapping)
@@ -48,6 +59,31 @@ struct FitCommandOptions {
   double max_tau_s = 0.0;  // 0: no upper limit
   std::string json_path, kalibr_path, plot_path;
 };
+
+// The steps of `fit`, shared with the Python module (python/), which fits a record in memory:
+// the fit options the command line asks for (--method, --terms, --band-limit, --min-tau ...; a
+// failure is the usage error `fit` reports), with the tau range's upper end in *max_tau_s (inf
+// when open) ...
+std::optional<CommandFailure> MakeModelFitOptions(const FitCommandOptions& o, estimators::ModelFitOptions* fit,
+                                                  double* max_tau_s);
+// ... the options of the curve that is fitted (overlapping AVAR on o.curve's taus) ...
+AvarCommandOptions FitCurveOptions(const FitCommandOptions& o);
+// ... one curve's fit (the record must support the asked terms, app/record_support.h; warnings
+// about weakly supported terms printed on stderr) ...
+struct FittedAxis {
+  estimators::AvarCurve curve;  // the taus fitted
+  estimators::ModelFitSummary fitted;
+  std::optional<sim::SensorModel> fitted_model;  // with parametric terms
+  estimators::BandwidthEstimate bandwidth;
+};
+std::optional<CommandFailure> FitAxis(const FitCommandOptions& o, const estimators::ModelFitOptions& fit,
+                                      double max_tau_s, const AvarReport* report, FittedAxis* axis);
+Provenance FitProvenance(const FitCommandOptions& o, const AvarReport& report, const estimators::FitSummary& summary,
+                         const std::string& command_line);
+// ... and the JSON `fit --json` writes for it.
+nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::ModelFitSummary& m,
+                               const estimators::BandwidthEstimate& bw, const Provenance& p,
+                               ImuSensor sensor = ImuSensor::kGyro);
 
 Subcommand AddFitCommand(CLI::App* parent);
 int RunFit(const FitCommandOptions& options, const std::string& command_line);

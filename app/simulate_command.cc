@@ -174,10 +174,17 @@ AllanPlot MakePlot(const AllanNumbers& a, const sim::SensorModel& model, const s
   return plot;
 }
 
-// Loads the model named by the options and applies --rate; usage errors are the user's (bad name,
-// --rate), runtime errors the file's.
-std::optional<Failure> LoadModel(const SimulateOptions& o, sim::SensorModel* model) {
+}  // namespace
+
+// Usage errors are the user's (bad name, --rate), runtime errors the file's.
+std::optional<CommandFailure> LoadSimulateModel(const SimulateOptions& o, sim::SensorModel* model) {
   std::string why;
+  if (o.preset.empty() == o.sensor_path.empty()) {
+    return Usage("give exactly one of --preset NAME or --sensor SPEC.yaml");
+  }
+  if (o.rate_hz && !PositiveFinite(*o.rate_hz)) {
+    return Usage("--rate must be a finite number of Hz > 0, got " + ShortestDecimal(*o.rate_hz));
+  }
   if (!o.preset.empty()) {
     const std::vector<std::string> names = sim::PresetNames();
     if (std::find(names.begin(), names.end(), o.preset) == names.end()) {
@@ -197,11 +204,32 @@ std::optional<Failure> LoadModel(const SimulateOptions& o, sim::SensorModel* mod
   return std::nullopt;
 }
 
+std::optional<CommandFailure> SimulateSampleCount(const SimulateOptions& o, double sample_rate_hz,
+                                                  std::int64_t* n) {
+  if (!PositiveFinite(o.duration_s)) {
+    return Usage("--duration must be a finite number of seconds > 0, got " + ShortestDecimal(o.duration_s));
+  }
+  const double fs = sample_rate_hz;
+  const double samples = std::round(o.duration_s * fs);
+  // 2^53: beyond it sample times are no longer exact in a double, and no machine holds it anyway.
+  if (!(samples <= 9007199254740992.0)) {
+    return Usage("--duration " + ShortestDecimal(o.duration_s) + " s at " + ShortestDecimal(fs) +
+                 " Hz is too many samples");
+  }
+  *n = static_cast<std::int64_t>(samples);
+  if (*n < kMinSimulateSamples) {
+    return Usage("--duration " + ShortestDecimal(o.duration_s) + " s at " + ShortestDecimal(fs) +
+                 " Hz gives " + std::to_string(*n) + " samples; at least " +
+                 std::to_string(kMinSimulateSamples) +
+                 " are needed (duration >= " + ShortestDecimal(kMinSimulateSamples / fs) + " s)");
+  }
+  return std::nullopt;
+}
+
+namespace {
+
 std::optional<Failure> Simulate(const SimulateOptions& o, const std::string& command_line) {
   // 1. The command line on its own.
-  if (o.preset.empty() == o.sensor_path.empty()) {
-    return Usage("give exactly one of --preset NAME or --sensor SPEC.yaml");
-  }
   RecordFormat format;
   if (o.format == "csv") {
     format = RecordFormat::kCsv;
@@ -213,32 +241,14 @@ std::optional<Failure> Simulate(const SimulateOptions& o, const std::string& com
   RateUnit unit;
   std::string why;
   if (!ParseRateUnit(o.units, &unit, &why)) return Usage("--units: " + why);
-  if (o.rate_hz && !PositiveFinite(*o.rate_hz)) {
-    return Usage("--rate must be a finite number of Hz > 0, got " + ShortestDecimal(*o.rate_hz));
-  }
-  if (!PositiveFinite(o.duration_s)) {
-    return Usage("--duration must be a finite number of seconds > 0, got " +
-                 ShortestDecimal(o.duration_s));
-  }
   if (o.output_path.empty()) return Usage("-o OUT is required");
 
   // 2. The sensor and the record length.
   sim::SensorModel model;
-  if (auto failure = LoadModel(o, &model)) return failure;
+  if (auto failure = LoadSimulateModel(o, &model)) return failure;
   const double fs = model.sample_rate_hz;
-  const double samples = std::round(o.duration_s * fs);
-  // 2^53: beyond it sample times are no longer exact in a double, and no machine holds it anyway.
-  if (!(samples <= 9007199254740992.0)) {
-    return Usage("--duration " + ShortestDecimal(o.duration_s) + " s at " + ShortestDecimal(fs) +
-                 " Hz is too many samples");
-  }
-  const auto n = static_cast<std::int64_t>(samples);
-  if (n < kMinSimulateSamples) {
-    return Usage("--duration " + ShortestDecimal(o.duration_s) + " s at " + ShortestDecimal(fs) +
-                 " Hz gives " + std::to_string(n) + " samples; at least " +
-                 std::to_string(kMinSimulateSamples) +
-                 " are needed (duration >= " + ShortestDecimal(kMinSimulateSamples / fs) + " s)");
-  }
+  std::int64_t n = 0;
+  if (auto failure = SimulateSampleCount(o, fs, &n)) return failure;
 
   // 3. Every output opened before the work, so that a bad path or a missing gnuplot costs nothing.
   const std::string sidecar_path = o.output_path + ".json";

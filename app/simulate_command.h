@@ -18,6 +18,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/subcommand.h"
+#include "sim/sensor_model.h"
 
 namespace allanlab::app {
 
@@ -41,6 +42,13 @@ struct SimulateOptions {
 inline constexpr std::int64_t kMinSimulateSamples = 16;
 
 // Registers `simulate` on `parent`.
+// Shared with the Python module (python/), which simulates into memory: the sensor model the
+// options name (a preset or a YAML spec, --rate applied) ...
+std::optional<CommandFailure> LoadSimulateModel(const SimulateOptions& o, sim::SensorModel* model);
+// ... and the record's sample count, round(duration * rate) >= kMinSimulateSamples.
+std::optional<CommandFailure> SimulateSampleCount(const SimulateOptions& o, double sample_rate_hz,
+                                                  std::int64_t* n);
+
 Subcommand AddSimulateCommand(CLI::App* parent);
 
 // Runs the command; prints one error line on failure. Returns the exit code.
