@@ -58,6 +58,7 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
   if (o.path.empty()) return Usage("FILE is required");
   plan->read.path = o.path;
   plan->read.column = o.column;
+  plan->read.topic = o.topic;
   if (SeveralColumns(o)) {
     if (!o.columns.empty() && o.column.find(',') == std::string::npos && !o.column.empty()) {
       return Usage("--column and --columns: give one of them");
@@ -396,8 +397,9 @@ Provenance AvarProvenance(const AvarCommandOptions& o, const Plan& plan, const A
   Provenance p = MakeProvenance(kCommand, command_line);
   const RecordInfo& info = report.record;
   p.Add("input", info.path);
-  p.Add("format", std::string(RecordFormatName(info.format)) + ", compression " +
-                      std::string(CompressionName(info.compression)));
+  p.Add("format", info.bag.empty() ? std::string(RecordFormatName(info.format)) + ", compression " +
+                                          std::string(CompressionName(info.compression))
+                                    : info.bag);
   p.Add("column", info.column);
   p.Add("type", o.type);
   p.Add("units", info.units + " in (" + info.units_source + "), " +
@@ -531,6 +533,11 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
   cmd->add_option("--accel-out-units", options->accel_out_units,
                   "units of an accelerometer's printed deviation: mg (default), g or m/s^2")
       ->type_name("mg|g|m/s^2");
+  cmd->add_option("--topic", options->topic,
+                  "the sensor_msgs/Imu topic of a ROS bag (MCAP, ROS 2 .db3 or ROS 1 .bag; default: "
+                  "the bag's only Imu topic). Its columns: angular_velocity.x/y/z (rad/s), "
+                  "linear_acceleration.x/y/z (m/s^2), timed by the message header stamps")
+      ->type_name("TOPIC");
   cmd->add_option("--rate", options->rate_hz,
                   "sample rate in Hz; needed without a time column or a raw record's sidecar; "
                   "with one it must agree to 1e-3 relative")

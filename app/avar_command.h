@@ -44,6 +44,7 @@ struct AvarCommandOptions {
   std::string units;  // empty: as the file states them (an error when it does not)
   std::string out_units = "deg/h";
   std::optional<double> rate_hz;
+  std::string topic;  // --topic: a ROS bag's sensor_msgs/Imu topic (app/ros_bag.h)
   std::string time_units;  // --time-units s|ms|us|ns; empty: from the time column's name
   std::string type = "rate";
   std::string estimator = "overlapping";

@@ -16,6 +16,7 @@
 #include "app/provenance.h"
 #include "app/raw_sample_decoder.h"
 #include "app/raw_sidecar.h"
+#include "app/ros_bag.h"
 #include "app/stated_units.h"
 #include "app/subcommand.h"
 #include "app/text_record_parser.h"
@@ -117,7 +118,7 @@ class Reader {
       if (!ResolveStatedUnits(std::move(stated), "the samples", error)) return false;
     }
     std::unique_ptr<ByteSource> source;
-    if (!OpenByteSource(o_.path, &source, &why)) return Runtime(error, why);
+    if (!OpenSource(&source, error)) return false;
     info_->compression = source->compression();
     const bool ok = format_ == RecordFormat::kText ? ReadText(source.get(), error)
                                                      : ReadRaw(source.get(), error);
@@ -126,6 +127,30 @@ class Reader {
   }
 
  private:
+  // The file's bytes, or a ROS bag's Imu topic as text (app/ros_bag.h).
+  bool OpenSource(std::unique_ptr<ByteSource>* source, RecordError* error) {
+    std::string why;
+    const std::optional<BagFormat> bag = o_.path == "-" ? std::nullopt : DetectBag(o_.path);
+    if (bag) {
+      if (format_ != RecordFormat::kText) return Usage(error, In() + "a ROS bag holds messages, not raw samples: drop --format");
+      BagRecord record;
+      if (const int code = OpenBagRecord(o_.path, *bag, o_.topic, &record, &why); code != kExitOk) {
+        *error = {code, In() + why};
+        return false;
+      }
+      info_->bag = record.description;
+      bag_stamps_ = " (header stamps of " + record.topic + ")";
+      steps_ = TimeSteps("message", -1);
+      *source = std::move(record.text);
+      return true;
+    }
+    if (!o_.topic.empty()) {
+      return Usage(error, In() + "--topic reads a ROS bag (MCAP, ROS 2 .db3 or ROS 1 .bag), and this file is none");
+    }
+    if (!OpenByteSource(o_.path, source, &why)) return Runtime(error, why);
+    return true;
+  }
+
   // The sidecar's type and rate against the command line (its count is checked after reading).
   bool CheckSidecar(RecordError* error) {
     if (!sidecar_) return true;
@@ -371,7 +396,7 @@ class Reader {
       }
       if (!info_->columns.empty()) info_->longest_constant_stretch = stretches_.front().longest();
     }
-    info_->time_column = parser.time_column();
+    info_->time_column = parser.time_column() + bag_stamps_;
     info_->time_column_guessed = parser.time_column_guessed();
     if (time_unit_s_ > 0.0) info_->time_unit_s = time_unit_s_;
     if (parser.data_rows() == 0) {
@@ -540,6 +565,7 @@ class Reader {
   RecordFormat format_ = RecordFormat::kText;  // o_.format, or the sidecar's dtype
   NonFiniteLog nonfinite_;
   TimeSteps steps_;
+  std::string bag_stamps_;  // a ROS bag: where its time column comes from
   ConstantStretchTracker stretch_;
 };
 

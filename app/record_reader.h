@@ -19,6 +19,10 @@
 //
 // PATH "-" is standard input (text or raw, plain, gzip or xz; no sidecar).
 //
+// A ROS bag (MCAP, ROS 2 sqlite3 .db3 or ROS 1 .bag, or a ROS 2 bag directory; recognised by its
+// first bytes) is read as the text record of its sensor_msgs/Imu topic (app/ros_bag.h): columns
+// time_s, angular_velocity.x/y/z (rad/s) and linear_acceleration.x/y/z (m/s^2).
+//
 // Failures (RecordError): exit code 2 (kExitUsageError) when the command line does not fit the
 // file (--column names no column or an index out of range, no time column and no --rate, --rate
 // disagrees with the time column or the sidecar, --format with the sidecar's type, units stated
@@ -76,6 +80,9 @@ struct RecordReaderOptions {
   std::vector<std::string> columns;
   bool imu = false;
   std::string accel_units;
+  // A ROS bag (app/ros_bag.h): the sensor_msgs/Imu topic to read; empty: the bag's only one.
+  // Given for a file that is not a bag: a usage error.
+  std::string topic;
 };
 
 // One column of a several-column read.
@@ -89,6 +96,7 @@ struct ColumnInfo {
 
 struct RecordInfo {
   std::string path;
+  std::string bag;  // a ROS bag's format and topic ("MCAP bag, topic /imu (...)"); empty otherwise
   Compression compression = Compression::kNone;
   RecordFormat format = RecordFormat::kText;
   bool has_header = false;

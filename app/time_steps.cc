@@ -8,9 +8,10 @@
 namespace allanlab::app {
 
 bool TimeSteps::Add(double time_s, std::int64_t line, std::string* why) {
+  line += line_offset_;
   if (!std::isfinite(time_s)) {
     if (why)
-      *why = "line " + std::to_string(line) + ": time " + ShortestDecimal(time_s) +
+      *why = position_ + " " + std::to_string(line) + ": time " + ShortestDecimal(time_s) +
              " is not a finite number";
     return false;
   }
@@ -18,9 +19,9 @@ bool TimeSteps::Add(double time_s, std::int64_t line, std::string* why) {
     const double step = time_s - previous_s_;
     if (!(step > 0.0)) {
       if (why) {
-        *why = "time is not increasing: line " + std::to_string(line) +
+        *why = "time is not increasing: " + position_ + " " + std::to_string(line) +
                " has t = " + ShortestDecimal(time_s) +
-               " s after t = " + ShortestDecimal(previous_s_) + " s at line " +
+               " s after t = " + ShortestDecimal(previous_s_) + " s at " + position_ + " " +
                std::to_string(previous_line_) + " (sort the record first)";
       }
       return false;
@@ -59,6 +60,7 @@ bool TimeSteps::Add(double time_s, std::int64_t line, std::string* why) {
 TimeSteps::Summary TimeSteps::Summarize() const {
   Summary s;
   s.samples = samples_;
+  s.position = position_;
   if (samples_ < 2) return s;
   const Group* best = &groups_.front();
   for (const Group& g : groups_) {
@@ -83,11 +85,11 @@ std::string TimeSteps::Describe(const Summary& s, const std::string& column) {
   std::string out = std::to_string(s.irregular_steps) + " irregular time step(s) in " + column +
                     " (nominal " + seconds(s.nominal_step_s);
   if (s.largest_step_s > s.nominal_step_s * (1 + kStepTolerance)) {
-    out += "; largest " + seconds(s.largest_step_s) + " at line " +
+    out += "; largest " + seconds(s.largest_step_s) + " at " + s.position + " " +
            std::to_string(s.largest_step_line);
   }
   if (s.smallest_step_s < s.nominal_step_s * (1 - kStepTolerance)) {
-    out += "; smallest " + seconds(s.smallest_step_s) + " at line " +
+    out += "; smallest " + seconds(s.smallest_step_s) + " at " + s.position + " " +
            std::to_string(s.smallest_step_line);
   }
   return out + ")";

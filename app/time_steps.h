@@ -8,6 +8,7 @@
 // irregular), so a file with wild timestamps costs no memory.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace allanlab::app {
@@ -16,6 +17,12 @@ class TimeSteps {
  public:
   static constexpr double kStepTolerance = 1e-3;
   static constexpr int kMaxGroups = 64;
+
+  // What a position is called in messages, and its number for line L: "line" and L (a text
+  // file), or "message" and L - 1 (a ROS bag's messages, after the header line of their text).
+  TimeSteps() = default;
+  TimeSteps(std::string position, std::int64_t line_offset)
+      : position_(std::move(position)), line_offset_(line_offset) {}
 
   // Adds the time of the next sample (seconds) read at `line`. Fails (with the line numbers) when
   // the time is not finite or not strictly greater than the previous one.
@@ -29,6 +36,7 @@ class TimeSteps {
     std::int64_t largest_step_line = 0;  // line of the sample that ends it
     double smallest_step_s = 0.0;
     std::int64_t smallest_step_line = 0;
+    std::string position = "line";  // what *_line counts
   };
   Summary Summarize() const;
 
@@ -42,6 +50,8 @@ class TimeSteps {
     std::int64_t count = 0;
     double mean() const { return sum_s / static_cast<double>(count); }
   };
+  std::string position_ = "line";
+  std::int64_t line_offset_ = 0;
   std::vector<Group> groups_;
   std::int64_t samples_ = 0;
   std::int64_t ungrouped_ = 0;
