@@ -298,7 +298,9 @@ void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* ca
 // Fills the summary's coefficients, chi2 and dof from the subset `keep` (bits: asked terms) of
 // the problem: values, covariance sigmas and profile intervals of the terms it keeps above zero,
 // upper limits of the others.
-void ReportSubset(const FixedFitProblem& fp, unsigned keep, bool selected, FitSummary* summary) {
+void ReportSubset(const FixedFitProblem& fp, const std::vector<unsigned>& masks, bool selected,
+                  FitSummary* summary) {
+  const unsigned keep = masks.front();
   const LinearProblem& p = fp.problem;
   const Eigen::VectorXd x = SolveSubset(p, keep);
   // Covariance over every kept term, those at zero included (they are free in the fit: leaving
@@ -329,7 +331,7 @@ void ReportSubset(const FixedFitProblem& fp, unsigned keep, bool selected, FitSu
       e.note = e.dropped ? "left out by the subset choice (AIC): the data do not determine it; 95 % upper limit given"
                          : "at zero: the data do not determine it; 95 % upper limit given";
     }
-    SetProfileRanges(p, keep, static_cast<int>(j), fp.scale[j], &e);
+    SetProfileRanges(p, masks, static_cast<int>(j), fp.scale[j], &e);
   }
   summary->chi2 = p.Chi2(x);
   summary->dof = summary->taus_used - static_cast<int>(positive.size());
@@ -343,9 +345,11 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
   FixedFitProblem fp;
   if (!FitFixedTerms(all, curve, cache, summary, nullptr, nullptr, &fp)) return false;
   const unsigned every = (1u << fp.asked.size()) - 1u;
-  const unsigned keep = options.select_terms ? SelectSubsetByAic(fp.problem).mask : every;
+  const std::vector<unsigned> masks =
+      options.select_terms ? SelectSubsetByAic(fp.problem).competitive : std::vector<unsigned>{every};
+  const unsigned keep = masks.front();
   const double full_chi2 = summary->chi2;
-  ReportSubset(fp, keep, options.select_terms, summary);
+  ReportSubset(fp, masks, options.select_terms, summary);
   // The fit of all terms keeps its own chi2 (exact for log-WLS, whose problem here is the
   // expansion at that fit).
   if (keep == every) summary->chi2 = full_chi2;

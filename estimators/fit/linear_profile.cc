@@ -1,5 +1,7 @@
 #include "estimators/fit/linear_profile.h"
 
+#include "estimators/fit/bounded_threshold.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -89,12 +91,14 @@ SubsetChoice SelectSubsetByAic(const LinearProblem& p) {
   const auto n = static_cast<unsigned>(p.a.cols());
   SubsetChoice best;
   bool have = false;
+  std::vector<double> scores(1u << n);
   for (unsigned mask = 0; mask < (1u << n); ++mask) {
     SubsetChoice c;
     c.mask = mask;
     c.x = SolveSubset(p, mask);
     c.chi2 = p.Chi2(c.x);
     c.score = c.chi2 + 2.0 * std::popcount(mask);
+    scores[mask] = c.score;
     const bool better = !have || c.score < best.score - 1e-9 * std::max(1.0, best.score) ||
                         (std::abs(c.score - best.score) <= 1e-9 * std::max(1.0, best.score) &&
                          std::popcount(mask) < std::popcount(best.mask));
@@ -103,10 +107,37 @@ SubsetChoice SelectSubsetByAic(const LinearProblem& p) {
       have = true;
     }
   }
+  best.competitive = {best.mask};
+  for (unsigned mask = 0; mask < (1u << n); ++mask) {
+    const bool superset = (mask & best.mask) == best.mask;
+    if (!superset && scores[mask] <= best.score + kCompetitiveAic) best.competitive.push_back(mask);
+  }
   return best;
 }
 
 ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double delta) {
+  return ProfileInterval(p, free_mask, j, [delta](double) { return delta; });
+}
+
+ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level) {
+  std::vector<Eigen::Index> cols;
+  Eigen::Index at = 0;
+  for (Eigen::Index k = 0; k < p.a.cols(); ++k) {
+    if (!((free_mask >> k) & 1u)) continue;
+    if (k == j) at = static_cast<Eigen::Index>(cols.size());
+    cols.push_back(k);
+  }
+  Eigen::MatrixXd sub(p.a.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = p.a.col(cols[c]);
+  const Eigen::MatrixXd cov = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse();
+  const double sigma = std::sqrt(std::max(cov(at, at), 0.0));
+  return ProfileInterval(p, free_mask, j, [level, sigma](double t) {
+    return BoundedLikelihoodRatioThreshold(level, sigma > 0.0 ? std::max(t, 0.0) / sigma : 1e300);
+  });
+}
+
+ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
+                             const std::function<double(double t)>& delta) {
   const Eigen::VectorXd x_hat = SolveSubset(p, free_mask);
   const double chi2_min = p.Chi2(x_hat);
   const double t_hat = x_hat(j);
@@ -125,13 +156,13 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, 
   // The estimate is inside by construction: each end is bracketed from it outwards (with W0 held
   // the statistic is convex in t, so the end is its one root).
   const double column = p.a.col(j).norm();
-  double step = column > 0.0 ? std::sqrt(delta) / column : 1.0;  // the end with the others fixed
+  double step = column > 0.0 ? std::sqrt(delta(t_hat)) / column : 1.0;  // the end with the others fixed
   step = std::max(step, 1e-6 * t_hat);
   ProfileRange r;
   double lo = t_hat, hi = t_hat + step;
   bool bracketed = false;
   for (int i = 0; i < 80; ++i) {
-    if (statistic(hi) > delta) {
+    if (statistic(hi) > delta(hi)) {
       bracketed = true;
       break;
     }
@@ -144,11 +175,11 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, 
   } else {
     for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
       const double mid = 0.5 * (lo + hi);
-      (statistic(mid) <= delta ? lo : hi) = mid;
+      (statistic(mid) <= delta(mid) ? lo : hi) = mid;
     }
     r.upper = 0.5 * (lo + hi);
   }
-  if (t_hat <= 0.0 || statistic(0.0) <= delta) {
+  if (t_hat <= 0.0 || statistic(0.0) <= delta(0.0)) {
     r.lower = 0.0;
     return r;
   }
@@ -156,25 +187,34 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, 
   hi = t_hat;
   for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (statistic(mid) <= delta ? hi : lo) = mid;
+    (statistic(mid) <= delta(mid) ? hi : lo) = mid;
   }
   r.lower = 0.5 * (lo + hi);
   return r;
 }
 
-void SetProfileRanges(const LinearProblem& p, unsigned free_mask, int j, double scale,
-                      CoefficientEstimate* e) {
+void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_masks, int j,
+                      double scale, CoefficientEstimate* e) {
   auto root = [scale](double x) { return std::sqrt(std::max(x * scale, 0.0)); };
-  // A term not determined is profiled with it free (its lower ends are then 0).
-  const unsigned mask = e->fitted ? free_mask : free_mask | (1u << j);
-  const ProfileRange r68 = ProfileInterval(p, mask, j, kProfileDelta68);
-  const ProfileRange r95 = ProfileInterval(p, mask, j, kProfileDelta95);
+  ProfileRange r68{std::numeric_limits<double>::infinity(), 0.0}, r95 = r68;
+  double upper = 0.0;
+  for (std::size_t k = 0; k < free_masks.size(); ++k) {
+    // A term not determined is profiled with it free (its lower ends are then 0).
+    const unsigned mask = free_masks[k] | (1u << j);
+    auto hull = [](ProfileRange* h, const ProfileRange& r) {
+      h->lower = std::min(h->lower, r.lower);
+      h->upper = std::max(h->upper, r.upper);
+    };
+    hull(&r68, BoundedProfileInterval(p, mask, j, kProfileLevel68));
+    hull(&r95, BoundedProfileInterval(p, mask, j, kProfileLevel95));
+    if (!e->fitted) upper = std::max(upper, ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);
+  }
   e->has_intervals = true;
   e->interval68_si = {root(r68.lower), root(r68.upper)};
   e->interval95_si = {root(r95.lower), root(r95.upper)};
   if (!e->fitted) {
     e->has_upper_limit = true;
-    e->upper_limit_si = root(ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);
+    e->upper_limit_si = root(upper);
   }
 }
 

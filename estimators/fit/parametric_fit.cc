@@ -594,7 +594,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
       ce.value_si = std::sqrt(theta_si);
       ce.sigma_si = sigma_theta / (2.0 * ce.value_si);
     }
-    SetProfileRanges(lp, (1u << linear.size()) - 1u, static_cast<int>(q), scale[q], &ce);
+    SetProfileRanges(lp, {(1u << linear.size()) - 1u}, static_cast<int>(q), scale[q], &ce);
   }
   for (std::size_t t = 0; t < active.size(); ++t) {
     ParametricEstimate& pe = summary->extra[active_index[t]];
