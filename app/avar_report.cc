@@ -262,10 +262,14 @@ nlohmann::ordered_json AvarJson(const AvarReport& r) {
   input["sample_rate_hz"] = i.sample_rate_hz;
   input["sample_rate_source"] = i.rate_source;
   if (!i.time_column.empty()) {
-    input["time_steps"] = {
-        {"nominal_s", i.time.nominal_step_s},   {"irregular", i.time.irregular_steps},
-        {"largest_s", i.time.largest_step_s},   {"largest_line", i.time.largest_step_line},
-        {"smallest_s", i.time.smallest_step_s}, {"smallest_line", i.time.smallest_step_line}};
+    // Positions are lines of a text file, or message numbers of a ROS bag: the keys say which.
+    const std::string& at = i.time.position;
+    input["time_steps"] = {{"nominal_s", i.time.nominal_step_s},
+                           {"irregular", i.time.irregular_steps},
+                           {"largest_s", i.time.largest_step_s},
+                           {"largest_" + at, i.time.largest_step_line},
+                           {"smallest_s", i.time.smallest_step_s},
+                           {"smallest_" + at, i.time.smallest_step_line}};
   }
   j["input"] = input;
   const estimators::AvarOptions& o = r.summary.options;

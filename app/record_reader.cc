@@ -453,7 +453,7 @@ class Reader {
       info_->time = steps_.Summarize();
       const TimeSteps::Summary& t = info_->time;
       if (t.nominal_step_s > kLongestPlausibleStepS && unit_is_guess_) {
-        return Usage(error, In() + "time column " + info_->time_column + " steps by " +
+        return Usage(error, In() + TimeColumnPhrase() + " steps by " +
                                 ShortestDecimal(t.nominal_step_s) +
                                 " (as seconds: implausible for a gyro record; it looks like "
                                 "ms, us or ns): give --time-units ms|us|ns, or s to confirm");
@@ -461,7 +461,7 @@ class Reader {
       if (t.nominal_step_s > 0) {
         const double from_time = RoundToSignificantDigits(1.0 / t.nominal_step_s, 10);
         info_->sample_rate_hz = from_time;
-        info_->rate_source = "time column " + info_->time_column + TimeUnitNote();
+        info_->rate_source = TimeColumnPhrase() + TimeUnitNote();
         if (o_.rate_hz) {
           if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time &&
               info_->time_column_guessed) {
@@ -476,13 +476,13 @@ class Reader {
           }
           if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time) {
             return Usage(error, In() + "--rate " + ShortestDecimal(*o_.rate_hz) +
-                                    " Hz disagrees with the time column " + info_->time_column +
+                                    " Hz disagrees with the " + TimeColumnPhrase() +
                                     " (" + ShortestDecimal(from_time) + " Hz from its step of " +
                                     ShortestDecimal(t.nominal_step_s) +
                                     " s); drop --rate or fix it");
           }
           info_->sample_rate_hz = *o_.rate_hz;
-          info_->rate_source = "--rate (time column " + info_->time_column + " agrees)";
+          info_->rate_source = "--rate (" + TimeColumnPhrase() + " agrees)";
         }
       }
     }
@@ -527,6 +527,10 @@ class Reader {
                                 std::to_string(o_.min_samples) + " are needed");
     }
     return true;
+  }
+
+  std::string TimeColumnPhrase() const {
+    return TextRecordParser::TimeColumnPhrase(info_->time_column);
   }
 
   // " in ns" when the time column is not in seconds.

@@ -408,6 +408,11 @@ std::string TextRecordParser::LeadingComment(std::string_view key) const {
   return "";
 }
 
+std::string TextRecordParser::TimeColumnPhrase(std::string_view time_column) {
+  if (time_column == kHeaderlessTimeName) return "time column 0";
+  return "time column " + std::string(time_column);
+}
+
 bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
   int needed = time_index_ + 1;
   for (int index : value_indices_) needed = std::max(needed, index + 1);
@@ -416,7 +421,7 @@ bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
     for (const std::string& c : value_columns_) columns += (columns.empty() ? "" : ", ") + Shown(c);
     return Fail("line " + std::to_string(line_no) + " has " + std::to_string(fields_.size()) +
                 " field(s); column " + columns +
-                (time_index_ >= 0 ? " and time column " + time_column_ : std::string()) + " need " +
+                (time_index_ >= 0 ? " and " + TimeColumnPhrase(time_column_) : std::string()) + " need " +
                 std::to_string(needed));
   }
   TextRow row;
@@ -433,7 +438,7 @@ bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
   if (time_index_ >= 0) {
     row.has_time = true;
     if (!ParseTimeField(fields_[time_index_], &row.time)) {
-      return Fail("line " + std::to_string(line_no) + ": time column " + time_column_ + ": '" +
+      return Fail("line " + std::to_string(line_no) + ": " + TimeColumnPhrase(time_column_) + ": '" +
                   Shown(Trim(fields_[time_index_])) + "' is not a number");
     }
   }

@@ -72,6 +72,8 @@ class TextRecordParser {
   static constexpr int kTimeProbeRows = 32;
   // The name a headerless time column is given (in messages and RecordInfo::time_column).
   static constexpr std::string_view kHeaderlessTimeName = "column 0";
+  // How messages name a time column: "time column t_s", or "time column 0" for a headerless file.
+  static std::string TimeColumnPhrase(std::string_view time_column);
 
   // `column`: the --column text, a header name or a 0-based index (all digits); empty picks the
   // first column that is not the time column. Names are matched exactly, else case-insensitively

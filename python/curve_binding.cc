@@ -36,7 +36,7 @@ std::vector<double> Samples(const Array& values) {
 // The record options of every command: what `--rate`, `--units` and `--type` say on the command line.
 app::AvarCommandOptions RecordOptions(double rate_hz, const std::string& units, const std::string& type) {
   app::AvarCommandOptions o;
-  o.path = "array";
+  o.path = "values";
   o.rate_hz = rate_hz;
   o.units = units;
   o.type = type;

@@ -363,6 +363,9 @@ TEST_F(AvarCommandTest, StandardInputAndTheTwoColumnLayout) {
   const nlohmann::json j = Json("two.json");
   EXPECT_EQ(j["input"]["time_column"], "column 0");
   EXPECT_EQ(j["input"]["sample_rate_hz"], 100.0);
+  EXPECT_EQ(j["input"]["sample_rate_source"], "time column 0");
+  EXPECT_NE(r.out.find(" at 100 Hz (time column 0), "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("column column"), std::string::npos) << r.out;
   EXPECT_EQ(j["points"], Json("file.json")["points"]);
 }
 

@@ -500,7 +500,7 @@ TEST_F(RecordReaderTest, HeaderlessIncreasingFirstColumnIsTime) {
   o.rate_hz = 200;
   r = Read(o);
   ASSERT_TRUE(r.ok) << r.error.message;
-  EXPECT_EQ(r.info.rate_source, "--rate (time column column 0 agrees)");
+  EXPECT_EQ(r.info.rate_source, "--rate (time column 0 agrees)");
   // A --rate that disagrees wins over a guess (the column may be a sample counter).
   o.rate_hz = 1000;
   r = Read(o);

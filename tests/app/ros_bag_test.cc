@@ -6,6 +6,8 @@
 #include <bzlib.h>
 #include <gtest/gtest.h>
 #include <lz4frame.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
 #include <sqlite3.h>
 #include <stdlib.h>
 #include <zlib.h>
@@ -22,6 +24,7 @@
 
 #include "app/record_reader.h"
 #include "app/subcommand.h"
+#include "tests/support/read_file.h"
 
 namespace allanlab::app {
 namespace {
@@ -343,6 +346,22 @@ TEST_F(RosBagTest, TheOnlyImuTopicWithoutTopic) {
   const Result r = ReadImu(Write("a.mcap", Mcap(Samples(), "zstd")), "");
   ASSERT_TRUE(r.ok) << r.error.message;
   EXPECT_EQ(r.values[0].size(), static_cast<std::size_t>(kMessages));
+}
+
+// The avar JSON names a bag's step positions for what they are: message numbers, not lines.
+TEST_F(RosBagTest, JsonTimeStepsCountMessages) {
+  const std::string bag = Write("a.mcap", Mcap(Samples(), "zstd"));
+  const std::string json = (dir_ / "a.json").string();
+  const std::string command = std::string(ALLANLAB_BINARY) + " avar '" + bag +
+                              "' --column angular_velocity.x --ci none --json '" + json +
+                              "' > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  const nlohmann::json steps =
+      nlohmann::json::parse(testing_support::ReadAll(json))["input"]["time_steps"];
+  EXPECT_EQ(steps["largest_message"], 1001) << steps;
+  EXPECT_FALSE(steps.contains("largest_line")) << steps;
+  EXPECT_TRUE(steps.contains("smallest_message")) << steps;
 }
 
 TEST_F(RosBagTest, TopicErrorsListTheTopics) {

@@ -148,17 +148,38 @@ class ModuleInputs(unittest.TestCase):
         y[10] = np.nan
         with self.assertRaisesRegex(RuntimeError, "sample 10 is not finite"):
             allanlab.avar(y, rate_hz=RATE_HZ, units="rad/s")
-        with self.assertRaisesRegex(ValueError, "--estimator: unknown 'alan'"):
+        with self.assertRaisesRegex(ValueError, "^estimator: unknown 'alan'"):
             allanlab.avar(x, rate_hz=RATE_HZ, units="rad/s", estimator="alan")
-        with self.assertRaisesRegex(ValueError, "--rate must be"):
+        with self.assertRaisesRegex(ValueError, "^rate_hz must be"):
             allanlab.avar(x, rate_hz=-1.0, units="rad/s")
-        with self.assertRaisesRegex(ValueError, "--units"):
+        with self.assertRaisesRegex(ValueError, "^units: unknown rate unit 'furlongs'"):
             allanlab.avar(x, rate_hz=RATE_HZ, units="furlongs")
-        with self.assertRaisesRegex(RuntimeError, "at least"):
+        with self.assertRaisesRegex(RuntimeError, "^values: 2 samples; at least"):
             allanlab.avar(x[:2], rate_hz=RATE_HZ, units="rad/s")
         with self.assertRaisesRegex(ValueError, "unknown preset"):
             allanlab.simulate("nope", duration_s=10)
 
+    def test_errors_name_the_python_arguments(self):
+        """Messages come from the command line's checks; they name the keyword arguments, not
+        the options (min_tau_s, not --min-tau)."""
+        x = np.random.default_rng(1).standard_normal(1000)
+        cases = [
+            (lambda: allanlab.avar(x, RATE_HZ, "rad/s", out_units="m/s"), "^out_units: unknown"),
+            (lambda: allanlab.avar(x, RATE_HZ, "rad/s", taus="blah"), "^taus: "),
+            (lambda: allanlab.avar(x, RATE_HZ, "rad/s", ci="blah"), "^ci: unknown"),
+            (lambda: allanlab.avar(x, RATE_HZ, "rad/s", confidence=2.0), "^confidence must be"),
+            (lambda: allanlab.fit(x, RATE_HZ, "rad/s", band_limit="blah"), "^band_limit: unknown"),
+            (lambda: allanlab.fit(x, RATE_HZ, "rad/s", min_tau_s=10.0, max_tau_s=1.0),
+             "^min_tau_s must be below max_tau_s$"),
+            (lambda: allanlab.diagnose(x, RATE_HZ, "rad/s", float_terms="N"),
+             "^float_terms needs sensor or preset$"),
+            (lambda: allanlab.simulate(duration_s=10), "^give exactly one of preset or sensor$"),
+            (lambda: allanlab.simulate("mg25_mems", duration_s=-1.0), "^duration_s must be"),
+        ]
+        for call, pattern in cases:
+            with self.assertRaisesRegex(ValueError, pattern) as raised:
+                call()
+            self.assertNotIn("--", str(raised.exception))
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)

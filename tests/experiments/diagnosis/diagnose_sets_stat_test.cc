@@ -89,6 +89,22 @@ TEST(DiagnoseSetsStatTest, LimitedToOneEffectTheSameRecordIsNotExplained) {
   EXPECT_FALSE(Names(s, "bias_step") && Names(s, "outliers")) << DescribeVerdict(s);
 }
 
+// Spikes at 0.3 Hz (the kurtosis: |z| 12) and a warm-up drift of 7e-4 rad/s settling in 60 s
+// that only the trend view flags (|z| 3.8 against a threshold of 3.6; the halves and the OAVAR
+// stay within it). The spikes hold the larger held-out shrink, so the drift joins second and can
+// earn its place only by what it shows in the trend view.
+TEST(DiagnoseSetsStatTest, ADriftSeenOnlyInTheTrendViewJoinsTheSpikes) {
+  independent::Recipe r = StepAndSpikes();
+  r.bias_step.reset();
+  r.warmup_drift = independent::WarmupDrift{7e-4, 60.0};
+  r.spikes->rate_hz = 0.3;
+  const DiagnosisSummary s = DiagnoseIndependent(r, 61);
+  ASSERT_TRUE(s.significant);
+  EXPECT_TRUE(Names(s, "exponential_drift")) << DescribeVerdict(s);
+  EXPECT_TRUE(Names(s, "outliers")) << DescribeVerdict(s);
+  EXPECT_GT(s.before.View(View::kTrend).max_abs_z, s.threshold);
+}
+
 // With one effect only, no second member earns its place: the verdict stays a single effect.
 TEST(DiagnoseSetsStatTest, OneEffectStaysSingle) {
   independent::Recipe r = Control();
