@@ -67,5 +67,19 @@ TEST(LinearProfile, AicKeepsTheTermsThatLowerChi2ByMoreThanTwo) {
   }
 }
 
+TEST(LinearProfile, RangesReachTheFitsValueWhenTheExpansionsMinimumSitsOffIt) {
+  // An expansion at a poor fit: its minimum (x = 4, sigma 0.1) is not the fit's value (x = 3).
+  LinearProblem p;
+  p.a = Eigen::MatrixXd::Constant(100, 1, 1.0);
+  p.y = Eigen::VectorXd::Constant(100, 4.0);
+  CoefficientEstimate e;
+  e.fitted = true;
+  e.value_si = std::sqrt(3.0);
+  SetProfileRanges(p, {1u}, 0, 1.0, &e);
+  EXPECT_LE(e.interval68_si[0], e.value_si);
+  EXPECT_LE(e.interval95_si[0], e.value_si);
+  EXPECT_NEAR(e.interval95_si[1], std::sqrt(4.0 + 0.1 * std::sqrt(kProfileDelta95)), 1e-6);
+}
+
 }  // namespace
 }  // namespace allanlab::estimators

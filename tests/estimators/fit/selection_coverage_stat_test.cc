@@ -8,6 +8,7 @@
 // points, so the band is 4 and 9 sd wide and a method 1 point further off fails).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -39,7 +40,8 @@ TEST(SelectionCoverage, HullOverCompetitiveSubsetsCoversWhereTheChosenSubsetDoes
     const SubsetChoice choice = SelectSubsetByAic(p);
     spurious += (choice.mask & 1u) != 0;
     CoefficientEstimate alone, all;
-    alone.fitted = all.fitted = (choice.mask & 2u) != 0;
+    alone.fitted = all.fitted = choice.x(1) > 0.0;
+    alone.value_si = all.value_si = std::sqrt(std::max(choice.x(1), 0.0));
     SetProfileRanges(p, {choice.mask}, 1, 1.0, &alone);
     SetProfileRanges(p, choice.competitive, 1, 1.0, &all);
     // scale 1: the ranges are of sqrt(x_N); the truth's root is 1.
