@@ -631,9 +631,14 @@ bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vect
     if (values->size() != row.size()) values->resize(row.size());
     for (std::size_t k = 0; k < row.size(); ++k) (*values)[k].push_back(row[k]);
   };
-  if (!Reader(options, &row_sink, info).Run(error)) return false;
+  if (!ReadRecordRows(options, row_sink, info, error)) return false;
   values->resize(info->columns.size());
   return true;
+}
+
+bool ReadRecordRows(const RecordReaderOptions& options, const std::function<void(std::span<const double>)>& row_sink,
+                    RecordInfo* info, RecordError* error) {
+  return Reader(options, &row_sink, info).Run(error);
 }
 
 }  // namespace allanlab::app
