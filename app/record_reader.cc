@@ -421,7 +421,7 @@ class Reader {
           for (double v : values) finite &= std::isfinite(v);
           if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
             info_->samples += static_cast<std::int64_t>(values.size());
-            for (double v : values) stretch_.Add(v);
+            stretch_.AddBlock(values);
             info_->longest_constant_stretch = stretch_.longest();
             (*block_sink_)(values);
             return true;
