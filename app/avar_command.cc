@@ -71,7 +71,6 @@ std::optional<Failure> MakePlan(const AvarCommandOptions& o, Plan* plan) {
     if (!o.imu && !ParseColumnList(list, &plan->read.columns, &why)) return Usage("--columns: " + why);
     plan->read.column.clear();
     plan->read.imu = o.imu;
-    if (o.stream) return Usage("--stream reads one column; drop --stream to read several");
   }
   if (!o.accel_units.empty()) {
     AccelUnit unit;
@@ -269,6 +268,22 @@ void ColumnToSi(const Plan& plan, const ColumnInfo& c, std::vector<double>* valu
   AccelToSi(unit, *values);
 }
 
+// Column k of a several-column read as the report of a record of its own.
+void DescribeColumn(const Plan& plan, const RecordInfo& info, std::size_t k, const std::string& taus_text,
+                    AvarReport* r) {
+  const ColumnInfo& c = info.columns[k];
+  r->record = info;
+  r->record.column = c.name;
+  r->record.units = c.units;
+  r->record.units_source = c.units_source;
+  r->record.longest_constant_stretch = c.longest_constant_stretch;
+  r->input_units = c.units;
+  r->sensor = c.sensor;
+  r->output_unit = plan.output_unit;
+  r->accel_output_unit = plan.accel_output_unit;
+  r->taus_text = taus_text;
+}
+
 // Every asked column in SI (rad/s, rad or m/s^2), one report each, from one read of the record.
 std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::string& taus_text,
                                               std::vector<AvarReport>* reports) {
@@ -282,16 +297,7 @@ std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::strin
   for (std::size_t k = 0; k < columns.size(); ++k) {
     const ColumnInfo& c = info.columns[k];
     AvarReport& r = (*reports)[k];
-    r.record = info;
-    r.record.column = c.name;
-    r.record.units = c.units;
-    r.record.units_source = c.units_source;
-    r.record.longest_constant_stretch = c.longest_constant_stretch;
-    r.input_units = c.units;
-    r.sensor = c.sensor;
-    r.output_unit = plan.output_unit;
-    r.accel_output_unit = plan.accel_output_unit;
-    r.taus_text = taus_text;
+    DescribeColumn(plan, info, k, taus_text, &r);
     estimators::AvarOptions options = plan.avar;
     ColumnToSi(plan, c, &columns[k]);
     // Acceleration samples are the rate of velocity.
@@ -302,6 +308,45 @@ std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::strin
     }
     std::vector<double>().swap(columns[k]);
   }
+  return std::nullopt;
+}
+
+// A streamed curve's points into the report (tau0 from report->record, known once the file is
+// read): values scaled by `scale` (1 / tau0^2 for angle input, whose differences were streamed).
+std::optional<Failure> StreamedCurve(const Plan& plan, const estimators::StreamingAvar& stream, bool angle,
+                                     std::int64_t exact_max_m, AvarReport* report) {
+  const double tau0 = 1.0 / report->record.sample_rate_hz;
+  const double scale = angle ? 1.0 / (tau0 * tau0) : 1.0;
+  estimators::AvarSummary& s = report->summary;
+  s.options = plan.avar;
+  s.options.sample_period_s = tau0;
+  s.num_samples = stream.count();
+  const bool overlapping = plan.avar.statistic == Statistic::kAllanOverlapping;
+  for (const estimators::StreamingAvarPoint& p : stream.Points()) {
+    estimators::AvarPoint point;
+    point.m = p.m;
+    point.tau_s = static_cast<double>(p.m) * tau0;
+    point.value = (overlapping ? p.overlapping : p.nonoverlapping) * scale;
+    point.terms = overlapping ? p.overlapping_terms : p.nonoverlapping_terms;
+    if (plan.avar.confidence_method == ConfidenceMethod::kSimple) {
+      point.edf = estimators::SimpleEdf(stream.count() / p.m);
+      if (point.edf > 0) {
+        const estimators::Interval ci =
+            estimators::ChiSquareInterval(point.value, point.edf, plan.avar.confidence);
+        point.ci_low = ci.low;
+        point.ci_high = ci.high;
+      }
+    }
+    s.points.push_back(point);
+    report->overlap_stride.push_back(overlapping ? p.overlapping_stride : p.m);
+  }
+  if (s.points.empty()) {
+    return Runtime(plan.read.path + (report->record.columns.size() > 1 ? ": column " + report->record.column : "") +
+                   ": " + std::to_string(stream.count()) + " rate samples give no octave tau");
+  }
+  s.ok = true;
+  report->streamed = true;
+  report->stream_exact_max_m = exact_max_m;
   return std::nullopt;
 }
 
@@ -333,38 +378,69 @@ std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_
       &report->record, &error);
   if (!ok) return Failure{error.exit_code, error.message};
   report->input_units = report->record.units;
-  const double tau0 = 1.0 / report->record.sample_rate_hz;
-  const double scale = angle ? 1.0 / (tau0 * tau0) : 1.0;
-  estimators::AvarSummary& s = report->summary;
-  s.options = plan.avar;
-  s.options.sample_period_s = tau0;
-  s.num_samples = stream.count();
-  const bool overlapping = plan.avar.statistic == Statistic::kAllanOverlapping;
-  for (const estimators::StreamingAvarPoint& p : stream.Points()) {
-    estimators::AvarPoint point;
-    point.m = p.m;
-    point.tau_s = static_cast<double>(p.m) * tau0;
-    point.value = (overlapping ? p.overlapping : p.nonoverlapping) * scale;
-    point.terms = overlapping ? p.overlapping_terms : p.nonoverlapping_terms;
-    if (plan.avar.confidence_method == ConfidenceMethod::kSimple) {
-      point.edf = estimators::SimpleEdf(stream.count() / p.m);
-      if (point.edf > 0) {
-        const estimators::Interval ci =
-            estimators::ChiSquareInterval(point.value, point.edf, plan.avar.confidence);
-        point.ci_low = ci.low;
-        point.ci_high = ci.high;
-      }
+  return StreamedCurve(plan, stream, angle, exact_max_m, report);
+}
+
+// One column of a several-column read, streamed: its samples to SI (ColumnToSi's arithmetic,
+// one value at a time) and, for a gyro's angle, differenced into the estimator.
+class StreamedColumn {
+ public:
+  StreamedColumn(const Plan& plan, const ColumnInfo& c, std::int64_t exact_max_m)
+      : stream_(estimators::StreamingAvarOptions{exact_max_m}),
+        gyro_(c.sensor == ImuSensor::kGyro),
+        angle_(gyro_ && plan.input == InputKind::kAngle),
+        gyro_scale_(plan.input, gyro_ ? c.units : std::string("rad/s")) {
+    if (!gyro_) ParseAccelUnit(c.units, &accel_, nullptr);  // canonical: always parses
+  }
+  void Add(double v) {
+    const double si = gyro_ ? gyro_scale_(v) : AccelToSi(accel_, v);
+    if (!angle_) {
+      stream_.Add(si);
+      return;
     }
-    s.points.push_back(point);
-    report->overlap_stride.push_back(overlapping ? p.overlapping_stride : p.m);
+    if (have_previous_) stream_.Add(si - previous_);
+    previous_ = si;
+    have_previous_ = true;
   }
-  if (s.points.empty()) {
-    return Runtime(plan.read.path + ": " + std::to_string(stream.count()) +
-                   " rate samples give no octave tau");
+  const estimators::StreamingAvar& stream() const { return stream_; }
+  bool angle() const { return angle_; }
+
+ private:
+  estimators::StreamingAvar stream_;
+  bool gyro_;
+  bool angle_;
+  InputScale gyro_scale_;
+  AccelUnit accel_ = AccelUnit::kMeterPerSecond2;
+  bool have_previous_ = false;
+  double previous_ = 0.0;
+};
+
+// Every asked column streamed in one pass (bounded memory), one report each.
+std::optional<Failure> ComputeColumnsStreamed(const Plan& plan, const std::string& taus_text,
+                                              std::int64_t exact_max_m, std::vector<AvarReport>* reports) {
+  RecordInfo info;
+  RecordError error;
+  // The columns and their units are known before the first row (record_reader.h).
+  std::vector<StreamedColumn> columns;
+  const bool ok = ReadRecordRows(
+      plan.read,
+      [&](std::span<const double> row) {
+        if (columns.empty()) {
+          for (const ColumnInfo& c : info.columns) columns.emplace_back(plan, c, exact_max_m);
+        }
+        for (std::size_t k = 0; k < row.size(); ++k) columns[k].Add(row[k]);
+      },
+      &info, &error);
+  if (!ok) return Failure{error.exit_code, error.message};
+  if (columns.empty()) {
+    for (const ColumnInfo& c : info.columns) columns.emplace_back(plan, c, exact_max_m);
   }
-  s.ok = true;
-  report->streamed = true;
-  report->stream_exact_max_m = exact_max_m;
+  reports->assign(info.columns.size(), AvarReport());
+  for (std::size_t k = 0; k < info.columns.size(); ++k) {
+    AvarReport& r = (*reports)[k];
+    DescribeColumn(plan, info, k, taus_text, &r);
+    if (auto failure = StreamedCurve(plan, columns[k].stream(), columns[k].angle(), exact_max_m, &r)) return failure;
+  }
   return std::nullopt;
 }
 
@@ -429,7 +505,10 @@ std::optional<Failure> AvarSeveral(const AvarCommandOptions& o, const Plan& plan
                                    const std::string& command_line, AtomicFile* json, AtomicFile* csv,
                                    AtomicFile* png) {
   std::vector<AvarReport> reports;
-  if (auto failure = ComputeColumnsInMemory(plan, o.taus, &reports)) return failure;
+  if (auto failure = o.stream ? ComputeColumnsStreamed(plan, o.taus, o.stream_exact_max_m, &reports)
+                              : ComputeColumnsInMemory(plan, o.taus, &reports)) {
+    return failure;
+  }
   WarnAboutRecord(reports.front().record);
   for (AvarReport& r : reports) r.provenance = AvarProvenance(o, plan, r, command_line);
   Provenance p = reports.front().provenance;
@@ -505,7 +584,8 @@ void AddRecordCurveOptions(CLI::App* cmd, AvarCommandOptions* options) {
   cmd->add_option("--column", options->column,
                   "text column by header name or 0-based index (default: the first column that "
                   "is not the time column t, t_s, time, time_s, timestamp, t_ms, time_ns, %time "
-                  "...; without a header, a first column that increases is the time in seconds)")
+                  "...; without a header, a first column that increases is the time in seconds); "
+                  "an accelerometer axis (Accel_X) is read in its own units, as with --columns")
       ->type_name("NAME|INDEX");
   cmd->add_option("--columns", options->columns,
                   "several columns, read in one pass, each with its own curve: a comma list of "
@@ -592,7 +672,8 @@ Subcommand AddAvarCommand(CLI::App* parent) {
                   "needs gnuplot)")
       ->type_name("OUT.png");
   cmd->add_flag("--stream", options->stream,
-                "one pass in bounded memory for records larger than memory: octave taus, "
+                "one pass in bounded memory for records larger than memory (every column of "
+                "--columns/--imu in the same pass): octave taus, "
                 "overlapping or nonoverlapping AVAR, --ci simple or none");
   cmd->add_option("--stream-exact-m", options->stream_exact_max_m,
                   "with --stream: overlapping AVAR uses every window start up to this m (a power "
@@ -663,7 +744,8 @@ int RateFromSamples(const AvarCommandOptions& options, std::vector<double>* valu
 }
 
 bool SeveralColumns(const AvarCommandOptions& options) {
-  return options.imu || !options.columns.empty() || options.column.find(',') != std::string::npos;
+  return options.imu || !options.columns.empty() || options.column.find(',') != std::string::npos ||
+         ImuSensorOfColumn(options.column) == ImuSensor::kAccelerometer;
 }
 
 int ComputeCurvesFromFile(const AvarCommandOptions& options, const std::string& command,

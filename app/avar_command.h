@@ -82,7 +82,8 @@ int ComputeCurveFromSamples(const AvarCommandOptions& options, std::vector<doubl
 int RateFromSamples(const AvarCommandOptions& options, std::vector<double>* values, RecordInfo* info,
                     std::string* error);
 
-// Several columns asked (--columns, a comma list in --column, or --imu).
+// Several columns asked (--columns, a comma list in --column, or --imu), or one accelerometer
+// axis by name (--column Accel_X): read as a column of an IMU, in its sensor's units.
 bool SeveralColumns(const AvarCommandOptions& options);
 // Every asked column's curve, the record read once; one report per column in the order asked,
 // each with the column's name, units and sensor in report->record / ->sensor (warnings about the

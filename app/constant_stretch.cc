@@ -6,7 +6,7 @@ namespace allanlab::app {
 
 ConstantStretch LongestConstantStretch(std::span<const double> samples) {
   ConstantStretchTracker tracker;
-  for (double v : samples) tracker.Add(v);
+  tracker.AddBlock(samples);
   return tracker.longest();
 }
 

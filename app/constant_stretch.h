@@ -28,6 +28,23 @@ class ConstantStretchTracker {
     ++count_;
     if (current_.length > longest_.length) longest_ = current_;
   }
+  // The same as Add for each value, 64 at a time where no two neighbours are equal.
+  void AddBlock(std::span<const double> values) {
+    constexpr std::size_t kLanes = 64;
+    std::size_t i = 0;
+    for (; i + kLanes <= values.size(); i += kLanes) {
+      bool repeat = count_ == 0 || longest_.length == 0 || values[i] == current_.value;
+      for (std::size_t k = i + 1; k < i + kLanes; ++k) repeat |= values[k] == values[k - 1];
+      if (repeat) {
+        for (std::size_t k = i; k < i + kLanes; ++k) Add(values[k]);
+        continue;
+      }
+      // Every run among these values has length 1, none longer than the longest so far.
+      count_ += static_cast<std::int64_t>(kLanes);
+      current_ = {count_ - 1, 1, values[i + kLanes - 1]};
+    }
+    for (; i < values.size(); ++i) Add(values[i]);
+  }
   const ConstantStretch& longest() const { return longest_; }
 
  private:

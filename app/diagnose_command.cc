@@ -24,7 +24,7 @@
 #include "app/diagnose_summary.h"
 #include "app/output_paths.h"
 #include "app/provenance.h"
-#include "app/rate_units.h"
+#include "app/sensor_coefficients.h"
 #include "app/record_reader.h"
 #include "sim/sensor_spec.h"
 #include "estimators/fit/noise_coefficient.h"
@@ -123,10 +123,10 @@ Json GapJson(const ModelGap& g) {
   return j;
 }
 
-Json ParamsJson(const std::vector<EffectInstance>& effects) {
-  auto one = [](const EffectInstance& e) {
+Json ParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits& units) {
+  auto one = [&](const EffectInstance& e) {
     Json p = Json::object();
-    for (const std::string& name : EffectParameterNames(e.effect)) p[name] = e.params.at(name);
+    for (const std::string& name : EffectParameterNames(e.effect)) p[ParameterName(units, name)] = e.params.at(name);
     if (const std::string family = FilterFamilyName(e); !family.empty()) p["filter"] = family;
     return p;
   };
@@ -136,26 +136,18 @@ Json ParamsJson(const std::vector<EffectInstance>& effects) {
   return j;
 }
 
-Json CoefficientsJson(const estimators::FitSummary& fit) {
+Json CoefficientsJson(const estimators::FitSummary& fit, const DiagnoseUnits& units) {
   Json j = Json::object();
   for (Coefficient c : estimators::kAllCoefficients) {
     const auto& e = fit.at(c);
     if (!e.asked) continue;
     j[std::string(estimators::CoefficientId(c))] = {
-        {"value", e.fitted ? estimators::ToDatasheetUnit(c, e.value_si) : 0.0},
-        {"sigma", estimators::ToDatasheetUnit(c, e.sigma_si)},
-        {"unit", std::string(estimators::DatasheetUnit(c))},
+        {"value", e.fitted ? CoefficientValue(units, c, e.value_si) : 0.0},
+        {"sigma", CoefficientValue(units, c, e.sigma_si)},
+        {"unit", CoefficientUnit(units, c)},
         {"fitted", e.fitted}};
   }
   return j;
-}
-
-// The unit a record was read in, when it is a rate unit (for the plain summary).
-std::optional<RateUnit> RecordRateUnit(const std::string& units) {
-  RateUnit unit;
-  std::string ignored;
-  if (!ParseRateUnit(units, &unit, &ignored)) return std::nullopt;
-  return unit;
 }
 
 Json RegionsJson(const std::vector<GapRegion>& found) {
@@ -223,7 +215,7 @@ void WriteValidation(std::ostream& os, const Json& v, bool markdown) {
 }  // namespace
 
 Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
-                   std::optional<RateUnit> unit) {
+                   const DiagnoseUnits& unit) {
   Json j;
   j["summary"] = PlainJson(MakePlainSummary(s, unit));
   const Json regions = RegionsJson(s.regions);
@@ -233,7 +225,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   Json verdict{{"effect", s.verdict}};
   verdict["params"] = Json::object();
   if (s.verdict_candidate >= 0 && s.verdict != "unexplained") {
-    verdict["params"] = ParamsJson(s.candidates[s.verdict_candidate].effects);
+    verdict["params"] = ParamsJson(s.candidates[s.verdict_candidate].effects, unit);
   }
   Json also = Json::array(), separating = Json::object();
   for (const auto& a : s.also_consistent) {
@@ -260,7 +252,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   j["verdict"] = verdict;
   Json candidates = Json::array();
   for (const CandidateResult& c : s.candidates) {
-    Json cj{{"effect", c.id()}, {"params", ParamsJson(c.effects)}};
+    Json cj{{"effect", c.id()}, {"params", ParamsJson(c.effects, unit)}};
     cj["gap_before"] = GapJson(s.before);
     cj["gap_after"] = GapJson(c.after);
     cj["heldout_gap_before"] = c.after.has_heldout ? MetricsJson(c.heldout_before) : Json(nullptr);
@@ -273,7 +265,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
     cj["full_score"] = c.full_score;
     cj["monte_carlo_views"] = c.full_views;
     cj["closes_gap"] = c.closes_gap;
-    cj["coefficients"] = CoefficientsJson(c.fit);
+    cj["coefficients"] = CoefficientsJson(c.fit, unit);
     candidates.push_back(cj);
   }
   j["candidates"] = candidates;
@@ -287,7 +279,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
                   {"cutoff_hz", b.cutoff_hz},
                   {"sampling", b.sampling == sim::OutputSampling::kAverage ? "average" : "point"}};
   }
-  j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline)}, {"band_limit", band_limit},
+  j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline, unit)}, {"band_limit", band_limit},
                    {"fit", {{"chi2", s.baseline.chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
   if (!validation.is_null()) j["validation"] = validation;
   j["notes"] = s.notes;
@@ -299,13 +291,13 @@ namespace {
 
 // How a gap region departs: the record above or below the model, or for the block-mean views
 // (x: block length) the step's time or the settling's time constant.
-std::string RegionMeaning(const GapRegion& r) {
+std::string RegionMeaning(const GapRegion& r, const DiagnoseUnits& unit) {
   if (r.view == View::kChangePoint) {
-    return std::string(r.mean_z > 0 ? " (blocks; the rate level rises" : " (blocks; the rate level falls") +
-           " at t = " + Format(r.time_s) + " s from the start)";
+    return " (blocks; the " + QuantityWord(unit) + (r.mean_z > 0 ? " level rises" : " level falls") + " at t = " +
+           Format(r.time_s) + " s from the start)";
   }
   if (r.view == View::kTrend) {
-    return std::string(r.mean_z > 0 ? " (blocks; the rate settles from above" : " (blocks; the rate settles from below") +
+    return " (blocks; the " + QuantityWord(unit) + (r.mean_z > 0 ? " settles from above" : " settles from below") +
            " from the start, time constant " + Format(r.time_s) + " s)";
   }
   return r.mean_z > 0 ? " (record above model)" : " (record below model)";
@@ -313,8 +305,8 @@ std::string RegionMeaning(const GapRegion& r) {
 
 // The report: the plain-words summary (diagnose_summary.h; left out with plain = false, for the
 // HTML page that shows it itself), then the detail.
-void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown,
-               std::optional<RateUnit> unit = std::nullopt, bool plain = true) {
+void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const DiagnoseUnits& unit = {},
+               bool plain = true) {
   const std::string h = markdown ? "## " : "";
   if (markdown) os << "# allanlab diagnose\n\n";
   if (plain && markdown) {
@@ -329,7 +321,9 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown,
     os << (s.verdict == "unexplained" ? " (best tried: " + c.id() + ")" : "");
     for (const auto& e : c.effects) {
       os << "\n  " << EffectLabel(e) << ":";
-      for (const auto& name : EffectParameterNames(e.effect)) os << " " << name << "=" << Format(e.params.at(name));
+      for (const auto& name : EffectParameterNames(e.effect)) {
+        os << " " << ParameterName(unit, name) << "=" << Format(e.params.at(name));
+      }
     }
   }
   os << "\n";
@@ -375,7 +369,7 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown,
   for (const GapRegion& r : s.regions) {
     os << (markdown ? "- " : "  ") << "region " << ViewId(r.view) << " " << Format(r.x_min) << " .. "
        << Format(r.x_max) << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << Format(r.max_abs_z)
-       << RegionMeaning(r) << "\n";
+       << RegionMeaning(r, unit) << "\n";
   }
   if (markdown) os << "\n" << h << "candidates\n\n| effect | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes |\n|---|---|---|---|---|---|---|\n";
   else if (!s.candidates.empty()) os << "candidates (score = OAVAR chi2 improvement - 2k):\n";
@@ -450,9 +444,9 @@ std::vector<std::pair<std::string, std::string>> ProvenancePairs(const Provenanc
   return out;
 }
 
-// Several gyro columns of one record: a diagnosis each, one JSON and report with a section per
-// column, one PNG with a panel per column. The diagnosis speaks in gyro units and effects, so
-// accelerometer columns are refused when named and left out (with a warning) under --imu.
+// Several columns of one record (gyro and accelerometer axes): a diagnosis each, one JSON and
+// report with a section per column, one PNG with a panel per column. Each is reported in its
+// sensor's units (app/diagnose_units.h).
 std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const DiagnoseOptions& d,
                                        const std::string& command_line, AtomicFile* json, AtomicFile* report,
                                        AtomicFile* png, AtomicFile* html) {
@@ -462,27 +456,19 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
   if (const int code = ReadRatesFromFile(o.record, kCommand, &rates, &info, &why); code != kExitOk) {
     return Failure{code, why};
   }
-  std::vector<std::size_t> gyro;
-  std::string accel;
-  for (std::size_t k = 0; k < info.columns.size(); ++k) {
-    if (info.columns[k].sensor == ImuSensor::kGyro) gyro.push_back(k);
-    else accel += (accel.empty() ? "" : ", ") + info.columns[k].name;
-  }
-  if (!accel.empty() && !o.record.imu) {
-    return UsageFailure(info.path + ": " + accel + ": accelerometer column(s); diagnose works on gyro columns "
-                        "(its effects and units are a gyro's): name gyro columns only");
-  }
-  if (gyro.empty()) return UsageFailure(info.path + ": --imu found no gyro column to diagnose");
-  if (!accel.empty()) {
-    std::cerr << "allanlab diagnose: warning: " << info.path << ": accelerometer column(s) " << accel
-              << " not diagnosed (diagnose works on gyro columns)" << std::endl;
+  if (d.baseline == DiagnoseOptions::Baseline::kSensor) {
+    for (const ColumnInfo& c : info.columns) {
+      if (c.sensor == ImuSensor::kAccelerometer) {
+        return UsageFailure(info.path + ": " + c.name + " is an accelerometer axis; --preset and --sensor describe a "
+                            "gyro: diagnose it against its fitted model (no --preset/--sensor) or drop it from --columns");
+      }
+    }
   }
   Provenance p = MakeProvenance(kCommand, command_line);
   p.Add("input", info.path);
   std::string columns;
-  for (std::size_t k : gyro) {
-    columns += (columns.empty() ? "" : ", ") + info.columns[k].name + " " + info.columns[k].units + " (" +
-               info.columns[k].units_source + ")";
+  for (const ColumnInfo& c : info.columns) {
+    columns += (columns.empty() ? "" : ", ") + c.name + " " + c.units + " (" + c.units_source + ")";
   }
   p.Add("columns", columns);
   p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
@@ -493,13 +479,13 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
   std::vector<AllanPlot> panels;
   std::vector<HtmlSection> sections;
   std::ostringstream markdown;
-  for (std::size_t i = 0; i < gyro.size(); ++i) {
-    const ColumnInfo& c = info.columns[gyro[i]];
+  for (std::size_t i = 0; i < info.columns.size(); ++i) {
+    const ColumnInfo& c = info.columns[i];
     DiagnosisSummary s;
     DiagnoseProgress progress(c.name, !o.quiet);
     DiagnoseOptions with_progress = d;
     with_progress.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
-    const bool diagnosed = DiagnoseRecord(with_progress, rates[gyro[i]], 1.0 / info.sample_rate_hz, &s);
+    const bool diagnosed = DiagnoseRecord(with_progress, rates[i], 1.0 / info.sample_rate_hz, &s);
     progress.Clear();
     if (!diagnosed) {
       return RuntimeFailure(info.path + ": column " + c.name + ": " + s.message);
@@ -507,17 +493,19 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
     if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
       s.notes.push_back("record: " + *stuck);
     }
-    std::cout << (i ? "\n" : "") << "# column " << c.name << "\n";
-    const std::optional<RateUnit> unit = RecordRateUnit(c.units);
+    const DiagnoseUnits unit{c.sensor, c.units};
+    const std::string heading = "# column " + c.name + " (" + std::string(ImuSensorName(c.sensor)) + ", " + c.units + ")";
+    std::cout << (i ? "\n" : "") << heading << "\n";
+    if (c.sensor == ImuSensor::kAccelerometer) std::cout << AccelerometerTermsLine() << "\n";
     WriteText(std::cout, s, false, unit);
     Json one = DiagnosisJson(s, p, Json(), unit);
     one.erase("provenance");
-    Json entry = {{"column", c.name}, {"units", c.units}};
+    Json entry = {{"column", c.name}, {"sensor", std::string(ImuSensorName(c.sensor))}, {"units", c.units}};
     entry.update(one);
     entries.push_back(std::move(entry));
-    markdown << (i ? "\n" : "") << "# column " << c.name << "\n\n";
+    markdown << (i ? "\n" : "") << heading << "\n\n";
     WriteText(markdown, s, true, unit);
-    for (AllanPlot& panel : DiagnosePanels(s, "allanlab diagnose: " + info.path + ", " + c.name)) {
+    for (AllanPlot& panel : DiagnosePanels(s, "allanlab diagnose: " + info.path + ", " + c.name, unit)) {
       panels.push_back(std::move(panel));
     }
     std::ostringstream detail;
@@ -573,12 +561,12 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
 
   if (SeveralColumns(o.record)) {
     if (curve_mode) return UsageFailure("--curve is one curve: drop --columns/--imu");
-    if (!o.validate_path.empty()) return UsageFailure("--validate-on checks one column: drop --columns/--imu");
+    if (!o.validate_path.empty()) return UsageFailure("--validate-on checks one gyro column: drop --columns/--imu (an accelerometer axis is diagnosed without it)");
     return DiagnoseSeveral(o, d, command_line, &json, &report, &png, &html);
   }
   Provenance p = MakeProvenance(kCommand, command_line);
   DiagnosisSummary s;
-  std::optional<RateUnit> unit;
+  DiagnoseUnits unit;
   if (curve_mode) {
     if (!DiagnoseCurve(d, table.curve, &s)) return RuntimeFailure(o.curve.path + ": " + s.message);
     if (!table.skipped.empty()) {
@@ -602,7 +590,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
       s.notes.push_back("record: " + *stuck);
     }
-    unit = RecordRateUnit(info.units);
+    unit.record_unit = info.units;
     p.Add("input", info.path);
     p.Add("column", info.column);
     p.Add("units", info.units + " (" + info.units_source + ")");
@@ -639,7 +627,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     report.stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
   }
   const std::string title = "allanlab diagnose: " + (curve_mode ? o.curve.path : o.record.path);
-  const std::vector<AllanPlot> panels = DiagnosePanels(s, title);
+  const std::vector<AllanPlot> panels = DiagnosePanels(s, title, unit);
   if (png.is_open() && !RenderAllanPlotGrid(panels, 2, &png, &why)) return RuntimeFailure(why);
   if (html.is_open()) {
     std::string bytes;

@@ -23,8 +23,9 @@
 //   --html OUT.html     one self-contained page: the summary, the detail and the plot inline
 //   --validate-on FILE2 a second recording of the same sensor: the verdict's model (linear terms
 //                       refitted on FILE, effect included) scored on FILE2's OAVAR
-// Several gyro columns (--columns, --imu; accelerometer columns are not diagnosed): the record read
-// once, a diagnosis per column, one JSON (columns[]), report and plot (a panel per column).
+// Several columns (--columns, --imu, or one accelerometer axis by --column): the record read once,
+// a diagnosis per column, each in its sensor's units (app/diagnose_units.h: a gyro's in deg/h, an
+// accelerometer's in mg and m/s), one JSON (columns[]), report and plot (a panel per column).
 // Curve mode (no record): --curve CSV --record-length S --rate HZ [--curve-column adev_x]
 // [--curve-units deg/h]: an Allan-deviation table (tau_s, deviation columns) as published by
 // other tools; OAVAR view only.
@@ -38,7 +39,7 @@
 #include "app/avar_command.h"
 #include "app/curve_options.h"
 #include "app/provenance.h"
-#include "app/rate_units.h"
+#include "app/diagnose_units.h"
 #include "app/subcommand.h"
 #include "experiments/diagnosis/diagnose.h"
 
@@ -63,10 +64,9 @@ struct DiagnoseCommandOptions {
 std::optional<CommandFailure> MakeDiagnoseOptions(const DiagnoseCommandOptions& o,
                                                   experiments::DiagnoseOptions* d);
 // ... and the JSON `diagnose --json` writes for one column (validation: null, or the scores on a
-// second record; unit: the record's rate unit for the plain summary, none for deg/h only).
+// second record; units: the column's sensor and the unit it was read in, app/diagnose_units.h).
 nlohmann::ordered_json DiagnosisJson(const experiments::DiagnosisSummary& s, const Provenance& p,
-                                     const nlohmann::ordered_json& validation,
-                                     std::optional<RateUnit> unit = std::nullopt);
+                                     const nlohmann::ordered_json& validation, const DiagnoseUnits& units = {});
 
 Subcommand AddDiagnoseCommand(CLI::App* parent);
 int RunDiagnose(const DiagnoseCommandOptions& options, const std::string& command_line);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "app/rate_units.h"
 #include "experiments/diagnosis/envelope.h"
 
 namespace allanlab::app {
@@ -37,11 +36,12 @@ std::string ModelName(const DiagnosisSummary& s) {
 
 // The record's ADEV, each model's mean and 95 % band (the exact chi-square distribution of the
 // OAVAR view), and the record's points beyond the threshold against the baseline in red on top.
-AllanPlot AllanPanel(const DiagnosisSummary& s, const std::string& title) {
+AllanPlot AllanPanel(const DiagnosisSummary& s, const std::string& title, const DiagnoseUnits& units) {
   AllanPlot plot;
   plot.title = title;
   plot.key = kKey;
-  const double unit = FromRadPerSecond(RateUnit::kDegPerHour, 1.0);
+  plot.y_label = "Allan deviation [" + ReportRateUnit(units) + "]";
+  const double unit = ReportRatePerSi(units);
   auto adev = [&](const std::vector<double>& avar) {
     std::vector<double> y;
     for (double v : avar) y.push_back(std::sqrt(v) * unit);
@@ -138,8 +138,9 @@ AllanPlot ViewPanel(const DiagnosisSummary& s, View v, const std::string& where)
 
 }  // namespace
 
-std::vector<AllanPlot> DiagnosePanels(const DiagnosisSummary& s, const std::string& title) {
-  std::vector<AllanPlot> panels = {AllanPanel(s, title)};
+std::vector<AllanPlot> DiagnosePanels(const DiagnosisSummary& s, const std::string& title,
+                                      const DiagnoseUnits& units) {
+  std::vector<AllanPlot> panels = {AllanPanel(s, title, units)};
   std::vector<View> shown;
   for (const GapRegion& r : s.regions) {
     if (r.view == View::kOavar || std::find(shown.begin(), shown.end(), r.view) != shown.end()) continue;

@@ -7,10 +7,13 @@
 #include <vector>
 
 #include "app/allan_plot.h"
+#include "app/diagnose_units.h"
 #include "experiments/diagnosis/diagnose.h"
 
 namespace allanlab::app {
 
-std::vector<AllanPlot> DiagnosePanels(const experiments::DiagnosisSummary& s, const std::string& title);
+// The Allan deviation in the report's unit of the column's sensor (app/diagnose_units.h).
+std::vector<AllanPlot> DiagnosePanels(const experiments::DiagnosisSummary& s, const std::string& title,
+                                      const DiagnoseUnits& units);
 
 }  // namespace allanlab::app

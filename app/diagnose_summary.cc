@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "estimators/fit/noise_coefficient.h"
-#include "sim/units.h"
 
 namespace allanlab::app {
 namespace {
@@ -13,14 +12,14 @@ namespace {
 using namespace allanlab::experiments;
 using Json = nlohmann::ordered_json;
 
-std::string Describe(Effect e) {
+std::string Describe(Effect e, const DiagnoseUnits& u) {
   switch (e) {
     case Effect::kBandwidth: return "a low-pass filter in the sensor's output chain";
     case Effect::kGaussMarkov: return "a correlated bias wander (first-order Gauss-Markov)";
     case Effect::kRandomTelegraph: return "a bias jumping between two levels (random telegraph, popcorn noise)";
     case Effect::kHarmonic: return "a periodic disturbance (vibration or an electrical line)";
-    case Effect::kAngleQuantization: return "quantization of the integrated angle output";
-    case Effect::kRateQuantization: return "quantization of the rate output";
+    case Effect::kAngleQuantization: return "quantization of the integrated " + IntegralWord(u) + " output";
+    case Effect::kRateQuantization: return "quantization of the " + QuantityWord(u) + " output";
     case Effect::kExponentialDrift: return "a warm-up drift settling exponentially from the start";
     case Effect::kBiasStep: return "a bias step";
     case Effect::kOutliers: return "spikes (outliers)";
@@ -38,22 +37,22 @@ std::string Spaced(std::string s) {
   return s;
 }
 
-// An effect parameter (SI, unit in its name) in the report's units: rates in deg/h (and the
-// record's unit), angles in deg, times in s, frequencies in Hz.
-PlainQuantity Quantity(const std::string& si_name, double v, std::optional<RateUnit> record_unit) {
+// An effect parameter (SI, unit in its name) in the report's units (app/diagnose_units.h):
+// rates in deg/h or accelerations in mg (and the record's unit), their integrals in deg or m/s,
+// times in s, frequencies in Hz.
+PlainQuantity Quantity(const std::string& si_name, double v, const DiagnoseUnits& units) {
   PlainQuantity q;
   if (EndsWith(si_name, "_rad_per_s")) {
     q.name = Spaced(si_name.substr(0, si_name.size() - 10));
-    q.value = FromRadPerSecond(RateUnit::kDegPerHour, v);
-    q.unit = "deg/h";
-    if (record_unit && *record_unit != RateUnit::kDegPerHour) {
-      q.record_value = FromRadPerSecond(*record_unit, v);
-      q.record_unit = std::string(RateUnitName(*record_unit));
-    }
+    const ReportedRate r = ReportRate(units, v);
+    q.value = r.value;
+    q.unit = r.unit;
+    q.record_value = r.record_value;
+    q.record_unit = r.record_unit;
   } else if (EndsWith(si_name, "_rad")) {
     q.name = Spaced(si_name.substr(0, si_name.size() - 4));
-    q.value = v / units::kRadPerDeg;
-    q.unit = "deg";
+    q.value = ReportAngle(units, v);
+    q.unit = ReportAngleUnit(units);
   } else if (si_name == "rate_hz") {
     q.name = "rate";
     q.value = v;
@@ -77,7 +76,7 @@ std::string Tau(double a, double b) {
   return (a == b ? PlainNumber(a) : PlainNumber(a) + " .. " + PlainNumber(b)) + " s";
 }
 
-std::string Where(const GapRegion& r) {
+std::string Where(const GapRegion& r, const DiagnoseUnits& u) {
   const std::string above = r.mean_z > 0 ? "the record above the model" : "the record below the model";
   switch (r.view) {
     case View::kOavar: return "Allan variance (oavar) at tau " + Tau(r.x_min, r.x_max) + ": " + above;
@@ -95,10 +94,10 @@ std::string Where(const GapRegion& r) {
       return std::string(r.mean_z > 0 ? "heavier tails than Gaussian noise" : "lighter tails than Gaussian noise") +
              " (kurtosis) at tau " + Tau(r.x_min, r.x_max);
     case View::kChangePoint:
-      return std::string(r.mean_z > 0 ? "the rate level rises" : "the rate level falls") + " at t = " +
+      return "the " + QuantityWord(u) + (r.mean_z > 0 ? " level rises" : " level falls") + " at t = " +
              PlainNumber(r.time_s) + " s from the start (change_point, blocks of " + Tau(r.x_min, r.x_max) + ")";
     case View::kTrend:
-      return std::string(r.mean_z > 0 ? "the rate settles from above" : "the rate settles from below") +
+      return "the " + QuantityWord(u) + (r.mean_z > 0 ? " settles from above" : " settles from below") +
              " from the start, time constant " + PlainNumber(r.time_s) + " s (trend, blocks of " +
              Tau(r.x_min, r.x_max) + ")";
   }
@@ -135,22 +134,22 @@ std::string PlainNumber(double v) {
   return buffer;
 }
 
-PlainSummary MakePlainSummary(const DiagnosisSummary& s, std::optional<RateUnit> record_unit) {
+PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& units) {
   PlainSummary p;
   p.verdict = s.verdict;
   p.threshold_z = s.threshold;
   p.points = s.total_points;
-  for (const GapRegion& r : s.regions) p.where.push_back(Where(r));
+  for (const GapRegion& r : s.regions) p.where.push_back(Where(r, units));
   const CandidateResult* c = s.verdict_candidate >= 0 ? &s.candidates[s.verdict_candidate] : nullptr;
   p.named = c != nullptr && s.verdict != "unexplained";
   p.best_tried = c != nullptr && s.verdict == "unexplained";
   if (c != nullptr) {
     p.model_label = "with " + c->id();
     for (const EffectInstance& e : c->effects) {
-      PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect), {}};
+      PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect, units), {}};
       if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
       for (const std::string& name : EffectParameterNames(e.effect)) {
-        pe.quantities.push_back(Quantity(name, e.params.at(name), record_unit));
+        pe.quantities.push_back(Quantity(name, e.params.at(name), units));
       }
       p.effects.push_back(std::move(pe));
     }
@@ -178,15 +177,15 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, std::optional<RateUnit>
     if (!b.asked || (!b.fitted && (c == nullptr || !c->fit.at(k).fitted))) continue;  // in neither model
     PlainCoefficient pc;
     pc.id = std::string(estimators::CoefficientId(k));
-    pc.unit = std::string(estimators::DatasheetUnit(k));
+    pc.unit = CoefficientUnit(units, k);
     pc.baseline_fitted = b.fitted;
-    pc.baseline = estimators::ToDatasheetUnit(k, b.value_si);
-    pc.baseline_sigma = estimators::ToDatasheetUnit(k, b.sigma_si);
+    pc.baseline = CoefficientValue(units, k, b.value_si);
+    pc.baseline_sigma = CoefficientValue(units, k, b.sigma_si);
     if (c != nullptr) {
       const auto& m = c->fit.at(k);
       pc.model_fitted = m.fitted;
-      pc.model = estimators::ToDatasheetUnit(k, m.value_si);
-      pc.model_sigma = estimators::ToDatasheetUnit(k, m.sigma_si);
+      pc.model = CoefficientValue(units, k, m.value_si);
+      pc.model_sigma = CoefficientValue(units, k, m.sigma_si);
     }
     p.coefficients.push_back(pc);
   }

@@ -1,7 +1,8 @@
 #pragma once
 // The first lines of a `diagnose` report, in plain words and in one set of units: where the
 // record departs from the baseline (tau range; for a step or a warm-up drift, the time in the
-// record), which effect explains it in sensor terms (rates in deg/h and in the record's unit),
+// record), which effect explains it in sensor terms (app/diagnose_units.h: a gyro's rates in deg/h, an
+// accelerometer's accelerations in mg, each also in the record's unit),
 // how far the gap shrinks with it, view by view, and the baseline's and the verdict model's
 // coefficients side by side. Stdout, the Markdown report, the JSON (`summary`) and the HTML
 // report all print this one structure, so they say the same thing in the same units.
@@ -12,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/rate_units.h"
+#include "app/diagnose_units.h"
 #include "experiments/diagnosis/diagnose.h"
 
 namespace allanlab::app {
@@ -20,8 +21,8 @@ namespace allanlab::app {
 struct PlainQuantity {
   std::string name;  // "size", "time", "cutoff", ...
   double value = 0.0;
-  std::string unit;  // "deg/h", "s", "Hz", "" (a pure number)
-  // The same rate in the record's unit when it is not deg/h (nullopt otherwise).
+  std::string unit;  // "deg/h", "mg", "s", "Hz", "" (a pure number)
+  // The same rate in the record's unit when it is not the report's (nullopt otherwise).
   std::optional<double> record_value;
   std::string record_unit;
 };
@@ -58,8 +59,8 @@ struct PlainSummary {
   int points = 0;
 };
 
-// `record_unit`: the unit the record was read in (nullopt: deg/h only).
-PlainSummary MakePlainSummary(const experiments::DiagnosisSummary& s, std::optional<RateUnit> record_unit);
+// `units`: the column's sensor and the unit it was read in (app/diagnose_units.h).
+PlainSummary MakePlainSummary(const experiments::DiagnosisSummary& s, const DiagnoseUnits& units);
 
 // The sentences (one per line, no markup): what stdout prints first and the Markdown lists.
 std::vector<std::string> PlainLines(const PlainSummary& p);

@@ -1,5 +1,6 @@
 #include "app/raw_sample_decoder.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 
@@ -10,7 +11,7 @@ RawSampleDecoder::RawSampleDecoder(RawSampleType type, ValueSink sink)
 
 RawSampleDecoder::RawSampleDecoder(RawSampleType type, BlockSink sink, std::size_t block_values)
     : type_(type), size_(type == RawSampleType::kFloat32 ? 4 : 8), block_sink_(std::move(sink)) {
-  block_.reserve(block_values < 1 ? 1 : block_values);
+  block_.resize(block_values < 1 ? 1 : block_values);
 }
 
 double RawSampleDecoder::Decode(const unsigned char* p) const {
@@ -28,19 +29,35 @@ double RawSampleDecoder::Decode(const unsigned char* p) const {
   return value;
 }
 
+void RawSampleDecoder::DecodeRun(const unsigned char* p, std::size_t count, double* out) const {
+  if constexpr (std::endian::native == std::endian::little) {
+    if (type_ == RawSampleType::kFloat64) {
+      std::memcpy(out, p, count * sizeof(double));
+      return;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      float value;
+      std::memcpy(&value, p + 4 * i, sizeof value);
+      out[i] = static_cast<double>(value);
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < count; ++i) out[i] = Decode(p + i * static_cast<std::size_t>(size_));
+}
+
 bool RawSampleDecoder::FlushBlock() {
-  if (block_.empty()) return true;
-  const auto first = index_ - static_cast<std::int64_t>(block_.size());
-  const bool go_on = block_sink_(block_, first);
-  block_.clear();
+  if (block_count_ == 0) return true;
+  const auto first = index_ - static_cast<std::int64_t>(block_count_);
+  const bool go_on = block_sink_(std::span<const double>(block_.data(), block_count_), first);
+  block_count_ = 0;
   return go_on;
 }
 
 bool RawSampleDecoder::Emit(const unsigned char* p) {
   if (!block_sink_) return sink_(Decode(p), index_++);
-  block_.push_back(Decode(p));
+  block_[block_count_++] = Decode(p);
   ++index_;
-  return block_.size() < block_.capacity() || FlushBlock();
+  return block_count_ < block_.size() || FlushBlock();
 }
 
 bool RawSampleDecoder::Feed(std::span<const char> bytes) {
@@ -56,10 +73,23 @@ bool RawSampleDecoder::Feed(std::span<const char> bytes) {
     carried_ = 0;
     if (!Emit(carry_)) return false;
   }
-  while (n >= static_cast<std::size_t>(size_)) {
+  const auto size = static_cast<std::size_t>(size_);
+  if (block_sink_) {
+    // Whole samples straight into the block, as many at a time as it has room for.
+    while (n >= size) {
+      const std::size_t take = std::min(n / size, block_.size() - block_count_);
+      DecodeRun(p, take, block_.data() + block_count_);
+      block_count_ += take;
+      index_ += static_cast<std::int64_t>(take);
+      p += take * size;
+      n -= take * size;
+      if (block_count_ == block_.size() && !FlushBlock()) return false;
+    }
+  }
+  while (n >= size) {
     if (!Emit(p)) return false;
     p += size_;
-    n -= static_cast<std::size_t>(size_);
+    n -= size;
   }
   std::memcpy(carry_, p, n);
   carried_ = static_cast<int>(n);

@@ -31,13 +31,16 @@ class RawSampleDecoder {
  private:
   bool Emit(const unsigned char* p);
   double Decode(const unsigned char* p) const;
+  // `count` whole samples from p into out: a copy on a little-endian host, else byte by byte.
+  void DecodeRun(const unsigned char* p, std::size_t count, double* out) const;
   bool FlushBlock();
 
   RawSampleType type_;
   int size_;
   ValueSink sink_;
   BlockSink block_sink_;
-  std::vector<double> block_;  // block mode: decoded, not yet passed on
+  std::vector<double> block_;  // block mode: its first block_count_ values decoded, not yet passed on
+  std::size_t block_count_ = 0;
   unsigned char carry_[8] = {};
   int carried_ = 0;
   std::int64_t index_ = 0;

@@ -421,7 +421,7 @@ class Reader {
           for (double v : values) finite &= std::isfinite(v);
           if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
             info_->samples += static_cast<std::int64_t>(values.size());
-            for (double v : values) stretch_.Add(v);
+            stretch_.AddBlock(values);
             info_->longest_constant_stretch = stretch_.longest();
             (*block_sink_)(values);
             return true;
@@ -631,9 +631,14 @@ bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vect
     if (values->size() != row.size()) values->resize(row.size());
     for (std::size_t k = 0; k < row.size(); ++k) (*values)[k].push_back(row[k]);
   };
-  if (!Reader(options, &row_sink, info).Run(error)) return false;
+  if (!ReadRecordRows(options, row_sink, info, error)) return false;
   values->resize(info->columns.size());
   return true;
+}
+
+bool ReadRecordRows(const RecordReaderOptions& options, const std::function<void(std::span<const double>)>& row_sink,
+                    RecordInfo* info, RecordError* error) {
+  return Reader(options, &row_sink, info).Run(error);
 }
 
 }  // namespace allanlab::app

@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -137,5 +138,11 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
 // kept samples in file units, every column the same length.
 bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,
                        RecordInfo* info, RecordError* error);
+
+// The same read streamed: each kept row (one value per column, in file units) goes to `row_sink`.
+// info->columns (names, sensors, units) is set before the first row; the sample rate only at the
+// end. On failure the sink may already have received rows.
+bool ReadRecordRows(const RecordReaderOptions& options, const std::function<void(std::span<const double>)>& row_sink,
+                    RecordInfo* info, RecordError* error);
 
 }  // namespace allanlab::app

@@ -134,7 +134,7 @@ std::string Diagnose(const Array& values, double rate_hz, const std::string& uni
     ok = experiments::DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s);
   }
   if (!ok) Raise(app::kExitRuntimeError, o.record.path + ": " + s.message);
-  return app::DiagnosisJson(s, app::MakeProvenance("diagnose", "allanlab.diagnose (Python)"), nullptr).dump();
+  return app::DiagnosisJson(s, app::MakeProvenance("diagnose", "allanlab.diagnose (Python)"), nullptr, {app::ImuSensor::kGyro, units}).dump();
 }
 
 }  // namespace

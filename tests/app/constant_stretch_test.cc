@@ -2,6 +2,9 @@
 // matter (>= 100 samples and >= 0.1 % of the record). The record reader feeds the same tracker.
 #include "app/constant_stretch.h"
 
+#include <algorithm>
+#include <random>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -29,6 +32,35 @@ TEST(ConstantStretch, FindsTheLongestRunWherever) {
   s = LongestConstantStretch(v);
   EXPECT_EQ(s.first, 900);
   EXPECT_EQ(s.length, 100);
+}
+
+// Blocks of any size give what one comparison per sample gives, checked against the longest run
+// counted here directly, on records with runs (some across block edges) among distinct values.
+TEST(ConstantStretch, BlocksFindTheSameRun) {
+  std::mt19937_64 engine(3);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> v = Ramp(1 + static_cast<int>(engine() % 3000));
+    for (int runs = static_cast<int>(engine() % 4); runs > 0; --runs) {
+      const std::size_t at = engine() % v.size(), length = 1 + engine() % 150;
+      for (std::size_t k = at; k < std::min(v.size(), at + length); ++k) v[k] = v[at];
+    }
+    ConstantStretch expected;
+    for (std::size_t k = 0, start = 0; k < v.size(); ++k) {
+      if (k > 0 && v[k] != v[k - 1]) start = k;
+      if (static_cast<std::int64_t>(k - start + 1) > expected.length) {
+        expected = {static_cast<std::int64_t>(start), static_cast<std::int64_t>(k - start + 1), v[k]};
+      }
+    }
+    ConstantStretchTracker tracker;
+    for (std::size_t k = 0; k < v.size();) {
+      const std::size_t n = std::min(v.size() - k, static_cast<std::size_t>(engine() % 300));
+      tracker.AddBlock(std::span<const double>(v).subspan(k, n));
+      k += n;
+    }
+    EXPECT_EQ(tracker.longest().first, expected.first) << trial;
+    EXPECT_EQ(tracker.longest().length, expected.length) << trial;
+    EXPECT_EQ(tracker.longest().value, expected.value) << trial;
+  }
 }
 
 TEST(ConstantStretch, NamedOnlyWhenLongEnough) {

@@ -190,6 +190,37 @@ TEST_F(ImuAvarCommandTest, ColumnsGiveTheCurvesOfOneColumnRuns) {
   // A comma list in --column reads the same columns.
   ASSERT_EQ(Run("avar imu.csv --column Gyro_Y,Accel_X_g --units deg/s --json comma.json").exit_code, 0);
   EXPECT_EQ(Json("comma.json")["columns"], several["columns"]);
+  // One accelerometer axis by --column is read in its own units, as with --columns.
+  const RunResult accel = Run("avar imu.csv --column Accel_X_g --json accel.json");
+  ASSERT_EQ(accel.exit_code, 0) << accel.err;
+  EXPECT_EQ(Json("accel.json")["columns"][0]["points"], several["columns"][1]["points"]);
+  EXPECT_EQ(Json("accel.json")["columns"][0]["units"]["dev"], "mg");
+}
+
+TEST_F(ImuAvarCommandTest, StreamGivesEveryColumnsCurveInOnePass) {
+  const RunResult r = Run("avar imu.csv --imu --units deg/s --stream --json stream.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(Run("avar imu.csv --imu --units deg/s --ci simple --json memory.json").exit_code, 0);
+  const nlohmann::json stream = Json("stream.json"), memory = Json("memory.json");
+  ASSERT_EQ(stream["columns"].size(), 4u);
+  EXPECT_NE(stream["provenance"]["estimator"].get<std::string>().find("--stream"), std::string::npos);
+  // m = 1 by the definition (deg/s -> deg/h is 3600; g -> mg is 1000).
+  const double gyro = std::sqrt(AvarAtOne(gy_)) * 3600.0;
+  EXPECT_NEAR(stream["columns"][1]["points"][0]["dev"].get<double>(), gyro, 1e-12 * gyro);
+  const double accel = std::sqrt(AvarAtOne(ax_)) * 1000.0;
+  EXPECT_NEAR(stream["columns"][3]["points"][0]["dev"].get<double>(), accel, 1e-12 * accel);
+  // Every column at every octave tau as the in-memory pass computes it (another algorithm: the
+  // streaming estimator's running sums against the integrated record's differences).
+  for (std::size_t c = 0; c < 4; ++c) {
+    const nlohmann::json& s = stream["columns"][c]["points"];
+    const nlohmann::json& m = memory["columns"][c]["points"];
+    EXPECT_EQ(stream["columns"][c]["input"]["units"], memory["columns"][c]["input"]["units"]);
+    ASSERT_EQ(s.size(), m.size()) << c;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+      EXPECT_NEAR(s[k]["var"].get<double>(), m[k]["var"].get<double>(), 1e-10 * m[k]["var"].get<double>()) << c;
+      EXPECT_EQ(s[k]["edf"], m[k]["edf"]) << c;
+    }
+  }
 }
 
 TEST_F(ImuAvarCommandTest, PlotHasEveryAxis) {
@@ -208,7 +239,7 @@ TEST_F(ImuAvarCommandTest, BadChoicesAreOneLineErrors) {
   ExpectError("avar imu.csv --imu --column Gyro_X --units deg/s", 2, "--imu");
   ExpectError("avar imu.csv --columns Gyro_X,nope --units deg/s", 2, "nope");
   ExpectError("avar imu.csv --columns Gyro_X,Gyro_X --units deg/s", 2, "twice");
-  ExpectError("avar imu.csv --columns Gyro_X,Gyro_Y --units deg/s --stream --ci simple", 2, "--stream");
+  ExpectError("avar imu.csv --columns Gyro_X,Gyro_Y --units deg/s --stream --ci gr", 2, "--stream");
   ExpectError("avar imu.csv --accel-units kg --column Gyro_X --units deg/s", 2, "--accel-units");
   Write("plain.csv", "t_s,x,y\n0,1,2\n0.01,2,3\n0.02,1,1\n0.03,3,1\n");
   ExpectError("avar plain.csv --imu --units deg/s", 2, "no gyro or accelerometer column");
