@@ -115,6 +115,13 @@ class Reader {
         }
         stated.push_back({unit, "the sidecar " + sidecar_->path});
       }
+      if (stated.empty() && o_.units.empty()) {
+        return Usage(error, In() + "raw " + std::string(RecordFormatName(format_)) + " samples state no units" +
+                                (o_.path == "-" ? std::string()
+                                                : " and no sidecar " + o_.path + ".json gives them") +
+                                ": give --units " +
+                                (o_.kind == estimators::InputKind::kAngle ? "deg, rad or arcsec" : "deg/s, deg/h or rad/s"));
+      }
       if (!ResolveStatedUnits(std::move(stated), "the samples", error)) return false;
     }
     std::unique_ptr<ByteSource> source;

@@ -9,6 +9,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/random/normal_distribution.hpp>
 
+#include "experiments/diagnosis/profiled_step.h"
 #include "sim/seeding.h"
 
 namespace allanlab::experiments {
@@ -20,6 +21,9 @@ constexpr double kMaxZ = 37.0;  // as the other views' z (gap.cc)
 // terms' own (docs/theory.md §6.7).
 constexpr std::int64_t kShortLags = std::int64_t{1} << 15;
 constexpr std::uint64_t kNullSeed = 0x626c6f636b6d65ULL;
+// Draws of the profiled change-point statistic's null (profiled_step.h): fewer than the held
+// statistics' (each costs a profile over K), the tail beyond the 20th largest extrapolated alike.
+constexpr int kProfiledNullDraws = 1000;
 
 bool IsEvent(const sim::NoiseTerm& t) {
   return std::holds_alternative<sim::BiasStep>(t) || std::holds_alternative<sim::ExponentialDrift>(t);
@@ -81,6 +85,14 @@ std::vector<double> CovarianceFromAutocovariance(const std::vector<double>& r, s
     c[k] = static_cast<double>(-d[k] + 0.5L * d[k + 1] + 0.5L * d[std::abs(k - 1)]) + ramp2_tau2;
   }
   return c;
+}
+
+double RandomWalkSquared(const sim::SensorModel& model) {
+  double k2 = 0.0;
+  for (const sim::NoiseTerm& t : model.terms) {
+    if (const auto* k = std::get_if<sim::RandomWalkRate>(&t)) k2 += k->rrw_rad_per_s_per_sqrt_s * k->rrw_rad_per_s_per_sqrt_s;
+  }
+  return k2;
 }
 
 double RampSquared(const sim::SensorModel& model) {
@@ -154,6 +166,17 @@ struct Family {
       best = std::max(best, t * t);
     }
     return best;
+  }
+  // The best of statistics computed elsewhere, one per regressor (profiled_step.h).
+  void Observe(const std::vector<ProfiledStep>& fits) {
+    for (std::size_t i = 0; i < fits.size() && i < regressors.size(); ++i) {
+      if (fits[i].t > best_t) {
+        best_t = fits[i].t;
+        best_size = fits[i].size;
+        best_sd = fits[i].sd;
+        best_where = regressors[i].where_s;
+      }
+    }
   }
   void Observe(const std::vector<double>& w) {
     for (const Regressor& r : regressors) {
@@ -292,7 +315,8 @@ std::vector<double> BlockDifferenceCovariance(const sim::SensorModel& model, std
 }
 
 void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<const int> block_counts,
-                        const sim::SensorModel& model, ViewResiduals* change_point, ViewResiduals* trend) {
+                        const sim::SensorModel& model, bool rate_random_walk_fitted, ViewResiduals* change_point,
+                        ViewResiduals* trend) {
   *change_point = ViewResiduals{};
   *trend = ViewResiduals{};
   change_point->view = View::kChangePoint;
@@ -310,6 +334,13 @@ void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<con
   for (int b : block_counts) longest = std::max(longest, b * (n / b));
   const std::vector<double> r = RandomPartAutocovariance(model, longest + 1);
   const double r2 = RampSquared(model);
+  // A unit rate random walk's generalised autocovariance, -|j| tau0 / 2 (sim/random_walk_rate.h).
+  std::vector<double> unit_walk;
+  if (rate_random_walk_fitted) {
+    unit_walk.resize(static_cast<std::size_t>(longest + 1));
+    for (std::size_t j = 0; j < unit_walk.size(); ++j) unit_walk[j] = -0.5 * static_cast<double>(j) * tau0;
+  }
+  const double k2 = RandomWalkSquared(model);
   for (int blocks : block_counts) {
     const std::int64_t m = n / blocks;
     const double block_s = static_cast<double>(m) * tau0;
@@ -327,17 +358,36 @@ void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<con
       for (std::int64_t k = b * m; k < (b + 1) * m; ++k) sum += rate[k] - (path.empty() ? 0.0 : path[k]);
       u[b] = static_cast<double>(sum / static_cast<long double>(m));
     }
-    std::vector<double> w(dim);
-    for (std::size_t i = 0; i < dim; ++i) w[i] = u[i + 1] - u[i];
+    std::vector<double> d(dim);
+    for (std::size_t i = 0; i < dim; ++i) d[i] = u[i + 1] - u[i];
+    std::vector<double> w = d;
     Forward(l, &w);
     Backward(l, &w);  // w = C^{-1} d
     Family steps = StepFamily(dim, block_s), settlings = SettlingFamily(dim, m, tau0, n);
     Normalise(l, dim, &steps);
     Normalise(l, dim, &settlings);
-    steps.Observe(w);
-    settlings.Observe(w);
+    std::vector<ProfiledStep> profiled;
     std::vector<double> null_step, null_settle;
-    NullMaxima(l, blocks, steps, settlings, &null_step, &null_settle);
+    if (rate_random_walk_fitted && k2 > 0.0) {
+      const std::vector<double> unit = CovarianceFromAutocovariance(unit_walk, m, blocks, 0.0);
+      std::vector<double> c0(dim);
+      for (std::size_t i = 0; i < dim; ++i) c0[i] = c[i] - k2 * unit[i];
+      std::vector<SparseRegressor> h;
+      for (const Regressor& reg : steps.regressors) h.push_back(reg.h);
+      if (!ProfileSteps(c0, unit, k2, d, h, kProfiledNullDraws, static_cast<std::uint64_t>(blocks), &profiled,
+                        &null_step)) {
+        profiled.clear();
+      }
+    }
+    if (profiled.empty()) {
+      steps.Observe(w);
+    } else {
+      steps.Observe(profiled);
+    }
+    settlings.Observe(w);
+    std::vector<double> held_null_step;
+    NullMaxima(l, blocks, steps, settlings, &held_null_step, &null_settle);
+    if (profiled.empty()) null_step = std::move(held_null_step);
     AddPoint(steps, std::move(null_step), block_s, change_point);
     AddPoint(settlings, std::move(null_settle), block_s, trend);
   }

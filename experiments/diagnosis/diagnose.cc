@@ -1,5 +1,6 @@
 #include "experiments/diagnosis/diagnose.h"
 
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
@@ -29,7 +30,8 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
   std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr);
   if (!layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
     ViewResiduals change_point, trend;
-    BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, &change_point, &trend);
+    BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, layout.rate_random_walk_fitted,
+                       &change_point, &trend);
     out.push_back(std::move(change_point));
     out.push_back(std::move(trend));
   }
@@ -193,6 +195,8 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   s.baseline_model = ctx.spec.Model(s.baseline, 1.0 / tau0);
   s.curve = ctx.curve;
   ctx.layout = MakeViewLayout(tau0, s.num_samples, ctx.curve.m);
+  ctx.layout.rate_random_walk_fitted =
+      std::find(ctx.spec.terms.begin(), ctx.spec.terms.end(), estimators::Coefficient::kK) != ctx.spec.terms.end();
   if (!ComputeViews(ctx.layout, rate, &ctx.observed, &why)) {
     s.message = why;
     return false;

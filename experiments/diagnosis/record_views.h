@@ -46,6 +46,7 @@ struct ViewLayout {
   std::vector<std::int64_t> oavar_m;  // the fit's grid
   std::vector<std::int64_t> hadamard_m, halves_m, dynamic_m, kurtosis_m;
   std::vector<int> block_counts;                  // block-mean views: blocks of N / count samples
+  bool rate_random_walk_fitted = false;           // K fitted to this record (block_means.h)
   std::int64_t psd_segment = 0;                   // 0: no PSD view (record too short)
   std::vector<std::pair<int, int>> psd_bands;     // [first, last) periodogram bins per band
   std::vector<double> psd_band_hz;                // geometric centre frequency of each band

@@ -311,6 +311,12 @@ TEST_F(RecordReaderTest, RawWithoutRateOrWithAPartialSampleFails) {
   EXPECT_EQ(r.error.message, o.path + ": raw f32 samples carry no time and no sidecar " + o.path +
                                  ".json gives their rate: give the sample rate with --rate HZ");
   o.rate_hz = 10;
+  o.units.clear();
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitUsageError);
+  EXPECT_EQ(r.error.message, o.path + ": raw f32 samples state no units and no sidecar " + o.path +
+                                 ".json gives them: give --units deg/s, deg/h or rad/s");
+  o.units = "rad/s";
   r = Read(o);
   EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
   EXPECT_EQ(r.error.message, o.path +
