@@ -295,9 +295,10 @@ void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* ca
   summary->message += os.str();
 }
 
-// Fills the summary's coefficients, chi2 and dof from the subset `keep` (bits: asked terms) of
-// the problem: values, covariance sigmas and profile intervals of the terms it keeps above zero,
-// upper limits of the others.
+// Fills the summary's coefficients, chi2 and dof from the chosen subset masks.front() (bits:
+// asked terms) of the problem: values and covariance sigmas of the terms it keeps above zero,
+// upper limits of the others, and every term's profile ranges over all of `masks` (the choice and
+// its competitive subsets, linear_profile.h).
 void ReportSubset(const FixedFitProblem& fp, const std::vector<unsigned>& masks, bool selected,
                   FitSummary* summary) {
   const unsigned keep = masks.front();

@@ -198,13 +198,17 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
   auto root = [scale](double x) { return std::sqrt(std::max(x * scale, 0.0)); };
   ProfileRange r68{std::numeric_limits<double>::infinity(), 0.0}, r95 = r68;
   double upper = 0.0;
-  for (std::size_t k = 0; k < free_masks.size(); ++k) {
-    // A term not determined is profiled with it free (its lower ends are then 0).
-    const unsigned mask = free_masks[k] | (1u << j);
-    auto hull = [](ProfileRange* h, const ProfileRange& r) {
-      h->lower = std::min(h->lower, r.lower);
-      h->upper = std::max(h->upper, r.upper);
-    };
+  auto hull = [](ProfileRange* h, const ProfileRange& r) {
+    h->lower = std::min(h->lower, r.lower);
+    h->upper = std::max(h->upper, r.upper);
+  };
+  // A term not determined is profiled with it free (its lower ends are then 0); subsets that differ
+  // only in term j give the same profile, so each is profiled once.
+  std::vector<unsigned> masks;
+  for (unsigned m : free_masks) {
+    if (std::find(masks.begin(), masks.end(), m | (1u << j)) == masks.end()) masks.push_back(m | (1u << j));
+  }
+  for (unsigned mask : masks) {
     hull(&r68, BoundedProfileInterval(p, mask, j, kProfileLevel68));
     hull(&r95, BoundedProfileInterval(p, mask, j, kProfileLevel95));
     if (!e->fitted) upper = std::max(upper, ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);

@@ -21,8 +21,8 @@
 // rise above the minimum, Delta, gives the intervals. The 68.3 % and 95 % intervals accept a held
 // value t when Delta(t) is below the critical value of the bounded likelihood ratio at t
 // (bounded_threshold.h, Feldman & Cousins): the chi2_1 quantiles 1 and 3.841 far from the
-// boundary, falling to 0.227 and 2.706 at x_j = 0. The fixed chi2_1 quantiles over-cover there (B
-// of mg25_mems at 2 h: 74.5 % at a nominal 68.3 %; an undetermined K 96 %). A term the data do
+// boundary, falling to 0.227 and 2.706 at x_j = 0. The fixed chi2_1 quantiles over-cover there
+// (0.5 + 0.5 level at x_j = 0: 84 % at a nominal 68.3 %; bounded_threshold_stat_test.cc). A term the data do
 // not determine also gets the one-sided 95 % upper limit at Delta = 2.706 (the 50:50 mixture of
 // chi2_0 and chi2_1 puts 5 % above it). The interval of c = sqrt(x) is the square root of x's:
 // no first-order propagation, which fails near the boundary.
