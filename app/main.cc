@@ -1,6 +1,6 @@
 // The `allanlab` command: one binary, one subcommand per job.
-#include "app/cli.h"
-#include "app/heap_tuning.h"
+#include "app/commands/cli.h"
+#include "app/input/heap_tuning.h"
 #include "experiments/mpi_world.h"
 
 int main(int argc, char** argv) {

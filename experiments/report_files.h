@@ -2,7 +2,7 @@
 // What every validation report writes besides its own numbers (provenance, docs/architecture.md "Conventions"): files
 // that appear whole or not at all, the provenance block each table starts with, and gnuplot
 // figures in PNG and SVG. The experiments library sits below app/, so it cannot use
-// app/atomic_file.h; this is the small subset the reports need.
+// app/reports/atomic_file.h; this is the small subset the reports need.
 #include <string>
 #include <string_view>
 #include <utility>

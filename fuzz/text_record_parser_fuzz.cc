@@ -1,5 +1,5 @@
-// libFuzzer target for the text record parser (app/text_record_parser.h) and the time-step
-// checks it feeds (app/time_steps.h): any bytes, any column choice, any chunking.
+// libFuzzer target for the text record parser (app/input/text_record_parser.h) and the time-step
+// checks it feeds (app/input/time_steps.h): any bytes, any column choice, any chunking.
 //
 // Besides crashes and sanitizer reports it checks the parser's promise that the split of the input
 // into chunks never changes the result: the input is parsed whole and in chunks, and the two runs
@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "app/text_record_parser.h"
-#include "app/time_steps.h"
+#include "app/input/text_record_parser.h"
+#include "app/input/time_steps.h"
 
 namespace {
 

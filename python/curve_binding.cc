@@ -1,6 +1,6 @@
 // avar, fit and diagnose on a record in memory: the commands' options structs filled from the
-// keyword arguments, then the commands' own steps (app/avar_command.h, app/fit_command.h,
-// app/diagnose_command.h) and their JSON writers, so the numbers are the command line's.
+// keyword arguments, then the commands' own steps (app/input/record_curve.h, app/commands/fit_command.h,
+// app/commands/diagnose_command.h) and their JSON writers, so the numbers are the command line's.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -10,12 +10,12 @@
 #include <utility>
 #include <vector>
 
-#include "app/avar_command.h"
-#include "app/avar_report.h"
-#include "app/diagnose_command.h"
-#include "app/fit_command.h"
-#include "app/provenance.h"
-#include "app/record_reader.h"
+#include "app/input/record_curve.h"
+#include "app/reports/avar_report.h"
+#include "app/commands/diagnose_command.h"
+#include "app/commands/fit_command.h"
+#include "app/reports/provenance.h"
+#include "app/input/record_reader.h"
 #include "python/bindings.h"
 
 namespace py = pybind11;
@@ -34,8 +34,8 @@ std::vector<double> Samples(const Array& values) {
 }
 
 // The record options of every command: what `--rate`, `--units` and `--type` say on the command line.
-app::AvarCommandOptions RecordOptions(double rate_hz, const std::string& units, const std::string& type) {
-  app::AvarCommandOptions o;
+app::RecordCurveOptions RecordOptions(double rate_hz, const std::string& units, const std::string& type) {
+  app::RecordCurveOptions o;
   o.path = "values";
   o.rate_hz = rate_hz;
   o.units = units;
@@ -50,7 +50,7 @@ void Check(int code, const std::string& error) {
 std::string Avar(const Array& values, double rate_hz, const std::string& units, const std::string& type,
                  const std::string& estimator, const std::string& taus, const std::string& ci, double confidence,
                  const std::string& out_units) {
-  app::AvarCommandOptions o = RecordOptions(rate_hz, units, type);
+  app::RecordCurveOptions o = RecordOptions(rate_hz, units, type);
   o.estimator = estimator;
   o.taus = taus;
   o.ci = ci;
@@ -140,7 +140,7 @@ std::string Diagnose(const Array& values, double rate_hz, const std::string& uni
 }  // namespace
 
 void AddCurveFunctions(py::module_& m) {
-  const app::AvarCommandOptions avar;
+  const app::RecordCurveOptions avar;
   m.def("avar", &Avar, py::arg("values"), py::arg("rate_hz"), py::arg("units"), py::arg("type") = avar.type,
         py::arg("estimator") = avar.estimator, py::arg("taus") = avar.taus, py::arg("ci") = "auto",
         py::arg("confidence") = avar.confidence, py::arg("out_units") = avar.out_units);

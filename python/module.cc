@@ -5,8 +5,8 @@
 #include <string_view>
 #include <utility>
 
-#include "app/provenance.h"
-#include "app/subcommand.h"
+#include "app/reports/provenance.h"
+#include "app/commands/subcommand.h"
 #include "python/bindings.h"
 
 namespace allanlab::python {

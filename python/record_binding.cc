@@ -1,5 +1,5 @@
 // simulate and the exact expected OAVAR of its records, from the sensor model `allanlab simulate`
-// loads (app/simulate_command.h).
+// loads (app/commands/simulate_command.h).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/simulate_command.h"
+#include "app/reports/simulated_record.h"
 #include "python/bindings.h"
 #include "sim/avar_theory.h"
 #include "sim/sensor_model.h"

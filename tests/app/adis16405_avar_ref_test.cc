@@ -30,8 +30,8 @@
 #include <string>
 #include <vector>
 
-#include "app/provenance.h"
-#include "app/record_reader.h"
+#include "app/reports/provenance.h"
+#include "app/input/record_reader.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {

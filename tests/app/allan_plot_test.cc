@@ -1,4 +1,4 @@
-#include "app/allan_plot.h"
+#include "app/reports/allan_plot.h"
 
 #include <cmath>
 #include <cstdlib>

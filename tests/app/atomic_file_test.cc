@@ -1,4 +1,4 @@
-#include "app/atomic_file.h"
+#include "app/reports/atomic_file.h"
 
 #include <sys/stat.h>
 

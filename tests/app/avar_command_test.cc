@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "app/allan_plot.h"
+#include "app/reports/allan_plot.h"
 #include "estimators/allan_variance.h"
 #include "tests/support/read_file.h"
 

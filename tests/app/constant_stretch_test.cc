@@ -1,6 +1,6 @@
 // A stuck stretch of a record is found where it is, and named only when it is long enough to
 // matter (>= 100 samples and >= 0.1 % of the record). The record reader feeds the same tracker.
-#include "app/constant_stretch.h"
+#include "app/input/constant_stretch.h"
 
 #include <algorithm>
 #include <random>

@@ -1,6 +1,6 @@
 // Published Allan curves: deviations or variances, in any rate unit, rows beyond the record
 // skipped and named, bad cells refused with their line.
-#include "app/curve_table.h"
+#include "app/input/curve_table.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "app/subcommand.h"
+#include "app/commands/subcommand.h"
 #include "sim/units.h"
 
 namespace allanlab::app {

@@ -144,7 +144,7 @@ TEST_F(FitCommandTest, ReadsTheUnitsTheRecordStates) {
 }
 
 // 1 s at 100 Hz of white noise: the old fit reported R = 4.85e6 +- 0.48e6 deg/h^2 without a
-// word. Five terms need 256 samples (app/record_support.h); one term is fine.
+// word. Five terms need 256 samples (app/input/record_support.h); one term is fine.
 TEST_F(FitCommandTest, RefusesRecordsTooShortForTheTerms) {
   std::ofstream(dir_ / "white.yaml") << "name: white\nsample_rate: 100 Hz\nterms:\n"
                                         "  - {type: arw, N: 0.2 deg/sqrt(h)}\n";

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "app/accel_units.h"
-#include "app/allan_plot.h"
-#include "app/imu_columns.h"
+#include "app/input/accel_units.h"
+#include "app/reports/allan_plot.h"
+#include "app/input/imu_columns.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {

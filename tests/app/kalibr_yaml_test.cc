@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/kalibr_yaml.h"
+#include "app/reports/kalibr_yaml.h"
 #include "sim/units.h"
 
 namespace allanlab::app {

@@ -1,4 +1,4 @@
-#include "app/provenance.h"
+#include "app/reports/provenance.h"
 
 #include <cstdlib>
 #include <string>

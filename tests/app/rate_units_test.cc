@@ -1,4 +1,4 @@
-#include "app/rate_units.h"
+#include "app/input/rate_units.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The record reader: every container (text, f32, f64; plain, gzip, xz), the sample rate from a
 // time column or --rate, irregular steps, and every bad input with its message and exit code.
-#include "app/record_reader.h"
+#include "app/input/record_reader.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "app/byte_source.h"
-#include "app/subcommand.h"
+#include "app/input/byte_source.h"
+#include "app/commands/subcommand.h"
 
 namespace allanlab::app {
 namespace {

@@ -1,6 +1,6 @@
 // The record-length rule: P fitted parameters need P + 1 octave taus with at least 8 clusters,
 // and a term that dominates only above T/8 is named.
-#include "app/record_support.h"
+#include "app/input/record_support.h"
 
 #include <gtest/gtest.h>
 

@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "app/record_reader.h"
-#include "app/subcommand.h"
+#include "app/input/record_reader.h"
+#include "app/commands/subcommand.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {

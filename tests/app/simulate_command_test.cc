@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "app/allan_plot.h"
+#include "app/reports/allan_plot.h"
 #include "sim/sensor_spec.h"
 #include "tests/support/read_file.h"
 

@@ -1,6 +1,6 @@
 // What a column name or a unit text says about the units of a record, and how the statements
 // meet --units.
-#include "app/stated_units.h"
+#include "app/input/stated_units.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The text parser alone: delimiters, header detection, comments, column choice, number rules,
 // and that the chunking of the input never changes the result.
-#include "app/text_record_parser.h"
+#include "app/input/text_record_parser.h"
 
 #include <gtest/gtest.h>
 

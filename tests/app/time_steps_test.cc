@@ -1,4 +1,4 @@
-#include "app/time_steps.h"
+#include "app/input/time_steps.h"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/validate_command.h"
+#include "app/commands/validate_command.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {

@@ -1,0 +1,168 @@
+#pragma once
+// Incremental parser of a delimited text record: CSV, TSV, ';'-separated or whitespace-separated
+// columns, '#' comments, an optional header row. Bytes go in by chunks of any size (the split
+// never changes the result); each data row comes out as one value of the chosen column, plus the
+// time column's value when the header names one. The parser only extracts: what a value means
+// (finite or not, time steps, sample rate) is decided by the caller (app/input/record_reader.h).
+//
+// Format rules, decided on the first line that is not blank or a comment:
+//  - delimiter: ',' if that line has one, else tab (unless a tab-separated field holds a space:
+//    then the tabs only align columns), else ';', else runs of spaces/tabs;
+//  - that line is a header when any field is neither a number nor a missing-value marker;
+//  - '#' starts a comment anywhere on a line; '\r' line ends, a UTF-8 BOM, spaces around fields
+//    and double quotes around a field ("Gyro_X") are ignored;
+//  - numbers are C-locale decimal or hex floats, a leading '+' allowed; "nan", "inf",
+//    "infinity" (any case, signed), "NA" and an empty field are read as NaN (missing values,
+//    which the caller may drop), a number beyond the double range as +-inf;
+//  - a NUL byte or a line longer than kMaxLineBytes means the file is not text;
+//  - `# key: value` comment lines before the first data row are kept (LeadingComment): that is
+//    how `allanlab simulate` states the units and the sample rate of what follows;
+//  - without a header, a first column whose values strictly increase over the first
+//    kTimeProbeRows data rows is the time column (the two-column `time value` layout of Stable32
+//    and SigmaTheta), in seconds, unless --column chose it as the data.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace allanlab::app {
+
+// The header names that mark a time column (compared case-insensitively) and the unit each
+// implies. Bare names (t, time, timestamp) are taken as seconds unless the caller is told
+// otherwise: app/input/record_reader.h rejects a bare-named column whose step is implausible as seconds.
+// "%time" is the nanosecond receive time `rostopic echo -p` writes.
+struct TimeColumnName {
+  std::string_view name;
+  double seconds_per_unit;
+  bool unit_in_name;
+};
+inline constexpr TimeColumnName kTimeColumnNames[] = {
+    {"t", 1.0, false},        {"t_s", 1.0, true},       {"time", 1.0, false},
+    {"time_s", 1.0, true},    {"timestamp", 1.0, false}, {"timestamp_s", 1.0, true},
+    {"t_ms", 1e-3, true},     {"time_ms", 1e-3, true},  {"timestamp_ms", 1e-3, true},
+    {"t_us", 1e-6, true},     {"time_us", 1e-6, true},  {"timestamp_us", 1e-6, true},
+    {"t_ns", 1e-9, true},     {"time_ns", 1e-9, true},  {"timestamp_ns", 1e-9, true},
+    {"%time", 1e-9, true}};
+
+struct TextRow {
+  std::int64_t line = 0;  // 1-based physical line number in the (decompressed) text
+  double value = 0.0;     // may be NaN or +-inf; the first of `values`
+  // Every chosen value column, in the order asked (one entry with the one-column constructor).
+  // Valid during the sink call only.
+  std::span<const double> values;
+  bool has_time = false;
+  // In the time column's own unit, when has_time; may be non-finite. Integer time stamps are
+  // given relative to the first row's, exactly: a 19-digit nanosecond stamp does not fit a
+  // double, but its steps do.
+  double time = 0.0;
+};
+
+class TextRecordParser {
+ public:
+  // Called for each data row; returning false stops the parse (Feed/Finish then return false
+  // with error() empty: the sink keeps its own reason).
+  using RowSink = std::function<bool(const TextRow&)>;
+
+  static constexpr std::size_t kMaxLineBytes = 1 << 20;
+  // Rows of a headerless file read before deciding whether its first column is time: 32 noisy
+  // values rise in order by chance with probability 1/32! (~4e-36).
+  static constexpr int kTimeProbeRows = 32;
+  // The name a headerless time column is given (in messages and RecordInfo::time_column).
+  static constexpr std::string_view kHeaderlessTimeName = "column 0";
+  // How messages name a time column: "time column t_s", or "time column 0" for a headerless file.
+  static std::string TimeColumnPhrase(std::string_view time_column);
+
+  // `column`: the --column text, a header name or a 0-based index (all digits); empty picks the
+  // first column that is not the time column. Names are matched exactly, else case-insensitively
+  // when that is unambiguous.
+  explicit TextRecordParser(std::string column, RowSink sink);
+
+  // Several value columns read in one pass: `columns` are resolved each as the one-column
+  // constructor's (none may be empty or repeated); or, when `columns` is empty, `choose` picks
+  // them from the header's names (the time column's index, -1 for none, given to skip it).
+  // Without a header row the chooser sees empty names.
+  using ColumnChooser = std::function<bool(const std::vector<std::string>& names, int time_index,
+                                           std::vector<std::string>* columns, std::string* why)>;
+  TextRecordParser(std::vector<std::string> columns, ColumnChooser choose, RowSink sink);
+
+  // Parses the complete lines in `chunk` (a partial last line is kept for the next call).
+  // Returns false on the first format error (error() says which line and why) or when the sink
+  // stopped; after that the parser ignores further input.
+  bool Feed(std::string_view chunk);
+  // Parses the last line if it has no newline. Call once, after the last Feed().
+  bool Finish();
+
+  const std::string& error() const { return error_; }
+  // The error is about the --column choice (the command line), not about the file's content.
+  bool error_is_usage() const { return error_is_usage_; }
+  // Known once the first non-comment line has been seen.
+  bool has_header() const { return has_header_; }
+  char delimiter() const { return delimiter_; }  // ' ' for whitespace
+  // The chosen column: its header name, or "column K" without a header; and its 0-based index.
+  const std::string& value_column() const { return value_column_; }
+  int value_column_index() const { return value_index_; }
+  // Every chosen column (their names as value_column()); known with has_header().
+  const std::vector<std::string>& value_columns() const { return value_columns_; }
+  // The time column's header name, empty when there is none, and its entry in kTimeColumnNames.
+  const std::string& time_column() const { return time_column_; }
+  const TimeColumnName* time_column_name() const { return time_name_; }
+  // True when the time column is a headerless first column found by its increasing values.
+  bool time_column_guessed() const { return time_guessed_; }
+  std::int64_t lines() const { return line_; }  // physical lines read so far
+  std::int64_t data_rows() const { return data_rows_; }
+  // The value of the last `# key: value` comment line before the first data row whose key matches
+  // `key` case-insensitively (keys are trimmed); empty when there is none.
+  std::string LeadingComment(std::string_view key) const;
+
+ private:
+  bool ParseLine(std::string_view line);
+  bool ParseDataRow(std::int64_t line);
+  bool DecideHeaderlessTime();
+  void KeepLeadingComment(std::string_view comment);
+  bool ChooseColumns(const std::vector<std::string_view>& first_fields, bool header);
+  bool ResolveColumn(const std::string& spec, const std::vector<std::string>& names, bool header,
+                     int* index);
+  bool Fail(std::string message);
+  bool ParseTimeField(std::string_view field, double* time);
+  void Split(std::string_view line, std::vector<std::string_view>* fields) const;
+
+  std::string column_spec_;  // the first of column_specs_
+  std::vector<std::string> column_specs_;
+  ColumnChooser choose_;
+  RowSink sink_;
+  std::string pending_;  // the incomplete last line of the previous chunk
+  std::string error_;
+  bool failed_ = false;
+  bool error_is_usage_ = false;
+  bool finished_ = false;
+  bool format_known_ = false;
+  bool has_header_ = false;
+  char delimiter_ = ',';
+  std::string value_column_;
+  int value_index_ = -1;
+  std::vector<std::string> value_columns_;
+  std::vector<int> value_indices_;
+  std::vector<double> values_;  // the current row's
+  std::string time_column_;
+  int time_index_ = -1;
+  const TimeColumnName* time_name_ = nullptr;
+  bool time_origin_set_ = false;
+  std::int64_t time_origin_ = 0;  // the first integer time stamp
+  std::int64_t line_ = 0;
+  std::int64_t data_rows_ = 0;
+  std::vector<std::string_view> fields_;  // reused per line
+  // Headerless time probe: the first rows (line number, text) held until the decision.
+  bool probing_ = false;
+  bool time_guessed_ = false;
+  std::vector<std::pair<std::int64_t, std::string>> probe_;
+  std::vector<std::pair<std::string, std::string>> leading_comments_;
+};
+
+// Reads one field as a number by the rules above. Returns false when the text is not a number
+// and not a missing-value marker.
+bool ParseNumberField(std::string_view field, double* value);
+
+}  // namespace allanlab::app

@@ -1,0 +1,415 @@
+#include "app/reports/allan_plot.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "app/reports/provenance.h"
+
+extern char** environ;
+
+namespace allanlab::app {
+namespace {
+
+constexpr const char* kGnuplot = "gnuplot";
+constexpr const char* kInstallHint =
+    "gnuplot not found on PATH; install it (e.g. apt-get install gnuplot-nox) or drop --plot";
+
+bool Fail(std::string* why, const std::string& message) {
+  if (why) *why = message;
+  return false;
+}
+
+// A scratch file in the system temp directory, removed when it goes out of scope.
+class ScratchFile {
+ public:
+  bool Create(std::string* why) {
+    std::error_code ec;
+    std::string templ =
+        (std::filesystem::temp_directory_path(ec) / "allanlab-plot.XXXXXX").string();
+    if (ec) templ = "/tmp/allanlab-plot.XXXXXX";
+    std::vector<char> buffer(templ.begin(), templ.end());
+    buffer.push_back('\0');
+    fd_ = ::mkstemp(buffer.data());
+    if (fd_ < 0)
+      return Fail(why, "cannot create a temporary file: " + std::string(std::strerror(errno)));
+    path_ = buffer.data();
+    return true;
+  }
+  ~ScratchFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!path_.empty()) std::remove(path_.c_str());
+  }
+  const std::string& path() const { return path_; }
+  int fd() const { return fd_; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+// gnuplot single-quoted strings take everything literally except '' for a quote.
+std::string Quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') out += '\'';
+    if (c == '\n' || c == '\r') c = ' ';
+    out += c;
+  }
+  return out + "'";
+}
+
+bool Plottable(double x, double y) {
+  return std::isfinite(x) && std::isfinite(y) && x > 0 && y > 0;
+}
+
+bool HasBars(const PlotSeries& s) {
+  return (s.style == PlotStyle::kPoints || s.style == PlotStyle::kBand) &&
+         s.y_low.size() == s.x.size() && s.y_high.size() == s.x.size();
+}
+
+std::string SlopeLabel(double slope) {
+  if (slope == 0.0) return "0";
+  const std::string sign = slope > 0 ? "+" : "-";
+  const double magnitude = std::abs(slope);
+  if (magnitude == std::round(magnitude)) return sign + ShortestDecimal(magnitude);
+  if (2 * magnitude == std::round(2 * magnitude)) {
+    return sign + ShortestDecimal(2 * magnitude) + "/2";
+  }
+  return sign + ShortestDecimal(magnitude);
+}
+
+const char* Color(std::size_t index) {
+  static const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                        "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  return kColors[index % (sizeof kColors / sizeof kColors[0])];
+}
+
+std::string TerminalLines(int width_px, int height_px, const std::string& output_path) {
+  std::ostringstream os;
+  os << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+     << "  set terminal pngcairo noenhanced size " << width_px << "," << height_px
+     << " font ',10'\n"
+     << "} else {\n"
+     << "  set terminal png noenhanced size " << width_px << "," << height_px << "\n"
+     << "}\n"
+     << "set output " << Quoted(output_path) << "\n";
+  return os.str();
+}
+
+// The commands that draw one diagram (after the terminal is set).
+std::string Body(const AllanPlot& plot) {
+  // A linear y axis shows zero and negative values; a log one only positive ones.
+  const auto Plottable = [&](double x, double y) {
+    return plot.log_y ? allanlab::app::Plottable(x, y) : std::isfinite(x) && std::isfinite(y) && x > 0;
+  };
+  std::vector<const PlotSeries*> kept;
+  std::vector<std::vector<std::pair<double, double>>> points;
+  std::vector<std::vector<std::pair<double, double>>> bars;  // (low, high) per kept point
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = 0;
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = 0;
+  int guide_index = -1;  // into points
+  for (std::size_t s = 0; s < plot.series.size(); ++s) {
+    const PlotSeries& series = plot.series[s];
+    std::vector<std::pair<double, double>> valid, valid_bars;
+    if (series.style == PlotStyle::kBand && !HasBars(series)) continue;
+    for (std::size_t i = 0; i < std::min(series.x.size(), series.y.size()); ++i) {
+      if (!Plottable(series.x[i], series.y[i])) continue;
+      if (series.style == PlotStyle::kBand &&
+          !(Plottable(series.x[i], series.y_low[i]) && Plottable(series.x[i], series.y_high[i]))) {
+        continue;
+      }
+      valid.emplace_back(series.x[i], series.y[i]);
+      x_lo = std::min(x_lo, series.x[i]);
+      x_hi = std::max(x_hi, series.x[i]);
+      y_lo = std::min(y_lo, series.y[i]);
+      y_hi = std::max(y_hi, series.y[i]);
+      if (HasBars(series)) {
+        const double low = Plottable(series.x[i], series.y_low[i]) ? series.y_low[i] : series.y[i];
+        const double high =
+            Plottable(series.x[i], series.y_high[i]) ? series.y_high[i] : series.y[i];
+        valid_bars.emplace_back(low, high);
+        y_lo = std::min(y_lo, low);
+        y_hi = std::max(y_hi, high);
+      }
+    }
+    if (valid.empty()) continue;
+    kept.push_back(&series);
+    points.push_back(std::move(valid));
+    bars.push_back(std::move(valid_bars));
+    if (static_cast<int>(s) == plot.guide_series) guide_index = static_cast<int>(points.size()) - 1;
+  }
+  // Guides must not stretch the axes, so the ranges come from the data alone.
+  if (x_hi <= x_lo) x_hi = x_lo * 2;
+  for (double y : plot.y_lines) {
+    if (!plot.log_y && std::isfinite(y)) y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+  }
+  if (y_hi <= y_lo) y_hi = plot.log_y ? y_lo * 2 : y_lo + 1;
+  const double y_pad = 0.08 * (y_hi - y_lo);
+  std::ostringstream os;
+  os << "set title " << Quoted(plot.title) << "\n"
+     << "set xlabel " << Quoted(plot.x_label) << "\n"
+     << "set ylabel " << Quoted(plot.y_label) << "\n"
+     << (plot.log_y ? "set logscale xy\n" : "unset logscale y\nset logscale x\n")
+     << "set format x '%g'\nset format y '%g'\n"
+     << "set grid xtics ytics mxtics mytics lc rgb '#e8e8e8' lw 1\n"
+     << "set key " << plot.key << "\n"
+     << "set samples 200\n"
+     << "set xrange [" << ShortestDecimal(x_lo / 1.5) << ":" << ShortestDecimal(x_hi * 1.5) << "]\n";
+  if (plot.log_y) {
+    os << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
+  } else {
+    os << "set yrange [" << ShortestDecimal(y_lo - y_pad) << ":" << ShortestDecimal(y_hi + y_pad) << "]\n";
+  }
+  for (double y : plot.y_lines) {
+    if (std::isfinite(y)) {
+      os << "set arrow from graph 0, first " << ShortestDecimal(y) << " to graph 1, first " << ShortestDecimal(y)
+         << " nohead lc rgb '#999999' dt 2\n";
+    }
+  }
+  // Spans: rectangles behind the curves, each with a dummy keyed clause when titled (objects
+  // have no key entry of their own).
+  std::vector<std::string> span_keys;
+  for (std::size_t i = 0; i < plot.spans.size(); ++i) {
+    const PlotSpan& span = plot.spans[i];
+    if (!(span.x_min > 0) || !(span.x_max >= span.x_min) || !std::isfinite(span.x_max)) continue;
+    // A one-point span gets a width of a factor 1.05 each way on the log axis.
+    const double lo = span.x_min == span.x_max ? span.x_min / 1.05 : span.x_min;
+    const double hi = span.x_min == span.x_max ? span.x_max * 1.05 : span.x_max;
+    const double opacity = std::clamp(span.opacity, 0.0, 1.0);
+    os << "set object " << i + 1 << " rect from " << ShortestDecimal(lo) << ", graph 0 to "
+       << ShortestDecimal(hi) << ", graph 1 behind fc rgb " << Quoted(span.color)
+       << " fs transparent solid " << ShortestDecimal(opacity) << " noborder\n";
+    if (!span.title.empty() &&
+        std::find(span_keys.begin(), span_keys.end(), span.title) == span_keys.end()) {
+      span_keys.push_back(span.title);
+      span_keys.push_back(span.color);
+      span_keys.push_back(ShortestDecimal(opacity));
+    }
+  }
+  for (std::size_t s = 0; s < points.size(); ++s) {
+    os << "$s" << s << " << EOD\n";
+    for (std::size_t i = 0; i < points[s].size(); ++i) {
+      os << ShortestDecimal(points[s][i].first) << " " << ShortestDecimal(points[s][i].second);
+      if (!bars[s].empty()) {
+        os << " " << ShortestDecimal(bars[s][i].first) << " " << ShortestDecimal(bars[s][i].second);
+      }
+      os << "\n";
+    }
+    os << "EOD\n";
+  }
+  std::vector<std::string> clauses;
+  if (guide_index >= 0) {
+    for (std::size_t g = 0; g < plot.slope_guides.size(); ++g) {
+      const double slope = plot.slope_guides[g];
+      // log y = c + slope log x with c the smallest intercept over the points: the line touches
+      // the curve at one point and stays below it elsewhere.
+      double best = std::numeric_limits<double>::infinity();
+      double touch_x = 0, touch_y = 0;
+      for (const auto& [x, y] : points[guide_index]) {
+        const double c = std::log(y) - slope * std::log(x);
+        if (c < best) {
+          best = c;
+          touch_x = x;
+          touch_y = y;
+        }
+      }
+      os << "g" << g << "(x) = " << ShortestDecimal(std::exp(best)) << " * x**("
+         << ShortestDecimal(slope) << ")\n";
+      // Guides often share a touching point (a curve end), so each label sits on its own line a
+      // factor 3 in tau away from it, towards the inside of the plot, just under the line.
+      const double label_x = touch_x * 3 <= x_hi ? touch_x * 3 : touch_x / 3;
+      const double label_y = touch_y * std::pow(label_x / touch_x, slope) / 1.3;
+      if (label_y > y_lo / 2 && label_y < y_hi * 2) {
+        os << "set label " << g + 1 << " " << Quoted(SlopeLabel(slope)) << " at "
+           << ShortestDecimal(label_x) << "," << ShortestDecimal(label_y)
+           << " center textcolor rgb '#909090' font ',8'\n";
+      }
+      clauses.push_back("g" + std::to_string(g) + "(x) with lines lc rgb '#b8b8b8' dt 3 notitle");
+    }
+  }
+  for (std::size_t s = 0; s < kept.size(); ++s) {
+    std::string style;
+    switch (kept[s]->style) {
+      case PlotStyle::kPoints:
+        style = bars[s].empty() ? "using 1:2 with points pt 7 ps 1.1"
+                                : "using 1:2:3:4 with yerrorbars pt 7 ps 1.1";
+        break;
+      case PlotStyle::kLine:
+        style = "using 1:2 with lines lw 2";
+        break;
+      case PlotStyle::kDashedLine:
+        style = "using 1:2 with lines lw 1.5 dt 2";
+        break;
+      case PlotStyle::kBand:
+        style = "using 1:3:4 with filledcurves fs transparent solid 0.25 noborder";
+        break;
+    }
+    const std::string color = kept[s]->color.empty() ? Color(s) : kept[s]->color;
+    clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb " + Quoted(color) + " title " +
+                      Quoted(kept[s]->title));
+  }
+  for (std::size_t k = 0; k + 2 < span_keys.size(); k += 3) {
+    // NaN draws nothing but puts the span's colour in the key.
+    clauses.push_back("NaN with filledcurves fs transparent solid " + span_keys[k + 2] +
+                      " noborder fc rgb " + Quoted(span_keys[k + 1]) + " title " + Quoted(span_keys[k]));
+  }
+  os << "plot ";
+  for (std::size_t i = 0; i < clauses.size(); ++i) {
+    os << (i ? ", \\\n     " : "") << clauses[i];
+  }
+  os << "\n";
+  return os.str();
+}
+
+std::string Script(const AllanPlot& plot, const std::string& output_path) {
+  return TerminalLines(plot.width_px, plot.height_px, output_path) + Body(plot) + "unset output\n";
+}
+
+// Panels in a grid of `columns`, each with its own axes, labels and objects.
+std::string Script(const std::vector<AllanPlot>& panels, int columns, const std::string& output_path) {
+  columns = std::clamp(columns, 1, static_cast<int>(panels.size()));
+  const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
+  int width = 0, height = 0;
+  for (const AllanPlot& p : panels) {
+    width = std::max(width, p.width_px);
+    height = std::max(height, p.height_px);
+  }
+  std::string out = TerminalLines(width * columns, height * rows, output_path);
+  out += "set multiplot layout " + std::to_string(rows) + "," + std::to_string(columns) + "\n";
+  for (const AllanPlot& p : panels) out += Body(p) + "unset object\nunset label\nunset arrow\n";
+  return out + "unset multiplot\nunset output\n";
+}
+
+bool AnyPlottable(const AllanPlot& plot) {
+  for (const PlotSeries& s : plot.series) {
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (plot.log_y ? Plottable(s.x[i], s.y[i]) : std::isfinite(s.x[i]) && s.x[i] > 0 && std::isfinite(s.y[i])) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The first line of gnuplot's stderr that says what went wrong, for a one-line message.
+std::string FirstErrorLine(const std::string& log_path) {
+  std::ifstream log(log_path);
+  std::string line, first;
+  while (std::getline(log, line)) {
+    if (line.find_first_not_of(" \t^") == std::string::npos) continue;
+    if (first.empty()) first = line;
+    if (line.find("rror") != std::string::npos) return line;
+  }
+  return first.empty() ? "no message" : first;
+}
+
+}  // namespace
+
+bool FindGnuplot(std::string* why) {
+  const char* path = std::getenv("PATH");
+  std::string_view dirs = path ? path : "";
+  while (true) {
+    const std::size_t colon = dirs.find(':');
+    // An empty PATH entry means the current directory.
+    const std::filesystem::path dir = colon == 0 || dirs.empty()
+                                          ? std::filesystem::path(".")
+                                          : std::filesystem::path(dirs.substr(0, colon));
+    const std::string candidate = (dir / kGnuplot).string();
+    struct stat st;
+    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0) {
+      return true;
+    }
+    if (colon == std::string_view::npos) break;
+    dirs.remove_prefix(colon + 1);
+  }
+  return Fail(why, kInstallHint);
+}
+
+namespace {
+
+// Runs gnuplot on `text` (which writes png->temp_path()).
+bool RunGnuplot(const std::string& text, AtomicFile* png, std::string* why) {
+  png->stream().close();
+  ScratchFile script, log;
+  if (!script.Create(why) || !log.Create(why)) return false;
+  if (::write(script.fd(), text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
+    return Fail(why, "cannot write the gnuplot script: " + std::string(std::strerror(errno)));
+  }
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, log.fd(), STDERR_FILENO);
+  std::string script_path = script.path();
+  std::string program = kGnuplot;
+  char* argv[] = {program.data(), script_path.data(), nullptr};
+  pid_t pid = 0;
+  const int spawn_error = ::posix_spawnp(&pid, kGnuplot, &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error == ENOENT) return Fail(why, kInstallHint);
+  if (spawn_error != 0) {
+    return Fail(why, "cannot run gnuplot: " + std::string(std::strerror(spawn_error)));
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR)
+      return Fail(why, "lost the gnuplot process: " + std::string(std::strerror(errno)));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    // posix_spawnp may report a failed exec only through exit status 127.
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return Fail(why, kInstallHint);
+    return Fail(why, "gnuplot failed: " + FirstErrorLine(log.path()));
+  }
+  struct stat st;
+  if (::stat(png->temp_path().c_str(), &st) != 0 || st.st_size == 0) {
+    return Fail(why, "gnuplot wrote no image: " + FirstErrorLine(log.path()));
+  }
+  return true;
+}
+
+}  // namespace
+
+bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
+  if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
+  if (!AnyPlottable(plot)) return Fail(why, "nothing to plot: no positive, finite point in any series");
+  return RunGnuplot(Script(plot, png->temp_path()), png, why);
+}
+
+bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, AtomicFile* png, std::string* why) {
+  if (panels.size() == 1) return RenderAllanPlot(panels.front(), png, why);
+  if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
+  if (panels.empty()) return Fail(why, "nothing to plot: no panel");
+  for (const AllanPlot& p : panels) {
+    if (!AnyPlottable(p)) return Fail(why, "nothing to plot in panel '" + p.title + "': no positive, finite point");
+  }
+  return RunGnuplot(Script(panels, columns, png->temp_path()), png, why);
+}
+
+bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why) {
+  return RenderAllanPlotGrid(panels, static_cast<int>(panels.size()), png, why);
+}
+
+bool WriteAllanPlotPng(const AllanPlot& plot, const std::string& png_path, std::string* why) {
+  AtomicFile png;
+  return png.Open(png_path, why) && RenderAllanPlot(plot, &png, why) && png.Commit(why);
+}
+
+}  // namespace allanlab::app

@@ -1,0 +1,284 @@
+#include "app/reports/diagnose_summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "estimators/fit/noise_coefficient.h"
+
+namespace allanlab::app {
+namespace {
+
+using namespace allanlab::experiments;
+using Json = nlohmann::ordered_json;
+
+std::string Describe(Effect e, const DiagnoseUnits& u) {
+  switch (e) {
+    case Effect::kBandwidth: return "a low-pass filter in the sensor's output chain";
+    case Effect::kGaussMarkov: return "a correlated bias wander (first-order Gauss-Markov)";
+    case Effect::kRandomTelegraph: return "a bias jumping between two levels (random telegraph, popcorn noise)";
+    case Effect::kHarmonic: return "a periodic disturbance (vibration or an electrical line)";
+    case Effect::kAngleQuantization: return "quantization of the integrated " + IntegralWord(u) + " output";
+    case Effect::kRateQuantization: return "quantization of the " + QuantityWord(u) + " output";
+    case Effect::kExponentialDrift: return "a warm-up drift settling exponentially from the start";
+    case Effect::kBiasStep: return "a bias step";
+    case Effect::kOutliers: return "spikes (outliers)";
+    case Effect::kResonance: return "a narrowband resonance (a lightly damped mode driven by noise)";
+  }
+  return "?";
+}
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string Spaced(std::string s) {
+  for (char& c : s) c = c == '_' ? ' ' : c;
+  return s;
+}
+
+// An effect parameter (SI, unit in its name) in the report's units (app/reports/diagnose_units.h):
+// rates in deg/h or accelerations in mg (and the record's unit), their integrals in deg or m/s,
+// times in s, frequencies in Hz.
+PlainQuantity Quantity(const std::string& si_name, double v, const DiagnoseUnits& units) {
+  PlainQuantity q;
+  if (EndsWith(si_name, "_rad_per_s")) {
+    q.name = Spaced(si_name.substr(0, si_name.size() - 10));
+    const ReportedRate r = ReportRate(units, v);
+    q.value = r.value;
+    q.unit = r.unit;
+    q.record_value = r.record_value;
+    q.record_unit = r.record_unit;
+  } else if (EndsWith(si_name, "_rad")) {
+    q.name = Spaced(si_name.substr(0, si_name.size() - 4));
+    q.value = ReportAngle(units, v);
+    q.unit = ReportAngleUnit(units);
+  } else if (si_name == "rate_hz") {
+    q.name = "rate";
+    q.value = v;
+    q.unit = "per s";
+  } else if (EndsWith(si_name, "_hz")) {
+    q.name = Spaced(si_name.substr(0, si_name.size() - 3));
+    q.value = v;
+    q.unit = "Hz";
+  } else if (EndsWith(si_name, "_s")) {
+    q.name = Spaced(si_name.substr(0, si_name.size() - 2));
+    q.value = v;
+    q.unit = "s";
+  } else {
+    q.name = Spaced(si_name);
+    q.value = v;
+  }
+  return q;
+}
+
+std::string Tau(double a, double b) {
+  return (a == b ? PlainNumber(a) : PlainNumber(a) + " .. " + PlainNumber(b)) + " s";
+}
+
+std::string Where(const GapRegion& r, const DiagnoseUnits& u) {
+  const std::string above = r.mean_z > 0 ? "the record above the model" : "the record below the model";
+  switch (r.view) {
+    case View::kOavar: return "Allan variance (oavar) at tau " + Tau(r.x_min, r.x_max) + ": " + above;
+    case View::kHadamard: return "Hadamard variance (hadamard) at tau " + Tau(r.x_min, r.x_max) + ": " + above;
+    case View::kHalves:
+      return "the two halves of the record differ (halves) at tau " + Tau(r.x_min, r.x_max) +
+             (r.mean_z > 0 ? ": the first half noisier" : ": the second half noisier");
+    case View::kDynamic:
+      return "the Allan variance changes along the record (dynamic) at tau " + Tau(r.x_min, r.x_max);
+    case View::kPsd:
+      return "spectrum (psd) at " +
+             (r.x_min == r.x_max ? PlainNumber(r.x_min) : PlainNumber(r.x_min) + " .. " + PlainNumber(r.x_max)) +
+             " Hz: " + above;
+    case View::kKurtosis:
+      return std::string(r.mean_z > 0 ? "heavier tails than Gaussian noise" : "lighter tails than Gaussian noise") +
+             " (kurtosis) at tau " + Tau(r.x_min, r.x_max);
+    case View::kChangePoint:
+      return "the " + QuantityWord(u) + (r.mean_z > 0 ? " level rises" : " level falls") + " at t = " +
+             PlainNumber(r.time_s) + " s from the start (change_point, blocks of " + Tau(r.x_min, r.x_max) + ")";
+    case View::kTrend:
+      return "the " + QuantityWord(u) + (r.mean_z > 0 ? " settles from above" : " settles from below") +
+             " from the start, time constant " + PlainNumber(r.time_s) + " s (trend, blocks of " +
+             Tau(r.x_min, r.x_max) + ")";
+  }
+  return "?";
+}
+
+std::string QuantityText(const PlainQuantity& q) {
+  std::string t = q.name + " " + PlainNumber(q.value) + (q.unit.empty() ? "" : " " + q.unit);
+  if (q.record_value) t += " (" + PlainNumber(*q.record_value) + " " + q.record_unit + ")";
+  return t;
+}
+
+std::string EffectText(const PlainEffect& e) {
+  std::string t = e.description + " [" + e.id + "]";
+  for (std::size_t i = 0; i < e.quantities.size(); ++i) t += (i ? ", " : ": ") + QuantityText(e.quantities[i]);
+  return t;
+}
+
+std::string ShrinkText(const PlainShrink& v) {
+  const double factor = v.chi2_after > 0.0 ? v.chi2_before / v.chi2_after : 0.0;
+  return v.view + " " + PlainNumber(v.chi2_before) + " -> " + PlainNumber(v.chi2_after) +
+         (factor > 0.0 ? " (" + PlainNumber(factor) + "x)" : "");
+}
+
+std::string CoefficientText(bool fitted, double value, double sigma) {
+  return fitted ? PlainNumber(value) + " +- " + PlainNumber(sigma) : "not fitted";
+}
+
+}  // namespace
+
+std::string PlainNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+
+PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& units) {
+  PlainSummary p;
+  p.verdict = s.verdict;
+  p.threshold_z = s.threshold;
+  p.points = s.total_points;
+  for (const GapRegion& r : s.regions) p.where.push_back(Where(r, units));
+  const CandidateResult* c = s.verdict_candidate >= 0 ? &s.candidates[s.verdict_candidate] : nullptr;
+  p.named = c != nullptr && s.verdict != "unexplained";
+  p.best_tried = c != nullptr && s.verdict == "unexplained";
+  if (c != nullptr) {
+    p.model_label = "with " + c->id();
+    for (const EffectInstance& e : c->effects) {
+      PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect, units), {}};
+      if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
+      for (const std::string& name : EffectParameterNames(e.effect)) {
+        pe.quantities.push_back(Quantity(name, e.params.at(name), units));
+      }
+      p.effects.push_back(std::move(pe));
+    }
+    std::vector<View> departing;
+    for (const GapRegion& r : s.regions) {
+      if (std::find(departing.begin(), departing.end(), r.view) == departing.end()) departing.push_back(r.view);
+    }
+    for (View v : departing) {
+      const GapMetrics before = s.before.View(v), after = c->after.View(v);
+      if (after.points == 0) continue;  // not assessed for this candidate
+      p.shrink.push_back({std::string(ViewId(v)), before.points, before.chi2, after.chi2});
+    }
+    if (c->after.has_heldout) {
+      p.shrink.push_back({"held-out", c->after.heldout.points, c->heldout_before.chi2, c->after.heldout.chi2});
+    }
+  }
+  if (s.baseline_model.band_limit.enabled()) {
+    const auto& b = s.baseline_model.band_limit;
+    p.baseline_note = std::string("the baseline includes a ") +
+                      (b.kind == sim::LowPassKind::kFirstOrder ? "first-order" : "second-order Butterworth") +
+                      " low-pass, cutoff " + PlainNumber(b.cutoff_hz) + " Hz (held)";
+  }
+  for (estimators::Coefficient k : estimators::kAllCoefficients) {
+    const auto& b = s.baseline.at(k);
+    if (!b.asked || (!b.fitted && (c == nullptr || !c->fit.at(k).fitted))) continue;  // in neither model
+    PlainCoefficient pc;
+    pc.id = std::string(estimators::CoefficientId(k));
+    pc.unit = CoefficientUnit(units, k);
+    pc.baseline_fitted = b.fitted;
+    pc.baseline = CoefficientValue(units, k, b.value_si);
+    pc.baseline_sigma = CoefficientValue(units, k, b.sigma_si);
+    if (c != nullptr) {
+      const auto& m = c->fit.at(k);
+      pc.model_fitted = m.fitted;
+      pc.model = CoefficientValue(units, k, m.value_si);
+      pc.model_sigma = CoefficientValue(units, k, m.sigma_si);
+    }
+    p.coefficients.push_back(pc);
+  }
+  return p;
+}
+
+std::vector<std::string> PlainLines(const PlainSummary& p) {
+  std::vector<std::string> lines;
+  if (p.where.empty()) {
+    lines.push_back("the record agrees with the baseline model in every view (no point beyond |z| = " +
+                    PlainNumber(p.threshold_z) + " of " + std::to_string(p.points) + ")");
+  } else {
+    for (const std::string& w : p.where) lines.push_back("departs: " + w);
+  }
+  for (std::size_t i = 0; i < p.effects.size(); ++i) {
+    const std::string lead = i > 0 ? "together with " : (p.named ? "explained by " : "not explained; the best tried: ");
+    lines.push_back(lead + EffectText(p.effects[i]));
+  }
+  if (!p.baseline_note.empty()) lines.push_back(p.baseline_note);
+  if (!p.shrink.empty()) {
+    std::string t = "gap chi2 before -> after " + p.model_label + ": ";
+    for (std::size_t i = 0; i < p.shrink.size(); ++i) t += (i ? ", " : "") + ShrinkText(p.shrink[i]);
+    lines.push_back(t);
+  }
+  return lines;
+}
+
+void WritePlainText(std::ostream& os, const PlainSummary& p) {
+  os << "in plain words:\n";
+  for (const std::string& line : PlainLines(p)) os << "  " << line << "\n";
+  if (p.coefficients.empty()) {
+    os << "  coefficients: none fitted (the sensor model's, held as given)\n";
+    return;
+  }
+  os << "  coefficients (baseline" << (p.model_label.empty() ? "" : " -> " + p.model_label) << "):\n";
+  for (const PlainCoefficient& c : p.coefficients) {
+    os << "    " << c.id << " " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma);
+    if (!p.model_label.empty()) os << " -> " << CoefficientText(c.model_fitted, c.model, c.model_sigma);
+    os << " " << c.unit << "\n";
+  }
+}
+
+void WritePlainMarkdown(std::ostream& os, const PlainSummary& p) {
+  os << "## In plain words\n\n";
+  for (const std::string& line : PlainLines(p)) os << "- " << line << "\n";
+  if (p.coefficients.empty()) {
+    os << "- coefficients: none fitted (the sensor model's, held as given)\n\n";
+    return;
+  }
+  os << "\n| coefficient | unit | baseline |" << (p.model_label.empty() ? "" : " " + p.model_label + " |")
+     << "\n|---|---|---|" << (p.model_label.empty() ? "" : "---|") << "\n";
+  for (const PlainCoefficient& c : p.coefficients) {
+    os << "| " << c.id << " | " << c.unit << " | " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma)
+       << " |";
+    if (!p.model_label.empty()) os << " " << CoefficientText(c.model_fitted, c.model, c.model_sigma) << " |";
+    os << "\n";
+  }
+  os << "\n";
+}
+
+Json PlainJson(const PlainSummary& p) {
+  Json j;
+  j["lines"] = PlainLines(p);
+  j["where"] = p.where;
+  Json effects = Json::array();
+  for (const PlainEffect& e : p.effects) {
+    Json q = Json::array();
+    for (const PlainQuantity& x : e.quantities) {
+      Json one{{"name", x.name}, {"value", x.value}, {"unit", x.unit}};
+      if (x.record_value) one["record_value"] = *x.record_value, one["record_unit"] = x.record_unit;
+      q.push_back(one);
+    }
+    effects.push_back({{"id", e.id}, {"description", e.description}, {"quantities", q}});
+  }
+  j["effects"] = effects;
+  j["effects_are"] = p.named ? "verdict" : (p.best_tried ? "best_tried" : "none");
+  Json shrink = Json::array();
+  for (const PlainShrink& v : p.shrink) {
+    shrink.push_back({{"view", v.view}, {"points", v.points}, {"chi2_before", v.chi2_before}, {"chi2_after", v.chi2_after}});
+  }
+  j["shrink"] = shrink;
+  Json coefficients = Json::array();
+  for (const PlainCoefficient& c : p.coefficients) {
+    Json one{{"id", c.id}, {"unit", c.unit},
+             {"baseline", c.baseline_fitted ? Json{{"value", c.baseline}, {"sigma", c.baseline_sigma}} : Json(nullptr)}};
+    if (!p.model_label.empty()) {
+      one["model"] = c.model_fitted ? Json{{"value", c.model}, {"sigma", c.model_sigma}} : Json(nullptr);
+    }
+    coefficients.push_back(one);
+  }
+  j["coefficients"] = coefficients;
+  j["model"] = p.model_label;
+  return j;
+}
+
+}  // namespace allanlab::app

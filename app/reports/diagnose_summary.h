@@ -1,0 +1,76 @@
+#pragma once
+// The first lines of a `diagnose` report, in plain words and in one set of units: where the
+// record departs from the baseline (tau range; for a step or a warm-up drift, the time in the
+// record), which effect explains it in sensor terms (app/reports/diagnose_units.h: a gyro's rates in deg/h, an
+// accelerometer's accelerations in mg, each also in the record's unit),
+// how far the gap shrinks with it, view by view, and the baseline's and the verdict model's
+// coefficients side by side. Stdout, the Markdown report, the JSON (`summary`) and the HTML
+// report all print this one structure, so they say the same thing in the same units.
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/reports/diagnose_units.h"
+#include "experiments/diagnosis/diagnose.h"
+
+namespace allanlab::app {
+
+struct PlainQuantity {
+  std::string name;  // "size", "time", "cutoff", ...
+  double value = 0.0;
+  std::string unit;  // "deg/h", "mg", "s", "Hz", "" (a pure number)
+  // The same rate in the record's unit when it is not the report's (nullopt otherwise).
+  std::optional<double> record_value;
+  std::string record_unit;
+};
+
+struct PlainEffect {
+  std::string id;           // "bias_step"
+  std::string description;  // "a bias step"
+  std::vector<PlainQuantity> quantities;
+};
+
+struct PlainShrink {
+  std::string view;  // "oavar", ..., or "held-out"
+  int points = 0;
+  double chi2_before = 0.0, chi2_after = 0.0;
+};
+
+struct PlainCoefficient {
+  std::string id, unit;  // "N", "deg/sqrt(h)"
+  bool baseline_fitted = false, model_fitted = false;
+  double baseline = 0.0, baseline_sigma = 0.0, model = 0.0, model_sigma = 0.0;
+};
+
+struct PlainSummary {
+  std::string verdict;              // as DiagnosisSummary::verdict
+  bool named = false;               // an effect (or set) explains the gap
+  bool best_tried = false;          // "unexplained": the effects are the best tried
+  std::vector<std::string> where;   // one phrase per gap region
+  std::vector<PlainEffect> effects;
+  std::vector<PlainShrink> shrink;  // the views that depart, then held-out (named or best tried)
+  std::vector<PlainCoefficient> coefficients;
+  std::string model_label;          // "with bias_step" (empty: baseline only)
+  std::string baseline_note;        // the baseline's band-limit, when it has one
+  double threshold_z = 0.0;
+  int points = 0;
+};
+
+// `units`: the column's sensor and the unit it was read in (app/reports/diagnose_units.h).
+PlainSummary MakePlainSummary(const experiments::DiagnosisSummary& s, const DiagnoseUnits& units);
+
+// The sentences (one per line, no markup): what stdout prints first and the Markdown lists.
+std::vector<std::string> PlainLines(const PlainSummary& p);
+// Stdout: "in plain words:" and the lines indented, then the coefficient pairs.
+void WritePlainText(std::ostream& os, const PlainSummary& p);
+// Markdown: a "## In plain words" list and the coefficients side by side as a table.
+void WritePlainMarkdown(std::ostream& os, const PlainSummary& p);
+// JSON `summary`: the same numbers, keyed (value, unit).
+nlohmann::ordered_json PlainJson(const PlainSummary& p);
+// Significant digits every form prints (the consistency test parses at this precision).
+std::string PlainNumber(double v);
+
+}  // namespace allanlab::app
