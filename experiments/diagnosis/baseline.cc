@@ -156,6 +156,14 @@ bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
   return true;
 }
 
+double RandomWalkBound(const BaselineSpec& spec, const estimators::FitSummary& fit) {
+  if (std::find(spec.terms.begin(), spec.terms.end(), Coefficient::kK) == spec.terms.end()) return 0.0;
+  const estimators::CoefficientEstimate& k = fit.at(Coefficient::kK);
+  const double upper = k.fitted ? (k.has_intervals ? k.interval95_si[1] : 0.0) : (k.has_upper_limit ? k.upper_limit_si : 0.0);
+  const double fitted = k.fitted ? k.value_si : 0.0;
+  return std::isfinite(upper) ? std::max(fitted, upper) : fitted;  // an unbounded profile: the fitted value
+}
+
 bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& curve, BaselineSpec* spec,
                  estimators::FitSummary* fit, std::string* note, std::string* why) {
   *spec = BaselineSpec{};

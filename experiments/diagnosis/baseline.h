@@ -42,6 +42,12 @@ struct BaselineSpec {
 bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                estimators::FitSummary* fit, std::string* note);
 
+// The largest rate random walk K the fit allows when the spec fits K [rad/s/sqrt(s)]: the upper end
+// of its 95 % interval, or its 95 % upper limit when the fit left K out (at least the fitted
+// value); 0 when K is held (not among the spec's terms). What the change-point view profiles K
+// over (block_means.h, docs/theory.md §6.7).
+double RandomWalkBound(const BaselineSpec& spec, const estimators::FitSummary& fit);
+
 // The whole record's baseline as the options ask (DiagnoseOptions::baseline): the spec later
 // refits use, and the fit. False with *why on a failed fit or a sensor model that does not suit
 // the record's rate; *note names a fallback or the band-limit found (may be empty).

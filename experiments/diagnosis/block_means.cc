@@ -315,7 +315,7 @@ std::vector<double> BlockDifferenceCovariance(const sim::SensorModel& model, std
 }
 
 void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<const int> block_counts,
-                        const sim::SensorModel& model, bool rate_random_walk_fitted, ViewResiduals* change_point,
+                        const sim::SensorModel& model, double rate_random_walk_bound, ViewResiduals* change_point,
                         ViewResiduals* trend) {
   *change_point = ViewResiduals{};
   *trend = ViewResiduals{};
@@ -336,11 +336,15 @@ void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<con
   const double r2 = RampSquared(model);
   // A unit rate random walk's generalised autocovariance, -|j| tau0 / 2 (sim/random_walk_rate.h).
   std::vector<double> unit_walk;
-  if (rate_random_walk_fitted) {
+  const bool profile_k = rate_random_walk_bound > 0.0;
+  if (profile_k) {
     unit_walk.resize(static_cast<std::size_t>(longest + 1));
     for (std::size_t j = 0; j < unit_walk.size(); ++j) unit_walk[j] = -0.5 * static_cast<double>(j) * tau0;
   }
   const double k2 = RandomWalkSquared(model);
+  // K's range: up to the most the record allows, not only the fitted value (a fit that drops K
+  // would otherwise judge a random walk's wander as steps).
+  const double k2_max = std::max(k2, rate_random_walk_bound * rate_random_walk_bound);
   for (int blocks : block_counts) {
     const std::int64_t m = n / blocks;
     const double block_s = static_cast<double>(m) * tau0;
@@ -368,13 +372,13 @@ void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<con
     Normalise(l, dim, &settlings);
     std::vector<ProfiledStep> profiled;
     std::vector<double> null_step, null_settle;
-    if (rate_random_walk_fitted && k2 > 0.0) {
+    if (profile_k && k2_max > 0.0) {
       const std::vector<double> unit = CovarianceFromAutocovariance(unit_walk, m, blocks, 0.0);
       std::vector<double> c0(dim);
       for (std::size_t i = 0; i < dim; ++i) c0[i] = c[i] - k2 * unit[i];
       std::vector<SparseRegressor> h;
       for (const Regressor& reg : steps.regressors) h.push_back(reg.h);
-      if (!ProfileSteps(c0, unit, k2, d, h, kProfiledNullDraws, static_cast<std::uint64_t>(blocks), &profiled,
+      if (!ProfileSteps(c0, unit, k2_max, d, h, kProfiledNullDraws, static_cast<std::uint64_t>(blocks), &profiled,
                         &null_step)) {
         profiled.clear();
       }

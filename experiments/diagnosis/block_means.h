@@ -49,11 +49,13 @@ std::vector<double> BlockDifferenceCovariance(const sim::SensorModel& model, std
 // fitted size (a step [rad/s], a settling's amplitude [rad/s]), expected its standard deviation
 // under the model, z as above, time_s where the step is [s from the start] (change_point) or the
 // settling's time constant tw [s] (trend). Points whose covariance is singular are NaN. With
-// `rate_random_walk_fitted` (K fitted to this record), the change-point statistic profiles K out
-// (profiled_step.h), against that statistic's own null law.
+// `rate_random_walk_bound` > 0 (K fitted to this record, the largest K the fit allows: its 95 %
+// upper end, or its upper limit when the fit left K out) [rad/s/sqrt(s)], the change-point
+// statistic profiles K out between 0 and the larger of that bound and the model's K
+// (profiled_step.h), against that statistic's own null law at that largest K.
 void BlockMeanResiduals(std::span<const double> rate_rad_per_s, double sample_period_s,
                         std::span<const int> block_counts, const sim::SensorModel& model,
-                        bool rate_random_walk_fitted, ViewResiduals* change_point, ViewResiduals* trend);
+                        double rate_random_walk_bound, ViewResiduals* change_point, ViewResiduals* trend);
 
 // The change-point view's most significant point beyond `threshold` in `views`: where it places
 // the step [s from the start] and its block length [s]; false (outputs untouched) when none.

@@ -30,7 +30,7 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
   std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr);
   if (!layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
     ViewResiduals change_point, trend;
-    BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, layout.rate_random_walk_fitted,
+    BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, layout.rate_random_walk_bound,
                        &change_point, &trend);
     out.push_back(std::move(change_point));
     out.push_back(std::move(trend));
@@ -195,8 +195,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   s.baseline_model = ctx.spec.Model(s.baseline, 1.0 / tau0);
   s.curve = ctx.curve;
   ctx.layout = MakeViewLayout(tau0, s.num_samples, ctx.curve.m);
-  ctx.layout.rate_random_walk_fitted =
-      std::find(ctx.spec.terms.begin(), ctx.spec.terms.end(), estimators::Coefficient::kK) != ctx.spec.terms.end();
+  ctx.layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, s.baseline);
   if (!ComputeViews(ctx.layout, rate, &ctx.observed, &why)) {
     s.message = why;
     return false;
@@ -216,6 +215,8 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   }
   if (ctx.have_halves) {
     ctx.half_length_s = static_cast<double>(half) * tau0;
+    // A half is judged against models fitted on the other half: K up to what that half allows.
+    for (int h = 0; h < 2; ++h) ctx.halves[h].layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, ctx.halves[1 - h].baseline);
   } else {
     s.notes.push_back("no held-out score: the halves are too short or their fit failed");
   }

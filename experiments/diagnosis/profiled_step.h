@@ -2,9 +2,11 @@
 // The change-point statistic when the model's rate random walk K was fitted to the same record
 // (docs/theory.md §6.7). A free K absorbs a step: the jump raises the long taus of the Allan curve
 // the way a random walk does, the fitted K² grows, and against that inflated covariance the jump
-// looks ordinary. Here K² is a nuisance parameter of the block-mean differences' own Gaussian
-// likelihood, profiled out under both hypotheses between 0 and the fitted K² (the most the
-// record's Allan curve allows, step included): with d ~ N(beta h, C0 + kappa Ck), C0 the model's
+// looks ordinary. And a fit that leaves K out judges a random walk's wander as steps. Here K² is
+// a nuisance parameter of the block-mean differences' own Gaussian likelihood, profiled out under
+// both hypotheses between 0 and kappa_max, the square of the largest K the fit allows (its 95 %
+// upper end or upper limit; the random walk the record cannot exclude): with d ~ N(beta h, C0 +
+// kappa Ck), C0 the model's
 // covariance without its random walk and Ck that of a unit one,
 //   T_h = min_kappa -2 ln L(kappa, 0) - min_{kappa, beta} -2 ln L(kappa, beta),
 // so a step is judged against the random walk the other differences allow, not the one the step
@@ -12,9 +14,11 @@
 //   -2 ln L = sum_i ln(1 + kappa lambda_i) + (y_i - beta g_i)² / (1 + kappa lambda_i) + const,
 // minimised over beta in closed form and over kappa in [0, kappa_max] on a log grid (26 % steps
 // down from kappa_max) and 0. The maximum over the regressors has its own law under the model
-// (kappa = kappa_max: y ~ N(0, I + kappa_max Lambda)), drawn by Monte Carlo with fixed seeds; the
-// law of the statistic with K held does not serve (on controls with K 10 deg/h/sqrt(h) judged
-// against their true model the profiled maximum exceeded it: 6.0 % false alarms against 3.5 %).
+// at the largest random walk allowed (kappa = kappa_max: y ~ N(0, I + kappa_max Lambda)), drawn by
+// Monte Carlo with fixed seeds; the law of the statistic with K held does not serve (on controls
+// with K 10 deg/h/sqrt(h) judged against their true model the profiled maximum exceeded it: 6.0 %
+// false alarms against 3.5 %), nor its law at the fitted K when the fit left K out (9.5 % on
+// controls with K 10; at kappa_max 2.0 %: docs/theory.md §6.7).
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -33,7 +37,7 @@ using SparseRegressor = std::vector<std::pair<std::size_t, double>>;
 
 // T_h for each regressor, and `null_draws` draws of max_h T_h under the model (stream
 // `null_stream` of a fixed seed); false (outputs untouched) when C0 is not positive definite or
-// kappa_max (the fitted K², (rad/s)²/s) is not > 0. c0 and c_unit_rrw are the first rows of the
+// kappa_max ((rad/s)²/s) is not > 0. c0 and c_unit_rrw are the first rows of the
 // Toeplitz covariances, d the block-mean differences, all of one length.
 bool ProfileSteps(const std::vector<double>& c0, const std::vector<double>& c_unit_rrw, double kappa_max,
                   const std::vector<double>& d, const std::vector<SparseRegressor>& regressors, int null_draws,

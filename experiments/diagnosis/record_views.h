@@ -46,7 +46,9 @@ struct ViewLayout {
   std::vector<std::int64_t> oavar_m;  // the fit's grid
   std::vector<std::int64_t> hadamard_m, halves_m, dynamic_m, kurtosis_m;
   std::vector<int> block_counts;                  // block-mean views: blocks of N / count samples
-  bool rate_random_walk_fitted = false;           // K fitted to this record (block_means.h)
+  // K fitted to this record: the largest K it allows (the fit's 95 % upper end or upper limit)
+  // [rad/s/sqrt(s)]; 0: K held (block_means.h).
+  double rate_random_walk_bound = 0.0;
   std::int64_t psd_segment = 0;                   // 0: no PSD view (record too short)
   std::vector<std::pair<int, int>> psd_bands;     // [first, last) periodogram bins per band
   std::vector<double> psd_band_hz;                // geometric centre frequency of each band
