@@ -1,5 +1,7 @@
 #include "app/input/record_reader.h"
 
+#include <algorithm>
+#include <exception>
 #include <filesystem>
 #include <system_error>
 
@@ -610,6 +612,29 @@ bool ReadRecord(const RecordReaderOptions& options, const std::function<void(dou
   return Reader(options, sink, info).Run(error);
 }
 
+namespace {
+
+// A text file's row count from the newlines in its first 64 KiB, 5 % over (rows vary in width);
+// 0 when that sample has too few lines to say. A compressed file or a bag gives a low count
+// (its bytes are not rows), which only leaves push_back to grow the vector as before.
+std::size_t EstimatedTextRows(const std::string& path, std::uintmax_t bytes) {
+  static constexpr std::size_t kSampleBytes = 1 << 16;
+  if (path == "-") return 0;
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) return 0;
+  std::vector<char> sample(kSampleBytes);
+  const std::size_t got = std::fread(sample.data(), 1, sample.size(), file);
+  std::fclose(file);
+  // Lines that start with '#' (a preamble of comments) are not rows.
+  std::ptrdiff_t lines = 0;
+  for (std::size_t i = 0; i + 1 < got; ++i) lines += sample[i] == '\n' && sample[i + 1] != '#';
+  if (lines < 16) return 0;
+  const double per_byte = static_cast<double>(lines) / static_cast<double>(got);
+  return static_cast<std::size_t>(1.05 * per_byte * static_cast<double>(bytes));
+}
+
+}  // namespace
+
 bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
                       RecordInfo* info, RecordError* error) {
   values->clear();
@@ -623,6 +648,12 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
   const auto bytes = std::filesystem::file_size(options.path, ec);
   // One spare slot: ComputeAvarInPlace integrates N samples into N + 1 values.
   if (width > 0 && !ec) values->reserve(static_cast<std::size_t>(bytes) / width + 1);
+  if (width == 0 && !ec) {
+    try {
+      values->reserve(EstimatedTextRows(options.path, bytes) + 1);
+    } catch (const std::exception&) {  // an estimate too large to reserve: grow as rows come
+    }
+  }
   const std::function<void(double)> sink = [values](double v) { values->push_back(v); };
   const std::function<void(std::span<const double>)> block_sink =
       [values](std::span<const double> block) {

@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -236,6 +240,41 @@ TEST(ParseNumberFieldTest, Rules) {
   EXPECT_FALSE(ParseNumberField("1 2", &v));
   EXPECT_FALSE(ParseNumberField("0x", &v));
   EXPECT_FALSE(ParseNumberField("deg", &v));
+}
+
+// Every number a CSV writer prints reads as the correctly rounded double, which glibc's strtod
+// (a separate implementation) gives: printf's %e, %g and %f at every precision, values across the
+// double range, and strings at the edges of the plain-decimal shortcut (19 and 20 digits, 2^53
+// +- 1, powers of ten 22 and 23).
+TEST(ParseNumberFieldTest, AgreesWithStrtod) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> mantissa(-10.0, 10.0);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  std::vector<std::string> texts = {"0",   "-0.0", "1.",   "1e",  "1e+", "00012.5000", "9007199254740992",
+                                    "9007199254740993", "9007199254740991.5", "1234567890123456789",
+                                    "12345678901234567890", "1e22", "1e23", "4.5e-22", "4.5e-23",
+                                    "0.0000000000000000000001", "1.7976931348623157e308", "5e-324",
+                                    "123.456E+002", "1e0005", "+7.25"};
+  char text[64];
+  for (int i = 0; i < 20000; ++i) {
+    const double x = mantissa(rng) * std::pow(10.0, exponent(rng));
+    const int digits = i % 18;
+    const char* format = i % 3 == 0 ? "%.*e" : i % 3 == 1 ? "%.*g" : "%.*f";
+    std::snprintf(text, sizeof text, format, digits, x);
+    texts.emplace_back(text);
+  }
+  for (const std::string& t : texts) {
+    char* end = nullptr;
+    const double expected = std::strtod(t.c_str(), &end);
+    double v = 0;
+    const bool parsed = ParseNumberField(t, &v);
+    if (*end != '\0') {
+      EXPECT_FALSE(parsed) << t;
+      continue;
+    }
+    ASSERT_TRUE(parsed) << t;
+    EXPECT_EQ(std::memcmp(&v, &expected, sizeof v), 0) << t << " read " << v << ", strtod " << expected;
+  }
 }
 
 }  // namespace
