@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "estimators/difference_kernel.h"  // CompensatedSum
+#include "estimators/lag_products.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -59,30 +59,17 @@ double RecordEdf(Statistic s, std::span<const double> phase, std::int64_t m,
   const std::int64_t window = LagWindow(s, m);
   // Raw (not mean-removed) lag products: the estimate averages raw squares, so these are the
   // moments its variance is made of.
-  auto lag_product = [&](std::int64_t k) {
-    CompensatedSum sum;
-    constexpr std::int64_t kBlock = 4096;
-    for (std::int64_t lo = 0; lo + k < used; lo += kBlock) {
-      const std::int64_t hi = std::min(used - k, lo + kBlock);
-      // Eight independent partial sums (vector lanes; one running sum would wait on each add).
-      double lane[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-      const double* u = a.data() + lo;
-      const double* v = a.data() + lo + k;
-      const std::int64_t len = hi - lo;
-      std::int64_t j = 0;
-      for (; j + 8 <= len; j += 8) {
-        for (int l = 0; l < 8; ++l) lane[l] += u[j + l] * v[j + l];
-      }
-      for (; j < len; ++j) lane[0] += u[j] * v[j];
-      sum.Add(((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7])));
-    }
-    return sum.Value() / static_cast<double>(used - k);
+  const std::int64_t lags = std::min(window, total - 1);
+  std::vector<double> products(static_cast<std::size_t>(lags + 1));
+  LagProducts(a, products);
+  const auto lag_product = [&](std::int64_t k) {
+    return products[static_cast<std::size_t>(k)] / static_cast<double>(used - k);
   };
   const double c0 = lag_product(0);
   if (!(c0 > 0.0)) return 0.0;
   const double big_m = static_cast<double>(total);
   double raw = 1.0;
-  for (std::int64_t k = 1; k <= window && k < total; ++k) {
+  for (std::int64_t k = 1; k <= lags; ++k) {
     const double rho = lag_product(k) / c0;
     raw += 2.0 * (1.0 - static_cast<double>(k) / big_m) * rho * rho;
   }
