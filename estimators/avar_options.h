@@ -56,4 +56,10 @@ struct AvarOptions {
   bool IsValid(std::string* why) const;
 };
 
+// The bound the commands use (avar, fit, diagnose): the ACF's standard error 0.006 keeps the
+// identified alpha the full record's on independent records of every noise type
+// (tests/estimators/capped_identification_stat_test.cc), and identification then costs O(taus)
+// rather than O(N).
+inline constexpr std::int64_t kIdentificationMaxAverages = std::int64_t{1} << 15;
+
 }  // namespace allanlab::estimators

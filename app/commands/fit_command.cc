@@ -29,7 +29,7 @@ namespace allanlab::app {
 namespace {
 
 constexpr const char* kCommand = "fit";
-constexpr std::int64_t kIdentificationMaxAverages = std::int64_t{1} << 15;
+using estimators::kIdentificationMaxAverages;
 using estimators::Coefficient;
 using estimators::FitMethod;
 

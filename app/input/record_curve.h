@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "app/failure.h"
+#include "estimators/avar_options.h"
 
 namespace allanlab::app {
 
@@ -50,8 +51,8 @@ struct RecordCurveOptions {
   bool drop_nonfinite = false;
   bool stream = false;
   std::int64_t stream_exact_max_m = std::int64_t{1} << 14;
-  // Not a command-line option: set by `fit` (estimators::AvarOptions::identification_max_averages).
-  std::int64_t identification_max_averages = 0;
+  // Not a command-line option (estimators::AvarOptions::identification_max_averages).
+  std::int64_t identification_max_averages = estimators::kIdentificationMaxAverages;
 };
 
 // The command-line options that read a record and choose its curve (FILE, --column, --columns,

@@ -50,17 +50,23 @@ std::string StatisticDescription(Statistic s) {
 std::string IntervalDescription(const AvarReport& r) {
   const estimators::AvarOptions& o = r.summary.options;
   const std::string level = Percent(o.confidence);
+  // Where the cap applies at all (a tau with more m-averages than it): say so.
+  const std::string from =
+      o.identification_max_averages > 0 && r.summary.num_samples > o.identification_max_averages
+          ? " (from at most " + std::to_string(o.identification_max_averages) +
+                " m-averages, the middle of the record)"
+          : "";
   switch (o.confidence_method) {
     case estimators::ConfidenceMethod::kNone:
       return "none";
     case estimators::ConfidenceMethod::kSimple:
       return "chi-square " + level + " with EDF = clusters - 1 (IEEE 952 simple error)";
     case estimators::ConfidenceMethod::kGreenhallRiley:
-      return "chi-square " + level + " with the Greenhall-Riley EDF, alpha identified per tau";
+      return "chi-square " + level + " with the Greenhall-Riley EDF, alpha identified per tau" + from;
     case estimators::ConfidenceMethod::kAuto:
       return "chi-square " + level +
              " with the EDF measured on the record at short taus (edf marked r) and the "
-             "Greenhall-Riley EDF at the identified alpha elsewhere";
+             "Greenhall-Riley EDF at the identified alpha elsewhere" + from;
   }
   return "?";
 }
