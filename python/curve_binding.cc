@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/input/accel_units.h"
 #include "app/input/record_curve.h"
 #include "app/reports/avar_report.h"
 #include "app/commands/diagnose_command.h"
@@ -112,8 +113,22 @@ std::string Fit(const Array& values, double rate_hz, const std::string& units, c
 std::string Diagnose(const Array& values, double rate_hz, const std::string& units, const std::string& type,
                      std::optional<std::string> model, const std::string& preset, const std::string& sensor,
                      const std::string& float_terms, int trials, std::uint64_t seed, double false_alarm) {
+  // An accelerometer unit (m/s^2, g, mg) makes the values an accelerometer axis, diagnosed in
+  // m/s^2 and reported as `diagnose` reports an Accel_X column (app/reports/diagnose_units.h).
+  app::AccelUnit accel_unit{};
+  std::string why;
+  const bool accelerometer = app::ParseAccelUnit(units, &accel_unit, &why);
+  if (accelerometer && type != "rate") {
+    Raise(app::kExitUsageError, "type: an accelerometer axis (units " + units + ") is read as acceleration: drop type");
+  }
+  if (accelerometer && (!preset.empty() || !sensor.empty())) {
+    Raise(app::kExitUsageError, "units " + units + " make the values an accelerometer axis; preset and sensor "
+                                "describe a gyro: diagnose it against its fitted model (no preset or sensor)");
+  }
   app::DiagnoseCommandOptions o;
-  o.record = RecordOptions(rate_hz, units, type);
+  // The checks of the samples (their count, finite values, the rate) do not depend on the unit;
+  // an accelerometer's samples are scaled to m/s^2 below instead of as a gyro rate.
+  o.record = RecordOptions(rate_hz, accelerometer ? "rad/s" : units, type);
   o.model = std::move(model);
   o.preset = preset;
   o.sensor_path = sensor;
@@ -127,6 +142,7 @@ std::string Diagnose(const Array& values, double rate_hz, const std::string& uni
   app::RecordInfo info;
   std::string error;
   Check(app::RateFromSamples(o.record, &rate, &info, &error), error);
+  if (accelerometer) app::AccelToSi(accel_unit, rate);
   experiments::DiagnosisSummary s;
   bool ok = false;
   {
@@ -134,7 +150,10 @@ std::string Diagnose(const Array& values, double rate_hz, const std::string& uni
     ok = experiments::DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s);
   }
   if (!ok) Raise(app::kExitRuntimeError, o.record.path + ": " + s.message);
-  return app::DiagnosisJson(s, app::MakeProvenance("diagnose", "allanlab.diagnose (Python)"), nullptr, {app::ImuSensor::kGyro, units}).dump();
+  const app::DiagnoseUnits unit = accelerometer
+                                      ? app::DiagnoseUnits{app::ImuSensor::kAccelerometer, std::string(app::AccelUnitName(accel_unit))}
+                                      : app::DiagnoseUnits{app::ImuSensor::kGyro, units};
+  return app::DiagnosisJson(s, app::MakeProvenance("diagnose", "allanlab.diagnose (Python)"), nullptr, unit).dump();
 }
 
 }  // namespace

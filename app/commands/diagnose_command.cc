@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -652,6 +653,15 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
       "Where a recording departs from its fitted IEEE 952 model (several views, multiplicity "
       "controlled), which unmodelled effect explains the gap, and how far it shrinks.");
   AddRecordCurveOptions(cmd, &options->record);
+  // diagnose reports each quantity in its datasheet unit and the record's own (deg/h and the
+  // file's unit for a gyro, mg and the file's unit for an accelerometer): the output-unit options
+  // of avar and fit have nothing to set here. Hidden from the help, and refused when given.
+  std::vector<std::pair<std::string, const CLI::Option*>> refused;
+  for (const char* name : {"--out-units", "--accel-out-units"}) {
+    CLI::Option* option = cmd->get_option(name);
+    option->group("");
+    refused.emplace_back(name, option);
+  }
   // FILE is optional here: --curve replaces it.
   cmd->get_option("FILE")->required(false);
   cmd->add_option("--sensor", options->sensor_path,
@@ -683,7 +693,16 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
               "to three (bandwidth+resonance: what each adds is listed), or unexplained. A verdict that explains most\n"
               "of the gap but not all says so and lists what remains.\n"
               "Exit status: 0 ok (any verdict), 1 bad file or unusable record, 2 usage error.");
-  return {cmd, [options](const std::string& command_line) { return RunDiagnose(*options, command_line); }};
+  return {cmd, [options, refused](const std::string& command_line) {
+            for (const auto& [name, option] : refused) {
+              if (option->count() == 0) continue;
+              return RunCommand(kCommand, "", [&]() -> std::optional<Failure> {
+                return UsageFailure(name + " does not apply to diagnose: it reports gyro quantities in deg/h and "
+                                    "accelerometer quantities in mg, each beside the record's own unit; drop " + name);
+              });
+            }
+            return RunDiagnose(*options, command_line);
+          }};
 }
 
 int RunDiagnose(const DiagnoseCommandOptions& options, const std::string& command_line) {

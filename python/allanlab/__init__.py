@@ -200,8 +200,10 @@ def diagnose(values, rate_hz: float, units: str, *, type: str = "rate", model: O
              trials: Optional[int] = None, seed: Optional[int] = None, false_alarm: Optional[float] = None):
     """The diagnosis ``allanlab diagnose`` makes (defaults as its options: the baseline ``fit``
     reports, 30 trials per envelope, seed 1, false alarm 0.05; ``model`` a comma list of IEEE
-    terms, or ``preset``/``sensor`` with ``float_terms`` refitted). A 2-D array: one diagnosis
-    per column."""
+    terms, or ``preset``/``sensor`` with ``float_terms`` refitted). ``units`` a gyro's (rad/s,
+    deg/s, deg/h; deg, rad, arcsec with type="angle") or an accelerometer's (m/s^2, g, mg: the
+    values are then an accelerometer axis, reported as the command reports an Accel_X column).
+    A 2-D array: one diagnosis per column."""
     kw = {k: v for k, v in dict(model=model, preset=preset, sensor=sensor, float_terms=float_terms, trials=trials,
                                 seed=seed, false_alarm=false_alarm).items() if v is not None}
 

@@ -115,5 +115,15 @@ TEST_F(ImuDiagnoseCommandTest, ASensorModelIsAGyrosAndOneColumnIsValidatedAlone)
   EXPECT_NE(Read("err.txt").find("--validate-on checks one gyro column"), std::string::npos) << Read("err.txt");
 }
 
+// diagnose reports in deg/h and mg beside the record's unit: the output-unit options are refused.
+TEST_F(ImuDiagnoseCommandTest, OutputUnitOptionsAreRefused) {
+  for (const std::string option : {"--out-units deg/s", "--accel-out-units g"}) {
+    EXPECT_EQ(Run("--column Accel_X_g --trials 3 " + option + " --json out.json"), 2) << option;
+    const std::string name = option.substr(0, option.find(' '));
+    EXPECT_NE(Read("err.txt").find(name + " does not apply to diagnose"), std::string::npos) << Read("err.txt");
+    EXPECT_FALSE(fs::exists(dir_ / "out.json")) << option;
+  }
+}
+
 }  // namespace
 }  // namespace allanlab::app

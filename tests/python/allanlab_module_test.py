@@ -89,6 +89,30 @@ class ModuleAgainstCommand(unittest.TestCase):
         self.assertEqual(r.significant, j["gap"]["significant"])
         self.assertEqual(r.json["candidates"], j["candidates"])
 
+    def test_diagnose_reads_an_accelerometer_axis_as_the_command(self):
+        # White acceleration noise of 2 mg at 100 Hz, in g: VRW N = sigma / sqrt(fs), m/s/sqrt(h) x 60.
+        sigma_g = 2e-3
+        a = -1.0 + sigma_g * np.random.default_rng(5).standard_normal(20000)
+        path = os.path.join(self.dir.name, "accel.csv")
+        t = np.arange(a.size) / RATE_HZ
+        np.savetxt(path, np.column_stack([t, a]), fmt="%.17g", delimiter=",", header="time_s,Accel_X_g", comments="")
+        j = self.cli_json("diagnose", path, "--column", "Accel_X_g", "--trials", "4", "--seed", "3")["columns"][0]
+        r = allanlab.diagnose(a, rate_hz=RATE_HZ, units="g", trials=4, seed=3)
+        self.assertEqual(r.verdict, j["verdict"]["effect"])
+        self.assertEqual(r.json["candidates"], j["candidates"])
+        self.assertEqual(r.json["baseline"], j["baseline"])
+        n = r.json["baseline"]["coefficients"]["N"]
+        self.assertEqual(n["unit"], "m/s/sqrt(h)")
+        vrw = sigma_g * 9.80665 / np.sqrt(RATE_HZ) * 60.0
+        # The AVAR at tau0 alone has a relative sd of ~1 % on 20000 samples: 5 % is 5 sd.
+        self.assertAlmostEqual(n["value"], vrw, delta=0.05 * vrw)
+        # The same samples in mg and m/s^2: the same diagnosis.
+        for units, scale in [("mg", 1e3), ("m/s^2", 9.80665)]:
+            other = allanlab.diagnose(a * scale, rate_hz=RATE_HZ, units=units, trials=4, seed=3)
+            self.assertEqual(other.verdict, r.verdict, units)
+            self.assertAlmostEqual(other.json["baseline"]["coefficients"]["N"]["value"], n["value"],
+                                   delta=1e-9 * n["value"], msg=units)
+
     def test_simulate_equals_the_command(self):
         out = os.path.join(self.dir.name, "sim.f64")
         run("simulate", "--preset", "mg25_mems", "--duration", "60", "--seed", "11", "--trial", "2", "--units",
@@ -173,6 +197,9 @@ class ModuleInputs(unittest.TestCase):
              "^min_tau_s must be below max_tau_s$"),
             (lambda: allanlab.diagnose(x, RATE_HZ, "rad/s", float_terms="N"),
              "^float_terms needs sensor or preset$"),
+            (lambda: allanlab.diagnose(x, RATE_HZ, "g", preset="tg100"),
+             "^units g make the values an accelerometer axis; preset and sensor describe a gyro"),
+            (lambda: allanlab.diagnose(x, RATE_HZ, "mg", type="angle"), "^type: an accelerometer axis"),
             (lambda: allanlab.simulate(duration_s=10), "^give exactly one of preset or sensor$"),
             (lambda: allanlab.simulate("mg25_mems", duration_s=-1.0), "^duration_s must be"),
         ]
