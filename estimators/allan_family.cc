@@ -10,15 +10,10 @@
 #include "estimators/modified_allan_sums.h"
 #include "estimators/phase_integral.h"
 #include "estimators/total_variance_sums.h"
+#include "common/number_text.h"
 
 namespace allanlab::estimators {
 namespace {
-
-std::string Shortest(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  return buffer;
-}
 
 // Why a candidate m is not reported, or empty if it is.
 std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t n) {
@@ -26,7 +21,7 @@ std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t 
   const std::string name(StatisticId(s));
   if (m < 1) {
     return "tau rounds to m = 0: below half the sample period " +
-           Shortest(options.sample_period_s) + " s";
+           SignificantDigits(options.sample_period_s, 9) + " s";
   }
   const std::int64_t max_m = MaxAveragingFactor(s, n);
   if (m > max_m) {
@@ -174,7 +169,7 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
     for (std::int64_t k = 0; k < n; ++k) {
       if (!std::isfinite(rate[k])) {
         summary->message =
-            "rate sample " + std::to_string(k) + " is not finite (" + Shortest(rate[k]) + ")";
+            "rate sample " + std::to_string(k) + " is not finite (" + SignificantDigits(rate[k], 9) + ")";
         return false;
       }
     }

@@ -1,19 +1,11 @@
 #include "estimators/avar_options.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
+#include "common/number_text.h"
+
 namespace allanlab::estimators {
-namespace {
-
-std::string Shortest(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  return buffer;
-}
-
-}  // namespace
 
 bool AvarOptions::IsValid(std::string* why) const {
   if (StatisticId(statistic).empty()) {
@@ -25,7 +17,7 @@ bool AvarOptions::IsValid(std::string* why) const {
     return false;
   }
   if (!std::isfinite(sample_period_s) || sample_period_s <= 0.0) {
-    *why = "sample period must be finite and > 0 s, got " + Shortest(sample_period_s);
+    *why = "sample period must be finite and > 0 s, got " + SignificantDigits(sample_period_s, 9);
     return false;
   }
   if (input != InputKind::kRate && input != InputKind::kAngle) {
@@ -41,7 +33,7 @@ bool AvarOptions::IsValid(std::string* why) const {
   }
   // Checked even without an interval: a bad level is a mistake wherever it comes from.
   if (!(confidence > 0.0 && confidence < 1.0)) {
-    *why = "confidence level must be in (0, 1), got " + Shortest(confidence);
+    *why = "confidence level must be in (0, 1), got " + SignificantDigits(confidence, 9);
     return false;
   }
   if (min_terms < 1) {

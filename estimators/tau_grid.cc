@@ -7,6 +7,8 @@
 #include <set>
 #include <string_view>
 
+#include "common/number_text.h"
+
 namespace allanlab::estimators {
 namespace {
 
@@ -23,12 +25,6 @@ bool ParseNumber(std::string_view text, double* value) {
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, *value);
   return ec == std::errc() && ptr == end;
-}
-
-std::string Shortest(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  return buffer;
 }
 
 // Nearest averaging factor of a tau, saturating instead of overflowing for absurd taus.
@@ -106,7 +102,7 @@ bool TauGridOptions::IsValid(std::string* why) const {
       }
       for (double tau : explicit_taus_s) {
         if (!std::isfinite(tau) || tau <= 0.0) {
-          *why = "taus must be finite and > 0 s, got " + Shortest(tau);
+          *why = "taus must be finite and > 0 s, got " + SignificantDigits(tau, 9);
           return false;
         }
       }

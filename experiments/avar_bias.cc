@@ -10,6 +10,7 @@
 #include "estimators/allan_family.h"
 #include "estimators/tau_grid.h"
 #include "experiments/report_files.h"
+#include "common/number_text.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -50,12 +51,6 @@ struct Workspace : TrialWorkspace {
   std::vector<std::vector<double>> expected;  // per statistic, per m
   estimators::AllanFamilyWorkspace allan;
 };
-
-std::string Format(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
 
 }  // namespace
 
@@ -157,11 +152,11 @@ bool AvarBiasExperiment::WriteReport(const SweepSpec& spec, const RunSummary& ru
       const double bias = c.mean - 1.0;
       const double z = bias / c.standard_error;
       csv << point.point << ",\"" << coordinates << "\"," << c.column << ',' << c.count << ','
-          << Format(c.mean, 17) << ',' << Format(c.std, 17) << ',' << Format(c.standard_error, 17)
-          << ',' << Format(bias, 17) << ',' << Format(z, 6) << '\n';
+          << SignificantDigits(c.mean, 17) << ',' << SignificantDigits(c.std, 17) << ',' << SignificantDigits(c.standard_error, 17)
+          << ',' << SignificantDigits(bias, 17) << ',' << SignificantDigits(z, 6) << '\n';
       md << "| " << point.point << " | " << coordinates << " | " << c.column << " | " << c.count
-         << " | " << Format(c.mean, 5) << " | " << Format(c.std, 3) << " | "
-         << Format(c.standard_error, 2) << " | " << Format(bias, 2) << " | " << Format(z, 2) << " |\n";
+         << " | " << SignificantDigits(c.mean, 5) << " | " << SignificantDigits(c.std, 3) << " | "
+         << SignificantDigits(c.standard_error, 2) << " | " << SignificantDigits(bias, 2) << " | " << SignificantDigits(z, 2) << " |\n";
     }
   }
   const std::string base = context.output_dir + "/" + spec.name;

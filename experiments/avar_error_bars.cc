@@ -21,7 +21,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string MKey(std::int64_t m) { return "m=" + std::to_string(m); }
 
-std::string LevelKey(double level) { return "in_ci" + FormatNumber(100.0 * level, 3); }
+std::string LevelKey(double level) { return "in_ci" + SignificantDigits(100.0 * level, 3); }
 
 const char* const kEdfKinds[] = {"simple", "gr", "exact"};
 
@@ -175,7 +175,7 @@ std::string NoiseLabel(const SweepPoint& point) {
     label = "band-limited " + label + ", " +
             (point.model.band_limit.kind == sim::LowPassKind::kFirstOrder ? "first-order "
                                                                           : "Butterworth-2 ") +
-            FormatNumber(point.model.band_limit.cutoff_hz, 4) + " Hz";
+            SignificantDigits(point.model.band_limit.cutoff_hz, 4) + " Hz";
   }
   return label + ")";
 }

@@ -92,7 +92,7 @@ std::vector<Row> BuildRows(const SweepSpec& spec, const std::vector<PointStats>&
         for (double level : spec.confidence_levels) {
           for (const char* kind : kKinds) {
             std::ostringstream name;
-            name << "in_ci" << FormatNumber(100.0 * level, 3) << '/' << kind << '/' << est
+            name << "in_ci" << SignificantDigits(100.0 * level, 3) << '/' << kind << '/' << est
                  << "/m=" << m;
             const ColumnStats* c = ps.Find(name.str());
             Coverage cov;
@@ -110,10 +110,10 @@ std::vector<Row> BuildRows(const SweepSpec& spec, const std::vector<PointStats>&
   return rows;
 }
 
-std::string Cell(double v, int digits = 4) { return std::isfinite(v) ? FormatNumber(v, digits) : "n/a"; }
+std::string Cell(double v, int digits = 4) { return std::isfinite(v) ? SignificantDigits(v, digits) : "n/a"; }
 std::string PlusMinus(double v, double se, int digits = 3) {
   if (!std::isfinite(v)) return "n/a";
-  return FormatNumber(v, digits) + " ± " + FormatNumber(se, 2);
+  return SignificantDigits(v, digits) + " ± " + SignificantDigits(se, 2);
 }
 
 std::string Csv(const SweepSpec& spec, const std::vector<Row>& rows, const std::string& header) {
@@ -124,22 +124,22 @@ std::string Csv(const SweepSpec& spec, const std::vector<Row>& rows, const std::
          "pred_std_exact,std_over_simple,std_over_gr,std_over_exact";
   for (double level : spec.confidence_levels) {
     for (const char* kind : kKinds) {
-      out << ",coverage" << FormatNumber(100.0 * level, 3) << '_' << kind << ",coverage"
-          << FormatNumber(100.0 * level, 3) << '_' << kind << "_se";
+      out << ",coverage" << SignificantDigits(100.0 * level, 3) << '_' << kind << ",coverage"
+          << SignificantDigits(100.0 * level, 3) << '_' << kind << "_se";
     }
   }
   out << '\n';
   for (const Row& r : rows) {
     out << '"' << r.noise << "\"," << r.point << ',' << r.estimator << ','
-        << (r.exact ? "yes" : "no") << ',' << r.m << ',' << FormatNumber(r.tau_s, 6) << ','
-        << r.trials << ',' << FormatNumber(r.mean_ratio, 6) << ',' << FormatNumber(r.bias, 4)
-        << ',' << FormatNumber(r.bias_se, 3) << ',' << FormatNumber(r.rel_std, 5) << ','
-        << FormatNumber(r.rel_std_se, 3);
-    for (double v : r.edf) out << ',' << FormatNumber(v, 6);
-    for (double v : r.predicted) out << ',' << FormatNumber(v, 5);
-    for (double v : r.std_over_predicted) out << ',' << FormatNumber(v, 4);
+        << (r.exact ? "yes" : "no") << ',' << r.m << ',' << SignificantDigits(r.tau_s, 6) << ','
+        << r.trials << ',' << SignificantDigits(r.mean_ratio, 6) << ',' << SignificantDigits(r.bias, 4)
+        << ',' << SignificantDigits(r.bias_se, 3) << ',' << SignificantDigits(r.rel_std, 5) << ','
+        << SignificantDigits(r.rel_std_se, 3);
+    for (double v : r.edf) out << ',' << SignificantDigits(v, 6);
+    for (double v : r.predicted) out << ',' << SignificantDigits(v, 5);
+    for (double v : r.std_over_predicted) out << ',' << SignificantDigits(v, 4);
     for (const Coverage& c : r.coverage) {
-      out << ',' << FormatNumber(c.observed, 4) << ',' << FormatNumber(c.se, 3);
+      out << ',' << SignificantDigits(c.observed, 4) << ',' << SignificantDigits(c.se, 3);
     }
     out << '\n';
   }
@@ -191,7 +191,7 @@ std::string Markdown(const SweepSpec& spec, const std::vector<Row>& rows,
         continue;
       }
       if (worst[k] >= 0) out << '+';
-      out << FormatNumber(worst[k], 2);
+      out << SignificantDigits(worst[k], 2);
     }
     out << " |\n";
     i = j;
@@ -208,13 +208,13 @@ std::string Markdown(const SweepSpec& spec, const std::vector<Row>& rows,
       out << "\n### " << r.noise << "\n\n| estimator | m | tau [s] | trials | bias | rel. std "
              "| std/simple | std/GR | std/exact | EDF simple / GR / exact";
       for (double level : spec.confidence_levels) {
-        out << " | cov. " << FormatNumber(100.0 * level, 3) << "% simple | GR | exact";
+        out << " | cov. " << SignificantDigits(100.0 * level, 3) << "% simple | GR | exact";
       }
       out << " |\n|---|---|---|---|---|---|---|---|---|---";
       for (std::size_t l = 0; l < spec.confidence_levels.size(); ++l) out << "|---|---|---";
       out << "|\n";
     }
-    out << "| " << r.estimator << " | " << r.m << " | " << FormatNumber(r.tau_s, 4) << " | "
+    out << "| " << r.estimator << " | " << r.m << " | " << SignificantDigits(r.tau_s, 4) << " | "
         << r.trials << " | " << PlusMinus(r.bias, r.bias_se, 2) << " | "
         << PlusMinus(r.rel_std, r.rel_std_se, 3);
     for (double v : r.std_over_predicted) out << " | " << Cell(v, 3);
@@ -245,10 +245,10 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<Row>& rows) {
       const double e = expected[static_cast<std::size_t>(it - ms.begin())];
       const double lo = e * r.mean_ratio * r.mean_ratio / (r.mean_ratio + r.rel_std);
       const double hi = e * (r.mean_ratio + r.rel_std);
-      out << FormatNumber(r.tau_s, 8) << ' ' << FormatNumber(std::sqrt(e) * kRadPerSToDegPerH, 8)
-          << ' ' << FormatNumber(std::sqrt(e * r.mean_ratio) * kRadPerSToDegPerH, 8) << ' '
-          << FormatNumber(std::sqrt(lo) * kRadPerSToDegPerH, 8) << ' '
-          << FormatNumber(std::sqrt(hi) * kRadPerSToDegPerH, 8) << '\n';
+      out << SignificantDigits(r.tau_s, 8) << ' ' << SignificantDigits(std::sqrt(e) * kRadPerSToDegPerH, 8)
+          << ' ' << SignificantDigits(std::sqrt(e * r.mean_ratio) * kRadPerSToDegPerH, 8) << ' '
+          << SignificantDigits(std::sqrt(lo) * kRadPerSToDegPerH, 8) << ' '
+          << SignificantDigits(std::sqrt(hi) * kRadPerSToDegPerH, 8) << '\n';
     }
     out << "EOD\n";
   }
@@ -279,8 +279,8 @@ std::string CoverageFigure(const SweepSpec& spec, const std::vector<Row>& rows) 
       for (std::size_t l = 0; l < spec.confidence_levels.size(); ++l) {
         const Coverage& c = r.coverage[l * 3 + static_cast<std::size_t>(k)];
         if (!std::isfinite(c.observed)) continue;
-        out << FormatNumber(spec.confidence_levels[l] + offsets[k], 6) << ' '
-            << FormatNumber(c.observed, 6) << ' ' << FormatNumber(c.se, 4) << '\n';
+        out << SignificantDigits(spec.confidence_levels[l] + offsets[k], 6) << ' '
+            << SignificantDigits(c.observed, 6) << ' ' << SignificantDigits(c.se, 4) << '\n';
       }
     }
     out << "EOD\n";
@@ -337,7 +337,7 @@ bool AvarErrorBarsExperiment::WriteReport(const SweepSpec& spec, const RunSummar
   for (const SweepPoint& point : spec.points) {
     extra.emplace_back("point " + std::to_string(point.index),
                        NoiseLabel(point) + ", " + std::to_string(point.num_samples) +
-                           " samples at " + FormatNumber(point.sample_rate_hz, 6) + " Hz");
+                           " samples at " + SignificantDigits(point.sample_rate_hz, 6) + " Hz");
   }
   const std::string base = context.output_dir + "/" + spec.name;
   const std::string csv = Csv(spec, rows, ProvenanceBlock(spec, context, extra, "# "));

@@ -28,7 +28,7 @@ std::string LevelName(double level) {
 
 std::string Cell(double value, int digits) {
   if (std::isnan(value)) return "";
-  return FormatNumber(value, digits);
+  return SignificantDigits(value, digits);
 }
 
 std::string CsvField(const std::string& text) {

@@ -316,17 +316,7 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
     throw std::runtime_error("avar: " + avar.message);
   }
   for (estimators::AvarPoint& p : avar.points) p.value *= fault_.avar_scale;
-  estimators::AvarCurve curve;
-  curve.sample_period_s = options.sample_period_s;
-  curve.num_samples = avar.num_samples;
-  curve.estimator = sim::AvarEstimatorKind::kOverlapping;
-  for (const auto& p : avar.points) {
-    if (p.m < plan.min_m || p.m > plan.max_m || !(p.value > 0.0)) continue;
-    curve.m.push_back(p.m);
-    curve.tau_s.push_back(p.tau_s);
-    curve.avar.push_back(p.value);
-    curve.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
+  const estimators::AvarCurve curve = estimators::CurveFromSummary(avar, plan.min_m, plan.max_m);
 
   std::vector<double> row;
   row.reserve(plan.columns.size());

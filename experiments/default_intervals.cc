@@ -34,7 +34,7 @@ std::string Key(std::string_view quantity, std::string_view method, const std::s
   return out.str();
 }
 
-std::string LevelKey(double level) { return "in_ci" + FormatNumber(100.0 * level, 3); }
+std::string LevelKey(double level) { return "in_ci" + SignificantDigits(100.0 * level, 3); }
 
 }  // namespace
 
@@ -176,7 +176,7 @@ std::vector<Cell> BuildCells(const SweepSpec& spec, const SweepPoint& point, con
 
 std::string Interval3(double rate, const RateInterval& w) {
   if (!std::isfinite(rate)) return "n/a";
-  return FormatNumber(rate, 3) + " [" + FormatNumber(w.low, 3) + ", " + FormatNumber(w.high, 3) + "]";
+  return SignificantDigits(rate, 3) + " [" + SignificantDigits(w.low, 3) + ", " + SignificantDigits(w.high, 3) + "]";
 }
 
 std::string CoverageFigure(const SweepSpec& spec, const std::vector<Cell>& cells) {
@@ -187,7 +187,7 @@ std::string CoverageFigure(const SweepSpec& spec, const std::vector<Cell>& cells
     const double level = spec.confidence_levels[l];
     out << "set logscale x 2\nset xlabel 'averaging factor m (tau = m tau0)'\n"
         << "set ylabel 'coverage'\nset key bottom left\nset grid\n"
-        << "set title 'nominal " << FormatNumber(100.0 * level, 3) << " %'\n"
+        << "set title 'nominal " << SignificantDigits(100.0 * level, 3) << " %'\n"
         << "set yrange [" << level - 0.12 << ":" << std::min(1.0, level + 0.1) << "]\n";
     int block = 0;
     std::ostringstream plot;
@@ -236,7 +236,7 @@ bool DefaultIntervalsExperiment::WriteReport(const SweepSpec& spec, const RunSum
   for (const Method& method : kMethods) {
     csv << ",edf_" << method.id;
     for (double level : spec.confidence_levels) {
-      const std::string l = FormatNumber(100.0 * level, 3);
+      const std::string l = SignificantDigits(100.0 * level, 3);
       csv << ",coverage" << l << '_' << method.id << ",wilson_low" << l << '_' << method.id
           << ",wilson_high" << l << '_' << method.id;
     }
@@ -257,7 +257,7 @@ bool DefaultIntervalsExperiment::WriteReport(const SweepSpec& spec, const RunSum
         not_met[k] += c.verdict[k] == "not met";
       }
     }
-    md << "## " << point.num_samples << " samples at " << FormatNumber(point.sample_rate_hz, 4)
+    md << "## " << point.num_samples << " samples at " << SignificantDigits(point.sample_rate_hz, 4)
        << " Hz, " << (cells.empty() ? 0 : cells.front().trials) << " trials per cell\n\n"
        << "Cells (noise x tau) within nominal +- 2 points at both levels: --ci auto " << met[0]
        << " met, " << not_met[0] << " not met, " << cells.size() - met[0] - not_met[0]
@@ -268,20 +268,20 @@ bool DefaultIntervalsExperiment::WriteReport(const SweepSpec& spec, const RunSum
        << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Cell& c : cells) {
       md << "| " << c.label << " | " << c.m << " | " << c.clusters << " | "
-         << FormatNumber(c.bias, 2) << " ± " << FormatNumber(c.bias_se, 2) << " | "
-         << FormatNumber(c.edf[0], 4) << " / " << FormatNumber(c.edf[1], 4) << " / "
-         << FormatNumber(c.empirical_edf, 4) << " | " << Interval3(c.coverage[0][0], c.wilson[0][0])
+         << SignificantDigits(c.bias, 2) << " ± " << SignificantDigits(c.bias_se, 2) << " | "
+         << SignificantDigits(c.edf[0], 4) << " / " << SignificantDigits(c.edf[1], 4) << " / "
+         << SignificantDigits(c.empirical_edf, 4) << " | " << Interval3(c.coverage[0][0], c.wilson[0][0])
          << " | " << Interval3(c.coverage[0][1], c.wilson[0][1]) << " | " << c.verdict[0] << " | "
          << Interval3(c.coverage[1][0], c.wilson[1][0]) << " | "
          << Interval3(c.coverage[1][1], c.wilson[1][1]) << " | " << c.verdict[1] << " |\n";
-      csv << ps.point << ',' << c.noise << ',' << c.m << ',' << FormatNumber(c.tau_s, 9) << ','
-          << c.clusters << ',' << c.trials << ',' << FormatNumber(c.bias, 6) << ','
-          << FormatNumber(c.bias_se, 4) << ',' << FormatNumber(c.empirical_edf, 6);
+      csv << ps.point << ',' << c.noise << ',' << c.m << ',' << SignificantDigits(c.tau_s, 9) << ','
+          << c.clusters << ',' << c.trials << ',' << SignificantDigits(c.bias, 6) << ','
+          << SignificantDigits(c.bias_se, 4) << ',' << SignificantDigits(c.empirical_edf, 6);
       for (int k = 0; k < 2; ++k) {
-        csv << ',' << FormatNumber(c.edf[k], 6);
+        csv << ',' << SignificantDigits(c.edf[k], 6);
         for (std::size_t l = 0; l < spec.confidence_levels.size() && l < 2; ++l) {
-          csv << ',' << FormatNumber(c.coverage[k][l], 6) << ',' << FormatNumber(c.wilson[k][l].low, 6)
-              << ',' << FormatNumber(c.wilson[k][l].high, 6);
+          csv << ',' << SignificantDigits(c.coverage[k][l], 6) << ',' << SignificantDigits(c.wilson[k][l].low, 6)
+              << ',' << SignificantDigits(c.wilson[k][l].high, 6);
         }
         csv << ',' << c.verdict[k];
       }

@@ -27,7 +27,7 @@ std::string Key(std::string_view quantity, const std::string& noise, Statistic s
   return out.str();
 }
 
-std::string LevelKey(double level) { return "in_ci" + FormatNumber(100.0 * level, 3); }
+std::string LevelKey(double level) { return "in_ci" + SignificantDigits(100.0 * level, 3); }
 
 // The plain noise behind a single-noise id.
 bool PlainOf(const std::string& noise, PlainNoise* out) {
@@ -201,7 +201,7 @@ struct CellStats {
 
 std::string Interval3(double rate, const RateInterval& w) {
   if (!std::isfinite(rate)) return "n/a";
-  return FormatNumber(rate, 3) + " [" + FormatNumber(w.low, 3) + ", " + FormatNumber(w.high, 3) + "]";
+  return SignificantDigits(rate, 3) + " [" + SignificantDigits(w.low, 3) + ", " + SignificantDigits(w.high, 3) + "]";
 }
 
 std::string StatisticLabel(Statistic s) {
@@ -225,8 +225,8 @@ bool EstimatorCoverageExperiment::WriteReport(const SweepSpec& spec, const RunSu
   const std::size_t levels = spec.confidence_levels.size();
   std::vector<std::pair<std::string, std::string>> extra = {
       {"records", "experiments/plain_noise.h (not sim/), unit scale; composite = white + " +
-                      FormatNumber(kCompositeFlicker, 3) + " flicker + " +
-                      FormatNumber(kCompositeRandomWalk, 3) + " random walk"},
+                      SignificantDigits(kCompositeFlicker, 3) + " flicker + " +
+                      SignificantDigits(kCompositeRandomWalk, 3) + " random walk"},
       {"expectations", "experiments/family_expectation.h (each statistic's filter on the autocovariance)"},
       {"intervals", "allanlab avar defaults (--ci auto), chi-square at the default EDF"},
       {"trials_failed", std::to_string(run.trials_failed)}};
@@ -234,7 +234,7 @@ bool EstimatorCoverageExperiment::WriteReport(const SweepSpec& spec, const RunSu
   csv << ProvenanceBlock(spec, context, extra, "# ");
   csv << "point,noise,statistic,m,trials,bias,bias_se";
   for (double level : spec.confidence_levels) {
-    const std::string l = FormatNumber(100.0 * level, 3);
+    const std::string l = SignificantDigits(100.0 * level, 3);
     csv << ",coverage" << l << ",wilson_low" << l << ",wilson_high" << l << ",verdict" << l;
   }
   csv << '\n';
@@ -270,10 +270,10 @@ bool EstimatorCoverageExperiment::WriteReport(const SweepSpec& spec, const RunSu
     }
     for (const CellStats& c : cells) {
       csv << ps.point << ',' << c.noise << ',' << estimators::StatisticId(c.statistic) << ',' << c.m
-          << ',' << c.trials << ',' << FormatNumber(c.bias, 6) << ',' << FormatNumber(c.bias_se, 4);
+          << ',' << c.trials << ',' << SignificantDigits(c.bias, 6) << ',' << SignificantDigits(c.bias_se, 4);
       for (std::size_t l = 0; l < levels; ++l) {
-        csv << ',' << FormatNumber(c.coverage[l], 6) << ',' << FormatNumber(c.wilson[l].low, 6) << ','
-            << FormatNumber(c.wilson[l].high, 6) << ',' << c.verdict[l];
+        csv << ',' << SignificantDigits(c.coverage[l], 6) << ',' << SignificantDigits(c.wilson[l].low, 6) << ','
+            << SignificantDigits(c.wilson[l].high, 6) << ',' << c.verdict[l];
       }
       csv << '\n';
     }
@@ -293,14 +293,14 @@ bool EstimatorCoverageExperiment::WriteReport(const SweepSpec& spec, const RunSu
       worst_se = std::max(worst_se, std::sqrt(level * (1.0 - level) / std::max<double>(1.0, static_cast<double>(trials))));
     }
     md << "\n## " << point.num_samples << " samples, " << trials << " trials per cell\n\n"
-       << "Coverage standard error at the nominal levels: <= " << FormatNumber(100.0 * worst_se, 2)
+       << "Coverage standard error at the nominal levels: <= " << SignificantDigits(100.0 * worst_se, 2)
        << " points. Cells (statistic x noise x tau x level) within nominal +- 2 points: " << met
        << " met, " << not_met << " not met, " << total - met - not_met << " undecided of " << total
        << ".\n\nbias: median over tau, and the largest |bias| in standard errors with its m. "
           "Coverage: median over tau; worst = farthest from nominal, with its Wilson 95 % interval "
           "and m; verdicts counted over the taus.\n\n| estimator | noise | bias median | bias worst (m) |";
     for (double level : spec.confidence_levels) {
-      const std::string l = FormatNumber(100.0 * level, 3);
+      const std::string l = SignificantDigits(100.0 * level, 3);
       md << " " << l << " % median | " << l << " % worst [Wilson] (m) | " << l << " % met / not / undecided |";
     }
     md << "\n|---|---|---|---|";
@@ -329,8 +329,8 @@ bool EstimatorCoverageExperiment::WriteReport(const SweepSpec& spec, const RunSu
             worst_bias = c;
           }
         }
-        md << "| " << StatisticLabel(s) << " | " << noise << " | " << FormatNumber(median(biases), 2) << " | "
-           << (worst_bias ? FormatNumber(worst_bias->bias, 2) + " ± " + FormatNumber(worst_bias->bias_se, 2) +
+        md << "| " << StatisticLabel(s) << " | " << noise << " | " << SignificantDigits(median(biases), 2) << " | "
+           << (worst_bias ? SignificantDigits(worst_bias->bias, 2) + " ± " + SignificantDigits(worst_bias->bias_se, 2) +
                                 " (" + std::to_string(worst_bias->m) + ")"
                           : "n/a")
            << " |";
@@ -348,7 +348,7 @@ bool EstimatorCoverageExperiment::WriteReport(const SweepSpec& spec, const RunSu
             lmet += c->verdict[l] == "met";
             lnot += c->verdict[l] == "not met";
           }
-          md << " " << FormatNumber(median(coverages), 3) << " | "
+          md << " " << SignificantDigits(median(coverages), 3) << " | "
              << (worst ? Interval3(worst->coverage[l], worst->wilson[l]) + " (" + std::to_string(worst->m) + ")"
                        : "n/a")
              << " | " << lmet << " / " << lnot << " / " << static_cast<int>(group.size()) - lmet - lnot << " |";

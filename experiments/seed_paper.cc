@@ -125,17 +125,7 @@ void AppendFitColumns(const SweepPoint& point, const std::vector<double>& rate,
   for (const estimators::AvarPoint& p : summary.points) ms.push_back(p.m);
   const std::int64_t min_m =
       SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, ms);
-  estimators::AvarCurve curve;
-  curve.sample_period_s = tau0;
-  curve.num_samples = point.num_samples;
-  curve.estimator = sim::AvarEstimatorKind::kOverlapping;
-  for (const estimators::AvarPoint& p : summary.points) {
-    if (p.m < min_m || !(p.value > 0.0)) continue;
-    curve.m.push_back(p.m);
-    curve.tau_s.push_back(p.tau_s);
-    curve.avar.push_back(p.value);
-    curve.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
+  const estimators::AvarCurve curve = estimators::CurveFromSummary(summary, min_m);
   estimators::ModelFitOptions fit;
   estimators::ModelFitSummary m;
   const bool ok = curve.size() >= 2 && estimators::FitModel(fit, curve, &m);
@@ -207,7 +197,7 @@ std::vector<std::string> SeedPaperDriver::Columns(const SweepSpec& spec,
   for (std::int64_t m : SeedPaperAveragingFactors(spec, point)) {
     columns.push_back(MColumn("ratio", m));
     for (double level : spec.confidence_levels) {
-      columns.push_back(MColumn("in_ci" + FormatNumber(100.0 * level, 3) + "/gr", m));
+      columns.push_back(MColumn("in_ci" + SignificantDigits(100.0 * level, 3) + "/gr", m));
     }
   }
   return columns;
@@ -245,17 +235,7 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
   if (!estimators::ComputeAvar(options, rate, &summary)) throw std::runtime_error(summary.message);
   for (estimators::AvarPoint& p : summary.points) p.value *= fault_.avar_scale;
 
-  estimators::AvarCurve curve;
-  curve.sample_period_s = tau0;
-  curve.num_samples = point.num_samples;
-  curve.estimator = sim::AvarEstimatorKind::kOverlapping;
-  for (const estimators::AvarPoint& p : summary.points) {
-    if (!(p.value > 0.0)) continue;
-    curve.m.push_back(p.m);
-    curve.tau_s.push_back(p.tau_s);
-    curve.avar.push_back(p.value);
-    curve.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
+  const estimators::AvarCurve curve = estimators::CurveFromSummary(summary);
   std::string why;
   if (!curve.IsValid(&why)) throw std::runtime_error("curve: " + why);
 

@@ -78,7 +78,7 @@ struct Row {
   std::string note;
 };
 
-std::string Num(double v, int digits = 4) { return std::isfinite(v) ? FormatNumber(v, digits) : "n/a"; }
+std::string Num(double v, int digits = 4) { return std::isfinite(v) ? SignificantDigits(v, digits) : "n/a"; }
 
 std::vector<Row> BuildRows(const SweepSpec& spec, const std::vector<PointStats>& stats) {
   std::vector<Row> rows;
@@ -249,10 +249,10 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<PointStats>& st
       const ColumnStats* c = ps.Find(name.str());
       if (!c || c->count == 0) continue;
       const double tau = static_cast<double>(ms[i]) / point.sample_rate_hz;
-      out << FormatNumber(tau, 8) << ' ' << FormatNumber(std::sqrt(e[i]) * kRadPerSToDegPerH, 8)
-          << ' ' << FormatNumber(std::sqrt(e[i] * c->mean) * kRadPerSToDegPerH, 8) << ' '
-          << FormatNumber(std::sqrt(e[i] * c->mean * c->mean / (c->mean + c->std)) * kRadPerSToDegPerH, 8)
-          << ' ' << FormatNumber(std::sqrt(e[i] * (c->mean + c->std)) * kRadPerSToDegPerH, 8)
+      out << SignificantDigits(tau, 8) << ' ' << SignificantDigits(std::sqrt(e[i]) * kRadPerSToDegPerH, 8)
+          << ' ' << SignificantDigits(std::sqrt(e[i] * c->mean) * kRadPerSToDegPerH, 8) << ' '
+          << SignificantDigits(std::sqrt(e[i] * c->mean * c->mean / (c->mean + c->std)) * kRadPerSToDegPerH, 8)
+          << ' ' << SignificantDigits(std::sqrt(e[i] * (c->mean + c->std)) * kRadPerSToDegPerH, 8)
           << '\n';
     }
     out << "EOD\n";
@@ -278,8 +278,8 @@ std::string CoverageFigure(const SweepSpec& spec, const std::vector<PointStats>&
     for (const ColumnStats& c : ps.columns) {
       if (c.column.rfind("in_ci", 0) != 0 || c.count == 0) continue;
       const double nominal = std::stod(c.column.substr(5)) / 100.0;
-      out << FormatNumber(nominal, 6) << ' ' << FormatNumber(c.mean, 6) << ' '
-          << FormatNumber(CoverageStandardError(nominal, c.count), 4) << '\n';
+      out << SignificantDigits(nominal, 6) << ' ' << SignificantDigits(c.mean, 6) << ' '
+          << SignificantDigits(CoverageStandardError(nominal, c.count), 4) << '\n';
     }
   }
   out << "EOD\nset title '" << spec.name
@@ -333,7 +333,7 @@ bool SeedPaperExperiment::WriteReport(const SweepSpec& spec, const RunSummary& r
   for (const SweepPoint& point : spec.points) {
     extra.emplace_back("point " + std::to_string(point.index),
                        point.model.name + ", " + std::to_string(point.num_samples) +
-                           " samples at " + FormatNumber(point.sample_rate_hz, 6) + " Hz");
+                           " samples at " + SignificantDigits(point.sample_rate_hz, 6) + " Hz");
   }
   const std::string base = context.output_dir + "/" + spec.name;
   const std::string csv = Csv(rows, ProvenanceBlock(spec, context, extra, "# "));

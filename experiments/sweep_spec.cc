@@ -20,6 +20,7 @@
 #include "sim/embedded_presets.h"
 #include "sim/quantity.h"
 #include "sim/sensor_spec.h"
+#include "common/number_text.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -129,14 +130,8 @@ bool SplitNumber(const std::string& text, NumberWithUnit* out) {
 }
 
 // 15 significant digits: 50 + 3 * 0.1 prints as 50.3, not 50.300000000000004.
-std::string FormatNumber(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.15g", value);
-  return buffer;
-}
-
 std::string WithUnit(double number, const std::string& unit) {
-  std::string text = FormatNumber(number);
+  std::string text = SignificantDigits(number, 15);
   if (!unit.empty()) {
     text += ' ';
     text += unit;
@@ -355,7 +350,7 @@ void ReadRecord(const YAML::Node& record, const std::string& where, SweepPoint* 
     if (!(duration_s > 0.0)) Fail(where + "record.duration", "must be > 0");
     const double n = std::round(duration_s * point->sample_rate_hz);
     if (n > static_cast<double>(kMaxSamples)) {
-      Fail(where + "record.duration", text + " at " + FormatNumber(point->sample_rate_hz) +
+      Fail(where + "record.duration", text + " at " + SignificantDigits(point->sample_rate_hz, 15) +
                                          " Hz is more samples than one record can hold");
     }
     point->num_samples = static_cast<std::int64_t>(n);

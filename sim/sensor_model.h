@@ -84,10 +84,4 @@ struct SensorModel {
   std::vector<double> AngleErrorAutocovariance(std::int64_t lags) const;
 };
 
-// The fits' name for ExpectedAvar(ms, shape, FlickerBandLimit::kStationaryChange).
-inline std::vector<double> FastExpectedAvar(const SensorModel& model, std::span<const std::int64_t> ms,
-                                            const RecordShape& shape) {
-  return model.ExpectedAvar(ms, shape, FlickerBandLimit::kStationaryChange);
-}
-
 }  // namespace allanlab::sim

@@ -9,11 +9,12 @@
 #include "app/input/record_curve.h"
 #include "app/input/record_reader.h"
 #include "app/reports/allan_plot.h"
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 #include "app/reports/avar_report.h"
 #include "app/reports/imu_report.h"
 #include "app/reports/output_paths.h"
 #include "app/reports/provenance.h"
+#include "common/number_text.h"
 #include "estimators/allan_family.h"
 
 namespace allanlab::app {

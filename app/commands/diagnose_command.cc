@@ -15,7 +15,7 @@
 #include <omp.h>
 
 #include "app/reports/allan_plot.h"
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 #include "app/input/record_curve.h"
 #include "app/input/constant_stretch.h"
 #include "app/input/curve_table.h"
@@ -31,6 +31,7 @@
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/diagnosis/diagnose.h"
 #include "experiments/diagnosis/envelope.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
@@ -40,12 +41,6 @@ using Failure = CommandFailure;
 using estimators::Coefficient;
 using namespace allanlab::experiments;
 using Json = nlohmann::ordered_json;
-
-std::string Format(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
-}
 
 bool ParseModel(const std::string& text, std::vector<Coefficient>* terms, std::string* why) {
   std::stringstream ss(text);
@@ -204,11 +199,11 @@ void WriteValidation(std::ostream& os, const Json& v, bool markdown) {
   for (const auto& [view, m] : v["views"].items()) {
     const double b = m["baseline"]["chi2"], c = m["model"]["chi2"];
     if (markdown) {
-      os << "| " << view << " | " << m["baseline"]["points"] << " | " << Format(b) << " | " << Format(c) << " | "
-         << Format(m["shrink"].get<double>()) << " |\n";
+      os << "| " << view << " | " << m["baseline"]["points"] << " | " << SignificantDigits(b, 4) << " | " << SignificantDigits(c, 4) << " | "
+         << SignificantDigits(m["shrink"].get<double>(), 4) << " |\n";
     } else {
-      os << "  " << view << ": chi2 " << Format(b) << " -> " << Format(c) << " with " << v["model"].get<std::string>()
-         << " (" << Format(m["shrink"].get<double>()) << "x)\n";
+      os << "  " << view << ": chi2 " << SignificantDigits(b, 4) << " -> " << SignificantDigits(c, 4) << " with " << v["model"].get<std::string>()
+         << " (" << SignificantDigits(m["shrink"].get<double>(), 4) << "x)\n";
     }
   }
 }
@@ -295,11 +290,11 @@ namespace {
 std::string RegionMeaning(const GapRegion& r, const DiagnoseUnits& unit) {
   if (r.view == View::kChangePoint) {
     return " (blocks; the " + QuantityWord(unit) + (r.mean_z > 0 ? " level rises" : " level falls") + " at t = " +
-           Format(r.time_s) + " s from the start)";
+           SignificantDigits(r.time_s, 4) + " s from the start)";
   }
   if (r.view == View::kTrend) {
     return " (blocks; the " + QuantityWord(unit) + (r.mean_z > 0 ? " settles from above" : " settles from below") +
-           " from the start, time constant " + Format(r.time_s) + " s)";
+           " from the start, time constant " + SignificantDigits(r.time_s, 4) + " s)";
   }
   return r.mean_z > 0 ? " (record above model)" : " (record below model)";
 }
@@ -323,7 +318,7 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
     for (const auto& e : c.effects) {
       os << "\n  " << EffectLabel(e) << ":";
       for (const auto& name : EffectParameterNames(e.effect)) {
-        os << " " << ParameterName(unit, name) << "=" << Format(e.params.at(name));
+        os << " " << ParameterName(unit, name) << "=" << SignificantDigits(e.params.at(name), 4);
       }
     }
   }
@@ -333,13 +328,13 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
     if (s.verdict != "unexplained" && !s.explains_all) os << "  explains most of the gap, not all (what remains is below)\n";
     if (c.steps.size() > 1 || (s.verdict != "unexplained" && !c.steps.empty())) {
       for (const auto& st : c.steps) {
-        os << (markdown ? "- " : "  ") << "adds " << EffectId(st.added) << ": held-out chi2 " << Format(st.heldout_before.chi2)
-           << " -> " << Format(st.heldout_after.chi2) << " (" << st.heldout_after.points << " points)\n";
+        os << (markdown ? "- " : "  ") << "adds " << EffectId(st.added) << ": held-out chi2 " << SignificantDigits(st.heldout_before.chi2, 4)
+           << " -> " << SignificantDigits(st.heldout_after.chi2, 4) << " (" << st.heldout_after.points << " points)\n";
       }
     }
     for (const GapRegion& r : s.remaining) {
-      os << (markdown ? "- " : "  ") << "remains: " << ViewId(r.view) << " " << Format(r.x_min) << " .. " << Format(r.x_max)
-         << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << Format(r.max_abs_z)
+      os << (markdown ? "- " : "  ") << "remains: " << ViewId(r.view) << " " << SignificantDigits(r.x_min, 4) << " .. " << SignificantDigits(r.x_max, 4)
+         << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << SignificantDigits(r.max_abs_z, 4)
          << (r.mean_z > 0 ? " (record above model)" : " (record below model)") << "\n";
     }
   }
@@ -350,42 +345,42 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
   if (s.baseline_model.band_limit.enabled()) {
     const auto& b = s.baseline_model.band_limit;
     os << "  baseline band-limit: " << (b.kind == sim::LowPassKind::kFirstOrder ? "first order" : "2nd-order Butterworth")
-       << ", cutoff " << Format(b.cutoff_hz) << " Hz (held)\n";
+       << ", cutoff " << SignificantDigits(b.cutoff_hz, 4) << " Hz (held)\n";
   }
   if (markdown) os << "\n";
-  os << h << "gap: " << (s.significant ? "significant" : "none") << " (|z| > " << Format(s.threshold)
+  os << h << "gap: " << (s.significant ? "significant" : "none") << " (|z| > " << SignificantDigits(s.threshold, 4)
      << ", Bonferroni over " << s.total_points << " points)\n";
   if (markdown) os << "\n| view | points | chi2 | in 95 % | max abs z |\n|---|---|---|---|---|\n";
   for (const ViewResiduals& v : s.before.views) {
     const GapMetrics m = Metrics(v.z);
     if (markdown) {
-      os << "| " << ViewId(v.view) << " | " << m.points << " | " << Format(m.chi2) << " | "
-         << Format(m.fraction_in_95) << " | " << Format(m.max_abs_z) << " |\n";
+      os << "| " << ViewId(v.view) << " | " << m.points << " | " << SignificantDigits(m.chi2, 4) << " | "
+         << SignificantDigits(m.fraction_in_95, 4) << " | " << SignificantDigits(m.max_abs_z, 4) << " |\n";
     } else {
-      os << "  " << ViewId(v.view) << ": chi2 " << Format(m.chi2) << " on " << m.points
-         << " points, " << Format(100 * m.fraction_in_95) << " % inside 95 %, max |z| "
-         << Format(m.max_abs_z) << "\n";
+      os << "  " << ViewId(v.view) << ": chi2 " << SignificantDigits(m.chi2, 4) << " on " << m.points
+         << " points, " << SignificantDigits(100 * m.fraction_in_95, 4) << " % inside 95 %, max |z| "
+         << SignificantDigits(m.max_abs_z, 4) << "\n";
     }
   }
   for (const GapRegion& r : s.regions) {
-    os << (markdown ? "- " : "  ") << "region " << ViewId(r.view) << " " << Format(r.x_min) << " .. "
-       << Format(r.x_max) << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << Format(r.max_abs_z)
+    os << (markdown ? "- " : "  ") << "region " << ViewId(r.view) << " " << SignificantDigits(r.x_min, 4) << " .. "
+       << SignificantDigits(r.x_max, 4) << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << SignificantDigits(r.max_abs_z, 4)
        << RegionMeaning(r, unit) << "\n";
   }
   if (markdown) os << "\n" << h << "candidates\n\n| effect | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes |\n|---|---|---|---|---|---|---|\n";
   else if (!s.candidates.empty()) os << "candidates (score = OAVAR chi2 improvement - 2k):\n";
   for (const CandidateResult& c : s.candidates) {
-    const std::string held = c.after.has_heldout ? Format(c.heldout_before.chi2) + " -> " +
-                                                       Format(c.after.heldout.chi2) + " (" +
+    const std::string held = c.after.has_heldout ? SignificantDigits(c.heldout_before.chi2, 4) + " -> " +
+                                                       SignificantDigits(c.after.heldout.chi2, 4) + " (" +
                                                        (c.heldout_half == 0 ? "first" : "second") + " half, " +
                                                        (c.heldout_in_gap_views ? "views with a gap" : "OAVAR") + ")"
                                                  : "-";
     if (markdown) {
-      os << "| " << c.id() << " | " << Format(c.score) << " | " << Format(c.after.View(View::kOavar).chi2)
-         << " | " << Format(c.after.All().chi2) << " | " << Format(c.after.All().max_abs_z) << " | " << held
+      os << "| " << c.id() << " | " << SignificantDigits(c.score, 4) << " | " << SignificantDigits(c.after.View(View::kOavar).chi2, 4)
+         << " | " << SignificantDigits(c.after.All().chi2, 4) << " | " << SignificantDigits(c.after.All().max_abs_z, 4) << " | " << held
          << " | " << (c.closes_gap ? "yes" : "no") << " |\n";
     } else {
-      os << "  " << c.id() << ": score " << Format(c.score) << ", max |z| after " << Format(c.after.All().max_abs_z)
+      os << "  " << c.id() << ": score " << SignificantDigits(c.score, 4) << ", max |z| after " << SignificantDigits(c.after.All().max_abs_z, 4)
          << (c.full_views ? " (all views)" : " (OAVAR)") << ", held-out chi2 " << held
          << (c.closes_gap ? ", closes the gap" : "") << "\n";
     }

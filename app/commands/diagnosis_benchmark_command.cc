@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/reports/allan_plot.h"
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 #include "app/reports/provenance.h"
 #include "app/input/record_reader.h"
 #include "app/reports/simulated_record.h"
@@ -33,6 +33,7 @@
 #include "independent/generate.h"
 #include "sim/embedded_presets.h"
 #include "sim/sensor_spec.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
@@ -40,12 +41,6 @@ namespace {
 constexpr const char* kCommand = "diagnosis-benchmark";
 namespace fs = std::filesystem;
 using namespace allanlab::experiments;
-
-std::string Exact(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
 
 // The case's model as a sensor spec `simulate --sensor` reads: the preset's text without its
 // band-limit and output quantizers, plus the effect (SI units throughout).
@@ -72,43 +67,43 @@ bool SpecYaml(const BenchmarkCase& c, std::string* yaml, std::string* why) {
     switch (c.effect->effect) {
       case Effect::kBandwidth:
         extra << "band_limit: {type: " << sim::LowPassKindName(c.model.band_limit.kind)
-              << ", cutoff: " << Exact(p.at("cutoff_hz")) << " Hz, oversampling: " << c.model.band_limit.oversampling
+              << ", cutoff: " << SignificantDigits(p.at("cutoff_hz"), 17) << " Hz, oversampling: " << c.model.band_limit.oversampling
               << ", sampling: " << (c.model.band_limit.sampling == sim::OutputSampling::kAverage ? "average" : "point")
               << "}\n";
         break;
       case Effect::kAngleQuantization:
-        extra << "output: {angle_lsb: " << Exact(p.at("lsb_rad")) << " rad}\n";
+        extra << "output: {angle_lsb: " << SignificantDigits(p.at("lsb_rad"), 17) << " rad}\n";
         break;
       case Effect::kRateQuantization:
-        extra << "output: {rate_lsb: " << Exact(p.at("lsb_rad_per_s")) << " rad/s}\n";
+        extra << "output: {rate_lsb: " << SignificantDigits(p.at("lsb_rad_per_s"), 17) << " rad/s}\n";
         break;
       case Effect::kGaussMarkov:
-        term << "  - {type: gauss_markov, sigma: " << Exact(p.at("sigma_rad_per_s")) << " rad/s, correlation_time: "
-             << Exact(p.at("correlation_time_s")) << " s}";
+        term << "  - {type: gauss_markov, sigma: " << SignificantDigits(p.at("sigma_rad_per_s"), 17) << " rad/s, correlation_time: "
+             << SignificantDigits(p.at("correlation_time_s"), 17) << " s}";
         break;
       case Effect::kRandomTelegraph:
-        term << "  - {type: random_telegraph, amplitude: " << Exact(p.at("amplitude_rad_per_s"))
-             << " rad/s, mean_dwell: " << Exact(p.at("mean_dwell_s")) << " s}";
+        term << "  - {type: random_telegraph, amplitude: " << SignificantDigits(p.at("amplitude_rad_per_s"), 17)
+             << " rad/s, mean_dwell: " << SignificantDigits(p.at("mean_dwell_s"), 17) << " s}";
         break;
       case Effect::kResonance:
-        term << "  - {type: resonance, sigma: " << Exact(p.at("sigma_rad_per_s")) << " rad/s, frequency: "
-             << Exact(p.at("frequency_hz")) << " Hz, damping: " << Exact(p.at("damping")) << "}";
+        term << "  - {type: resonance, sigma: " << SignificantDigits(p.at("sigma_rad_per_s"), 17) << " rad/s, frequency: "
+             << SignificantDigits(p.at("frequency_hz"), 17) << " Hz, damping: " << SignificantDigits(p.at("damping"), 17) << "}";
         break;
       case Effect::kHarmonic:
-        term << "  - {type: harmonic, amplitude: " << Exact(p.at("amplitude_rad_per_s")) << " rad/s, frequency: "
-             << Exact(p.at("frequency_hz")) << " Hz}";
+        term << "  - {type: harmonic, amplitude: " << SignificantDigits(p.at("amplitude_rad_per_s"), 17) << " rad/s, frequency: "
+             << SignificantDigits(p.at("frequency_hz"), 17) << " Hz}";
         break;
       case Effect::kExponentialDrift:
-        term << "  - {type: exponential_drift, amplitude: " << Exact(p.at("amplitude_rad_per_s"))
-             << " rad/s, time_constant: " << Exact(p.at("time_constant_s")) << " s}";
+        term << "  - {type: exponential_drift, amplitude: " << SignificantDigits(p.at("amplitude_rad_per_s"), 17)
+             << " rad/s, time_constant: " << SignificantDigits(p.at("time_constant_s"), 17) << " s}";
         break;
       case Effect::kBiasStep:
-        term << "  - {type: bias_step, size: " << Exact(p.at("size_rad_per_s")) << " rad/s, time: "
-             << Exact(p.at("time_s")) << " s}";
+        term << "  - {type: bias_step, size: " << SignificantDigits(p.at("size_rad_per_s"), 17) << " rad/s, time: "
+             << SignificantDigits(p.at("time_s"), 17) << " s}";
         break;
       case Effect::kOutliers:
-        term << "  - {type: outliers, rate: " << Exact(p.at("rate_hz")) << " Hz, size: "
-             << Exact(p.at("size_rad_per_s")) << " rad/s}";
+        term << "  - {type: outliers, rate: " << SignificantDigits(p.at("rate_hz"), 17) << " Hz, size: "
+             << SignificantDigits(p.at("size_rad_per_s"), 17) << " rad/s}";
         break;
     }
   }
@@ -347,7 +342,7 @@ PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const Benchmark
     const std::string stem = "rec" + std::to_string(i);
     SetPaths(work, stem, p);
     // A free IEEE baseline: the sim generator's effects (a band-limit among them) are gaps from it.
-    p->diagnose_args = {"--format", "f64", "--rate", Exact(p->c.rate_hz), "--units", "rad/s", "--model", "Q,N,B,K,R"};
+    p->diagnose_args = {"--format", "f64", "--rate", SignificantDigits(p->c.rate_hz, 17), "--units", "rad/s", "--model", "Q,N,B,K,R"};
     std::string yaml;
     if (!SpecYaml(p->c, &yaml, &why)) return RuntimeFailure(why);
     MaybeReuse(o, p);
@@ -368,8 +363,8 @@ PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const Benchmark
     so.format = "f64";
     so.units = "rad/s";
     std::ostringstream sim_line;
-    sim_line << "allanlab simulate --sensor " << spec.string() << " --rate " << Exact(p->c.rate_hz) << " --duration "
-             << Exact(so.duration_s) << " --seed " << o.seed << " --trial " << i << " --format f64 --units rad/s -o "
+    sim_line << "allanlab simulate --sensor " << spec.string() << " --rate " << SignificantDigits(p->c.rate_hz, 17) << " --duration "
+             << SignificantDigits(so.duration_s, 17) << " --seed " << o.seed << " --trial " << i << " --format f64 --units rad/s -o "
              << p->record.string();
     if (auto failure = WriteSimulatedRecord(so, sim_line.str())) {
       return CommandFailure{failure->code, "recording " + std::to_string(i) + ": " + failure->message};
@@ -390,7 +385,7 @@ PrepareRecording IndependentPreparer(const DiagnosisBenchmarkOptions& o, const I
     if (!DrawIndependentCase(draw, o.seed, i, &c, &why)) return RuntimeFailure("independent recording " + std::to_string(i) + ": " + why);
     p->c = c.descriptor;
     SetPaths(work, "indep" + std::to_string(i), p);
-    p->diagnose_args = {"--format", "f64", "--rate", Exact(c.recipe.rate_hz), "--units", "rad/s"};
+    p->diagnose_args = {"--format", "f64", "--rate", SignificantDigits(c.recipe.rate_hz, 17), "--units", "rad/s"};
     p->diagnose_args.insert(p->diagnose_args.end(), kIndependentModel.begin(), kIndependentModel.end());
     MaybeReuse(o, p);
     if (p->reusable) return std::nullopt;
@@ -442,7 +437,7 @@ PrepareRecording InjectedPreparer(const DiagnosisBenchmarkOptions& o, const Real
     }
     p->c = c.descriptor;
     SetPaths(work, "real" + std::to_string(i), p);
-    p->diagnose_args = {"--format", "f64", "--rate", Exact(real.rate_hz), "--units", "rad/s"};
+    p->diagnose_args = {"--format", "f64", "--rate", SignificantDigits(real.rate_hz, 17), "--units", "rad/s"};
     p->diagnose_args.insert(p->diagnose_args.end(), kIndependentModel.begin(), kIndependentModel.end());
     MaybeReuse(o, p);
     if (p->reusable) return std::nullopt;
@@ -662,7 +657,7 @@ Subcommand AddDiagnosisBenchmarkCommand(CLI::App* parent) {
       "false alarms, localization, held-out shrinkage).");
   cmd->add_option("--recordings", o->recordings, "number of recordings (default 80)")->type_name("N");
   cmd->add_option("--seed", o->seed, "seed of the draw and of the records (default 1)")->type_name("N");
-  cmd->add_option("--out-dir", o->out_dir, "where benchmark.csv, .md and .png go (default results/diagnosis)")->type_name("DIR");
+  cmd->add_option("--out-dir", o->out_dir, "where benchmark.csv, .md and .png go (default results/diagnosis/benchmark)")->type_name("DIR");
   cmd->add_option("--work-dir", o->work_dir, "where specs, records and diagnoses go (default: a temp directory)")->type_name("DIR");
   cmd->add_flag("--keep-work", o->keep_work, "keep the records (default: deleted once diagnosed)");
   cmd->add_option("--max-samples", o->max_samples, "cap on samples per record (default 1080000)")->type_name("N");

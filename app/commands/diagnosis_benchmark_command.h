@@ -9,7 +9,7 @@
 // (benchmark_score.h). Writes <out-dir>/benchmark.csv, benchmark.md (benchmark_report.h) and
 // benchmark.png (detection and right-effect rate vs strength), with provenance.
 //   --recordings N      (default 80)    --seed S (default 1)
-//   --out-dir DIR       (default results/diagnosis)
+//   --out-dir DIR       (default results/diagnosis/benchmark)
 //   --work-dir DIR      where the specs, records and diagnoses go (default: a fresh directory in
 //                       the system temp dir); records are deleted once diagnosed unless --keep-work
 //   --max-samples N     cap on samples per record (default 1080000; the rate is lowered to fit)
@@ -44,7 +44,7 @@ namespace allanlab::app {
 struct DiagnosisBenchmarkOptions {
   int recordings = 80;
   std::uint64_t seed = 1;
-  std::string out_dir = "results/diagnosis";
+  std::string out_dir = "results/diagnosis/benchmark";
   std::string work_dir;
   bool keep_work = false;
   std::int64_t max_samples = 1080000;

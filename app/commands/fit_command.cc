@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/reports/allan_plot.h"
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 #include "app/reports/avar_report.h"
 #include "app/reports/kalibr_yaml.h"
 #include "app/reports/output_paths.h"
@@ -24,6 +24,7 @@
 #include "app/reports/sensor_coefficients.h"
 #include "estimators/fit/bandwidth_estimate.h"
 #include "estimators/fit/fit_model.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
@@ -71,28 +72,6 @@ bool ParseTerms(const std::string& text, sim::OutputSampling bw_sampling, int bw
   return true;
 }
 
-// The summary's points as the fit's curve, in SI.
-estimators::AvarCurve CurveOf(const AvarReport& report) {
-  estimators::AvarCurve c;
-  const auto& s = report.summary;
-  c.sample_period_s = s.options.sample_period_s;
-  c.num_samples = s.num_samples;
-  c.estimator = sim::AvarEstimatorKind::kOverlapping;
-  for (const auto& p : s.points) {
-    if (!(p.value > 0.0)) continue;  // a zero variance (constant stretch) cannot be fitted
-    c.m.push_back(p.m);
-    c.tau_s.push_back(p.tau_s);
-    c.avar.push_back(p.value);
-    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
-  return c;
-}
-
-std::string Format(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
-}
 
 // Which sigma the outputs carry, in words.
 std::string UncertaintyText(const estimators::FitSummary& s, const FitCommandOptions& o) {
@@ -120,8 +99,8 @@ const estimators::ParametricEstimate* FittedBandLimit(const std::vector<estimato
 std::string PoorFitLine(const estimators::ModelFitSummary& m, ImuSensor sensor) {
   if (!m.poor_fit) return "";
   std::ostringstream os;
-  os << "POOR FIT: chi2 " << Format(m.poor_chi2) << " on " << m.poor_dof << " dof is above its "
-     << Format(100.0 * (1.0 - estimators::kPoorFitP)) << " % quantile (p < " << Format(estimators::kPoorFitP)
+  os << "POOR FIT: chi2 " << SignificantDigits(m.poor_chi2, 4) << " on " << m.poor_dof << " dof is above its "
+     << SignificantDigits(100.0 * (1.0 - estimators::kPoorFitP), 4) << " % quantile (p < " << SignificantDigits(estimators::kPoorFitP, 4)
      << "): the fitted model does not describe this record";
   if (m.best_extended < 0) {
     os << (m.extended.empty() ? "" : "; no extra term (GM, H, BW, BW2) lowers its AIC");
@@ -134,11 +113,11 @@ std::string PoorFitLine(const estimators::ModelFitSummary& m, ImuSensor sensor) 
     for (std::size_t q = 0; q < e.parameters.size(); ++q) {
       const ParameterUnit u = SensorParameterUnit(sensor, e.parameters[q]);
       os << (first ? "" : ", ") << e.short_name << " " << e.parameters[q].name << " "
-         << Format(e.value_si[q] / u.si_per_unit) << " " << u.unit;
+         << SignificantDigits(e.value_si[q] / u.si_per_unit, 4) << " " << u.unit;
       first = false;
     }
   }
-  os << "), chi2 " << Format(x.fit.chi2) << " on " << x.fit.dof << " dof (p = " << Format(x.fit.p_value) << "): "
+  os << "), chi2 " << SignificantDigits(x.fit.chi2, 4) << " on " << x.fit.dof << " dof (p = " << SignificantDigits(x.fit.p_value, 4) << "): "
      << (x.fits ? std::string("that model fits and is the one reported above")
                 : std::string("it does not fit either; the coefficients above are those of the closest wrong model"));
   return os.str();
@@ -153,7 +132,7 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
     const auto& e = s.at(c);
     if (!e.asked) continue;
     const auto& slope = s.slope.at(c);
-    auto unit = [c, sensor](double si) { return Format(SensorDatasheetValue(sensor, c, si)); };
+    auto unit = [c, sensor](double si) { return SignificantDigits(SensorDatasheetValue(sensor, c, si), 4); };
     std::string value = "-", sigma, interval;
     if (e.fitted) {
       value = unit(e.value_si);
@@ -186,35 +165,35 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
       const ParameterUnit u = SensorParameterUnit(sensor, spec);
       char line[256];
       std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-21s %-15s %s\n", (e.short_name + " " + spec.name).c_str(),
-                    e.fitted ? Format(e.value_si[q] / u.si_per_unit).c_str() : "-",
-                    e.fitted ? ("+- " + Format(e.sigma_si[q] / u.si_per_unit)).c_str() : "", "",
+                    e.fitted ? SignificantDigits(e.value_si[q] / u.si_per_unit, 4).c_str() : "-",
+                    e.fitted ? ("+- " + SignificantDigits(e.sigma_si[q] / u.si_per_unit, 4)).c_str() : "", "",
                     u.unit.c_str(), "-");
       os << line;
     }
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
   }
   os << "uncertainty: " << UncertaintyText(s, o) << "\n";
-  os << "fit: chi2 " << Format(s.chi2) << " on " << s.dof << " dof (p = " << Format(s.p_value) << "), "
+  os << "fit: chi2 " << SignificantDigits(s.chi2, 4) << " on " << s.dof << " dof (p = " << SignificantDigits(s.p_value, 4) << "), "
      << s.taus_used << " taus; " << s.message << "\n";
   if (m.poor_fit) os << PoorFitLine(m, sensor) << "\n";
   if (!m.method_disagreement.empty()) {
     os << "method check: GLS and log-WLS differ by more than 3 sigma: " << m.method_disagreement
        << " (the curve departs from the model's shape; the GLS sigmas are too small)\n";
   }
-  os << "taus: " << s.taus_used << " from " << Format(s.tau_min_s) << " s to " << Format(s.tau_max_s)
+  os << "taus: " << s.taus_used << " from " << SignificantDigits(s.tau_min_s, 4) << " s to " << SignificantDigits(s.tau_max_s, 4)
      << " s\n";
   if (!s.band_limit.empty()) os << "band-limit: " << s.band_limit << "\n";
   if (const auto* f = FittedBandLimit(extra)) {
-    os << "bandwidth: fitted fc " << Format(f->value_si[0]) << " +- " << Format(f->sigma_si[0]) << " Hz ("
+    os << "bandwidth: fitted fc " << SignificantDigits(f->value_si[0], 4) << " +- " << SignificantDigits(f->sigma_si[0], 4) << " Hz ("
        << (f->short_name == "BW2" ? "2nd-order Butterworth" : "first order") << "); ";
   } else {
     os << "bandwidth: ";
   }
   if (bw.found) {
-    os << "inflection (ADEV peak) at " << Format(bw.peak_tau_s) << " +- " << Format(bw.peak_tau_sigma_s)
-       << " s -> fc " << Format(bw.cutoff_first_order_hz) << " +- "
-       << Format(bw.cutoff_first_order_sigma_hz) << " Hz (first order; time constant "
-       << Format(bw.time_constant_s) << " s) or " << Format(bw.cutoff_butterworth2_hz)
+    os << "inflection (ADEV peak) at " << SignificantDigits(bw.peak_tau_s, 4) << " +- " << SignificantDigits(bw.peak_tau_sigma_s, 4)
+       << " s -> fc " << SignificantDigits(bw.cutoff_first_order_hz, 4) << " +- "
+       << SignificantDigits(bw.cutoff_first_order_sigma_hz, 4) << " Hz (first order; time constant "
+       << SignificantDigits(bw.time_constant_s, 4) << " s) or " << SignificantDigits(bw.cutoff_butterworth2_hz, 4)
        << " Hz (2nd-order Butterworth)\n";
   } else {
     os << "inflection not found (" << bw.note << ")\n";
@@ -415,7 +394,7 @@ KalibrGyroNoise KalibrNoise(const estimators::ModelFitSummary& m, double rate_hz
   noise.random_walk = value(Coefficient::kK);
   noise.update_rate_hz = rate_hz;
   if (m.poor_fit) {
-    noise.warning = "poor fit (chi2 " + Format(m.poor_chi2) + " on " + std::to_string(m.poor_dof) +
+    noise.warning = "poor fit (chi2 " + SignificantDigits(m.poor_chi2, 4) + " on " + std::to_string(m.poor_dof) +
                     " dof): the fitted model does not describe this record; the values are 95 % upper "
                     "bounds, not estimates. Check the record (allanlab diagnose) before trusting them.";
   }
@@ -453,7 +432,7 @@ std::optional<CommandFailure> FitAxis(const FitCommandOptions& o, const estimato
   if (!CheckRecordSupportsFit(report->summary.num_samples, report->record.sample_rate_hz, parameters, &why)) {
     return Failure{kExitRuntimeError, Where(*report) + ": " + why};
   }
-  const estimators::AvarCurve full_curve = CurveOf(*report);
+  const estimators::AvarCurve full_curve = estimators::CurveFromSummary(report->summary);
   if (full_curve.size() < 2) {
     return Failure{kExitRuntimeError, Where(*report) + ": the record gives " +
                                           std::to_string(full_curve.size()) +
@@ -690,7 +669,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
     if (file->is_open() && !file->Commit(&why)) return Failure{kExitRuntimeError, why};
   }
   if (o.strict && fitted.poor_fit) {
-    return Failure{kExitRuntimeError, o.curve.path + ": poor fit (--strict): chi2 " + Format(fitted.poor_chi2) +
+    return Failure{kExitRuntimeError, o.curve.path + ": poor fit (--strict): chi2 " + SignificantDigits(fitted.poor_chi2, 4) +
                                           " on " + std::to_string(fitted.poor_dof) + " dof"};
   }
   return std::nullopt;

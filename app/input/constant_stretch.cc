@@ -1,6 +1,7 @@
 #include "app/input/constant_stretch.h"
 
 #include "app/reports/provenance.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 

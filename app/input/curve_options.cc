@@ -4,6 +4,7 @@
 
 #include "app/reports/provenance.h"
 #include "app/failure.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 

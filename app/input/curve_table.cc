@@ -8,6 +8,7 @@
 #include "app/reports/provenance.h"
 #include "app/failure.h"
 #include "app/input/text_record_parser.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {

@@ -13,6 +13,7 @@
 #include "app/input/record_reader.h"
 #include "app/input/stated_units.h"
 #include "app/reports/avar_report.h"
+#include "common/number_text.h"
 #include "estimators/allan_family.h"
 #include "estimators/avar.h"
 #include "estimators/confidence.h"

@@ -22,6 +22,7 @@
 #include "app/input/stated_units.h"
 #include "app/failure.h"
 #include "app/input/text_record_parser.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {

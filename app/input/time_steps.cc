@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "app/reports/provenance.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 

@@ -20,58 +20,16 @@
 #include <vector>
 
 #include "app/reports/provenance.h"
-
-extern char** environ;
+#include "common/gnuplot.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
 
-constexpr const char* kGnuplot = "gnuplot";
-constexpr const char* kInstallHint =
-    "gnuplot not found on PATH; install it (e.g. apt-get install gnuplot-nox) or drop --plot";
 
 bool Fail(std::string* why, const std::string& message) {
   if (why) *why = message;
   return false;
-}
-
-// A scratch file in the system temp directory, removed when it goes out of scope.
-class ScratchFile {
- public:
-  bool Create(std::string* why) {
-    std::error_code ec;
-    std::string templ =
-        (std::filesystem::temp_directory_path(ec) / "allanlab-plot.XXXXXX").string();
-    if (ec) templ = "/tmp/allanlab-plot.XXXXXX";
-    std::vector<char> buffer(templ.begin(), templ.end());
-    buffer.push_back('\0');
-    fd_ = ::mkstemp(buffer.data());
-    if (fd_ < 0)
-      return Fail(why, "cannot create a temporary file: " + std::string(std::strerror(errno)));
-    path_ = buffer.data();
-    return true;
-  }
-  ~ScratchFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!path_.empty()) std::remove(path_.c_str());
-  }
-  const std::string& path() const { return path_; }
-  int fd() const { return fd_; }
-
- private:
-  std::string path_;
-  int fd_ = -1;
-};
-
-// gnuplot single-quoted strings take everything literally except '' for a quote.
-std::string Quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') out += '\'';
-    if (c == '\n' || c == '\r') c = ' ';
-    out += c;
-  }
-  return out + "'";
 }
 
 bool Plottable(double x, double y) {
@@ -108,7 +66,7 @@ std::string TerminalLines(int width_px, int height_px, const std::string& output
      << "} else {\n"
      << "  set terminal png noenhanced size " << width_px << "," << height_px << "\n"
      << "}\n"
-     << "set output " << Quoted(output_path) << "\n";
+     << "set output " << GnuplotQuoted(output_path) << "\n";
   return os.str();
 }
 
@@ -162,9 +120,9 @@ std::string Body(const AllanPlot& plot) {
   if (y_hi <= y_lo) y_hi = plot.log_y ? y_lo * 2 : y_lo + 1;
   const double y_pad = 0.08 * (y_hi - y_lo);
   std::ostringstream os;
-  os << "set title " << Quoted(plot.title) << "\n"
-     << "set xlabel " << Quoted(plot.x_label) << "\n"
-     << "set ylabel " << Quoted(plot.y_label) << "\n"
+  os << "set title " << GnuplotQuoted(plot.title) << "\n"
+     << "set xlabel " << GnuplotQuoted(plot.x_label) << "\n"
+     << "set ylabel " << GnuplotQuoted(plot.y_label) << "\n"
      << (plot.log_y ? "set logscale xy\n" : "unset logscale y\nset logscale x\n")
      << "set format x '%g'\nset format y '%g'\n"
      << "set grid xtics ytics mxtics mytics lc rgb '#e8e8e8' lw 1\n"
@@ -193,7 +151,7 @@ std::string Body(const AllanPlot& plot) {
     const double hi = span.x_min == span.x_max ? span.x_max * 1.05 : span.x_max;
     const double opacity = std::clamp(span.opacity, 0.0, 1.0);
     os << "set object " << i + 1 << " rect from " << ShortestDecimal(lo) << ", graph 0 to "
-       << ShortestDecimal(hi) << ", graph 1 behind fc rgb " << Quoted(span.color)
+       << ShortestDecimal(hi) << ", graph 1 behind fc rgb " << GnuplotQuoted(span.color)
        << " fs transparent solid " << ShortestDecimal(opacity) << " noborder\n";
     if (!span.title.empty() &&
         std::find(span_keys.begin(), span_keys.end(), span.title) == span_keys.end()) {
@@ -236,7 +194,7 @@ std::string Body(const AllanPlot& plot) {
       const double label_x = touch_x * 3 <= x_hi ? touch_x * 3 : touch_x / 3;
       const double label_y = touch_y * std::pow(label_x / touch_x, slope) / 1.3;
       if (label_y > y_lo / 2 && label_y < y_hi * 2) {
-        os << "set label " << g + 1 << " " << Quoted(SlopeLabel(slope)) << " at "
+        os << "set label " << g + 1 << " " << GnuplotQuoted(SlopeLabel(slope)) << " at "
            << ShortestDecimal(label_x) << "," << ShortestDecimal(label_y)
            << " center textcolor rgb '#909090' font ',8'\n";
       }
@@ -261,13 +219,13 @@ std::string Body(const AllanPlot& plot) {
         break;
     }
     const std::string color = kept[s]->color.empty() ? Color(s) : kept[s]->color;
-    clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb " + Quoted(color) + " title " +
-                      Quoted(kept[s]->title));
+    clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb " + GnuplotQuoted(color) + " title " +
+                      GnuplotQuoted(kept[s]->title));
   }
   for (std::size_t k = 0; k + 2 < span_keys.size(); k += 3) {
     // NaN draws nothing but puts the span's colour in the key.
     clauses.push_back("NaN with filledcurves fs transparent solid " + span_keys[k + 2] +
-                      " noborder fc rgb " + Quoted(span_keys[k + 1]) + " title " + Quoted(span_keys[k]));
+                      " noborder fc rgb " + GnuplotQuoted(span_keys[k + 1]) + " title " + GnuplotQuoted(span_keys[k]));
   }
   os << "plot ";
   for (std::size_t i = 0; i < clauses.size(); ++i) {
@@ -307,82 +265,14 @@ bool AnyPlottable(const AllanPlot& plot) {
   return false;
 }
 
-// The first line of gnuplot's stderr that says what went wrong, for a one-line message.
-std::string FirstErrorLine(const std::string& log_path) {
-  std::ifstream log(log_path);
-  std::string line, first;
-  while (std::getline(log, line)) {
-    if (line.find_first_not_of(" \t^") == std::string::npos) continue;
-    if (first.empty()) first = line;
-    if (line.find("rror") != std::string::npos) return line;
-  }
-  return first.empty() ? "no message" : first;
-}
-
 }  // namespace
-
-bool FindGnuplot(std::string* why) {
-  const char* path = std::getenv("PATH");
-  std::string_view dirs = path ? path : "";
-  while (true) {
-    const std::size_t colon = dirs.find(':');
-    // An empty PATH entry means the current directory.
-    const std::filesystem::path dir = colon == 0 || dirs.empty()
-                                          ? std::filesystem::path(".")
-                                          : std::filesystem::path(dirs.substr(0, colon));
-    const std::string candidate = (dir / kGnuplot).string();
-    struct stat st;
-    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
-        ::access(candidate.c_str(), X_OK) == 0) {
-      return true;
-    }
-    if (colon == std::string_view::npos) break;
-    dirs.remove_prefix(colon + 1);
-  }
-  return Fail(why, kInstallHint);
-}
 
 namespace {
 
-// Runs gnuplot on `text` (which writes png->temp_path()).
-bool RunGnuplot(const std::string& text, AtomicFile* png, std::string* why) {
+// Runs gnuplot on `text`, which writes png->temp_path().
+bool RunGnuplotInto(const std::string& text, AtomicFile* png, std::string* why) {
   png->stream().close();
-  ScratchFile script, log;
-  if (!script.Create(why) || !log.Create(why)) return false;
-  if (::write(script.fd(), text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
-    return Fail(why, "cannot write the gnuplot script: " + std::string(std::strerror(errno)));
-  }
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, log.fd(), STDERR_FILENO);
-  std::string script_path = script.path();
-  std::string program = kGnuplot;
-  char* argv[] = {program.data(), script_path.data(), nullptr};
-  pid_t pid = 0;
-  const int spawn_error = ::posix_spawnp(&pid, kGnuplot, &actions, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error == ENOENT) return Fail(why, kInstallHint);
-  if (spawn_error != 0) {
-    return Fail(why, "cannot run gnuplot: " + std::string(std::strerror(spawn_error)));
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR)
-      return Fail(why, "lost the gnuplot process: " + std::string(std::strerror(errno)));
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    // posix_spawnp may report a failed exec only through exit status 127.
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return Fail(why, kInstallHint);
-    return Fail(why, "gnuplot failed: " + FirstErrorLine(log.path()));
-  }
-  struct stat st;
-  if (::stat(png->temp_path().c_str(), &st) != 0 || st.st_size == 0) {
-    return Fail(why, "gnuplot wrote no image: " + FirstErrorLine(log.path()));
-  }
-  return true;
+  return RunGnuplot(text, why) && GnuplotWroteImage(png->temp_path(), why);
 }
 
 }  // namespace
@@ -390,7 +280,7 @@ bool RunGnuplot(const std::string& text, AtomicFile* png, std::string* why) {
 bool RenderAllanPlot(const AllanPlot& plot, AtomicFile* png, std::string* why) {
   if (!png || !png->is_open()) return Fail(why, "internal error: plot output not open");
   if (!AnyPlottable(plot)) return Fail(why, "nothing to plot: no positive, finite point in any series");
-  return RunGnuplot(Script(plot, png->temp_path()), png, why);
+  return RunGnuplotInto(Script(plot, png->temp_path()), png, why);
 }
 
 bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, AtomicFile* png, std::string* why) {
@@ -400,7 +290,7 @@ bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, Atom
   for (const AllanPlot& p : panels) {
     if (!AnyPlottable(p)) return Fail(why, "nothing to plot in panel '" + p.title + "': no positive, finite point");
   }
-  return RunGnuplot(Script(panels, columns, png->temp_path()), png, why);
+  return RunGnuplotInto(Script(panels, columns, png->temp_path()), png, why);
 }
 
 bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why) {

@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
+#include "common/gnuplot.h"
 
 namespace allanlab::app {
 
@@ -54,10 +55,6 @@ struct AllanPlot {
   int width_px = 900;
   int height_px = 650;
 };
-
-// Checks that an executable `gnuplot` is on PATH, so that a command can refuse to start work it
-// could not finish. The message says how to get gnuplot.
-bool FindGnuplot(std::string* why);
 
 // Renders `plot` with gnuplot (pngcairo terminal when available, else png) into png->temp_path().
 // `png` must be open; the caller commits it (with the command's other outputs) or discards it.

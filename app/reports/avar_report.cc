@@ -6,13 +6,13 @@
 #include <cstdio>
 
 #include "sim/units.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
 
 using estimators::Statistic;
 
-std::string Number(double v) { return ShortestDecimal(v); }
 
 // 0.683 -> "68.3 %" (0.683 * 100 is 68.30000000000001 in binary).
 std::string Percent(double fraction) {
@@ -80,7 +80,7 @@ std::string RecordLine(const AvarReport& r) {
   return i.path + ", " + i.column + ", " + std::to_string(r.summary.num_samples) + " " +
          (r.sensor == ImuSensor::kAccelerometer ? std::string("accelerometer")
                                                  : TypeName(r.summary.options.input)) +
-         " samples at " + Number(i.sample_rate_hz) + " Hz (" +
+         " samples at " + ShortestDecimal(i.sample_rate_hz) + " Hz (" +
          i.rate_source + "), input in " + r.input_units + " (" + i.units_source + ")";
 }
 
@@ -216,7 +216,7 @@ void WriteAvarTable(std::ostream& os, const AvarReport& r) {
   }
   if (any_unidentified) os << "# alpha*: fixed or not identifiable at that tau (not measured)\n";
   for (const estimators::DroppedTau& d : r.summary.dropped) {
-    os << "# dropped: tau " << Number(d.tau_s) << " s (m = " << d.m << "): " << d.reason << "\n";
+    os << "# dropped: tau " << ShortestDecimal(d.tau_s) << " s (m = " << d.m << "): " << d.reason << "\n";
   }
   for (const std::string& note : Notes(r)) os << "# note: " << note << "\n";
 }
@@ -237,10 +237,10 @@ void WriteAvarCsv(std::ostream& os, const AvarReport& r) {
   const std::vector<AvarRow> rows = AvarRows(r);
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const AvarRow& row = rows[k];
-    os << row.m << "," << Number(row.tau_s) << "," << Number(row.var) << "," << Number(row.dev)
-       << "," << row.terms << "," << Number(row.edf) << ","
-       << (row.has_interval ? Number(row.dev_low) : "") << ","
-       << (row.has_interval ? Number(row.dev_high) : "") << "," << row.alpha << ","
+    os << row.m << "," << ShortestDecimal(row.tau_s) << "," << ShortestDecimal(row.var) << "," << ShortestDecimal(row.dev)
+       << "," << row.terms << "," << ShortestDecimal(row.edf) << ","
+       << (row.has_interval ? ShortestDecimal(row.dev_low) : "") << ","
+       << (row.has_interval ? ShortestDecimal(row.dev_high) : "") << "," << row.alpha << ","
        << (row.alpha_identified ? 1 : 0);
     if (r.streamed) os << "," << r.overlap_stride[k];
     os << "\n";
@@ -329,7 +329,7 @@ AllanPlot AvarPlot(const AvarReport& r) {
   AllanPlot plot;
   plot.title = "allanlab avar: " + r.record.path + ", " + r.record.column + " (" +
                std::to_string(r.summary.num_samples) + " samples at " +
-               Number(r.record.sample_rate_hz) + " Hz)";
+               ShortestDecimal(r.record.sample_rate_hz) + " Hz)";
   plot.y_label = DeviationName(s) + " [" + unit + "]";
   PlotSeries series{StatisticDescription(s) + " (deviation)", PlotStyle::kPoints, {}, {}, {}, {}};
   bool bars = false;

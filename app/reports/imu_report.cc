@@ -1,4 +1,5 @@
 #include "app/reports/imu_report.h"
+#include "common/number_text.h"
 
 #include <string>
 

@@ -1,4 +1,5 @@
 #include "app/reports/kalibr_yaml.h"
+#include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {

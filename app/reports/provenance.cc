@@ -109,11 +109,4 @@ nlohmann::ordered_json ProvenanceJson(const Provenance& p) {
   return j;
 }
 
-std::string ShortestDecimal(double value) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  if (ec != std::errc()) return "?";
-  return std::string(buffer, end);
-}
-
 }  // namespace allanlab::app

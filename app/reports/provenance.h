@@ -46,7 +46,5 @@ std::string ProvenanceCommentLines(const Provenance& provenance);
 // build_type, utc_date, command_line, and every field).
 nlohmann::ordered_json ProvenanceJson(const Provenance& provenance);
 
-// Shortest decimal text that reads back to exactly `value` ("0.1", "1e-07", "nan").
-std::string ShortestDecimal(double value);
 
 }  // namespace allanlab::app

@@ -13,10 +13,11 @@
 #include <vector>
 
 #include "app/reports/allan_plot.h"
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 #include "app/reports/output_paths.h"
 #include "app/reports/provenance.h"
 #include "app/input/rate_units.h"
+#include "common/number_text.h"
 #include "estimators/allan_variance.h"
 #include "sim/sensor_model.h"
 #include "sim/sensor_spec.h"

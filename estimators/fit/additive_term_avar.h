@@ -5,7 +5,7 @@
 // per tau) or not moved by an evaluation (the other parameters' central differences) is then
 // computed once per fit instead of at every evaluation.
 //
-// Exactness: sim::FastExpectedAvar of base + terms is the left-to-right sum from zero of each
+// Exactness: sim::SensorModel::ExpectedAvar (FlickerBandLimit::kStationaryChange) of base + terms is the left-to-right sum from zero of each
 // term's own part (band-limit included), so summing Part(0), Part(1), ... in that order from zero
 // gives the same bits as one ModelAvarOnCurve of all of them.
 #include <cstddef>

@@ -47,4 +47,19 @@ AvarCurve TauRange(const AvarCurve& curve, double min_tau_s, double max_tau_s) {
   return out;
 }
 
+AvarCurve CurveFromSummary(const AvarSummary& summary, std::int64_t min_m, std::int64_t max_m) {
+  AvarCurve c;
+  c.sample_period_s = summary.options.sample_period_s;
+  c.num_samples = summary.num_samples;
+  c.estimator = sim::AvarEstimatorKind::kOverlapping;
+  for (const AvarPoint& p : summary.points) {
+    if (p.m < min_m || p.m > max_m || !(p.value > 0.0)) continue;
+    c.m.push_back(p.m);
+    c.tau_s.push_back(p.tau_s);
+    c.avar.push_back(p.value);
+    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
+  }
+  return c;
+}
+
 }  // namespace allanlab::estimators

@@ -2,9 +2,11 @@
 // An Allan-variance curve as the fits consume it: averaging factors, taus, values and EDFs of
 // one estimator on one record, in SI (rad/s)^2.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "estimators/avar_summary.h"
 #include "sim/avar_theory.h"
 
 namespace allanlab::estimators {
@@ -26,5 +28,11 @@ struct AvarCurve {
 // The points with min_tau_s <= tau <= max_tau_s (a manual tau range for a fit; record length
 // and estimator kept, so GLS covariances stay those of the full record).
 AvarCurve TauRange(const AvarCurve& curve, double min_tau_s, double max_tau_s);
+
+// An overlapping-AVAR summary's points as a curve (its sample period and sample count): those with
+// min_m <= m <= max_m and a positive value (a zero variance, from a constant stretch, cannot be
+// fitted); an EDF the summary does not give (<= 0) becomes 1.
+AvarCurve CurveFromSummary(const AvarSummary& summary, std::int64_t min_m = 1,
+                           std::int64_t max_m = std::numeric_limits<std::int64_t>::max());
 
 }  // namespace allanlab::estimators

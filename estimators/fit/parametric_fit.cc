@@ -244,7 +244,7 @@ bool ParametricFitOptions::IsValid(std::string* why) const {
 
 std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCurve& curve) {
   const sim::RecordShape shape{curve.num_samples, curve.estimator};
-  return sim::FastExpectedAvar(model, curve.m, shape);
+  return model.ExpectedAvar(curve.m, shape, sim::FlickerBandLimit::kStationaryChange);
 }
 
 namespace {

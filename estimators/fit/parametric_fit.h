@@ -90,7 +90,7 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
 sim::SensorModel FittedModel(const ParametricFitOptions& options, const AvarCurve& curve,
                              const ParametricFitSummary& summary);
 
-// Expected AVAR of a model on the curve's averaging factors and record (sim::FastExpectedAvar).
+// Expected AVAR of a model on the curve's averaging factors and record (sim::SensorModel::ExpectedAvar with FlickerBandLimit::kStationaryChange).
 std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCurve& curve);
 
 }  // namespace allanlab::estimators

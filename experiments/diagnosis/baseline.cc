@@ -217,17 +217,7 @@ bool RecordCurve(std::span<const double> rate, double tau0, estimators::AvarCurv
     *why = s.message;
     return false;
   }
-  estimators::AvarCurve c;
-  c.sample_period_s = tau0;
-  c.num_samples = s.num_samples;
-  c.estimator = sim::AvarEstimatorKind::kOverlapping;
-  for (const auto& p : s.points) {
-    if (!(p.value > 0.0)) continue;  // a constant stretch: no variance to fit
-    c.m.push_back(p.m);
-    c.tau_s.push_back(p.tau_s);
-    c.avar.push_back(p.value);
-    c.edf.push_back(p.edf > 0.0 ? p.edf : 1.0);
-  }
+  estimators::AvarCurve c = estimators::CurveFromSummary(s);
   if (c.size() < detail::kMinTaus) {
     *why = "the record gives " + std::to_string(c.size()) + " usable taus (need " +
            std::to_string(detail::kMinTaus) + "): too short or constant";

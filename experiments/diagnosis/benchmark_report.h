@@ -1,5 +1,5 @@
 #pragma once
-// The blind diagnosis benchmark's tables (results/diagnosis/benchmark.csv and .md, same content):
+// The blind diagnosis benchmark's tables (results/diagnosis/benchmark/benchmark.csv and .md, same content):
 // one row per recording, then the summary of benchmark_score.h with the benchmark's targets
 // (false alarms on controls <= 5 %, right effect on clearly visible single effects >= 90 %,
 // held-out chi2 shrinking >= 5x for right diagnoses). Deterministic text: no timings, no dates

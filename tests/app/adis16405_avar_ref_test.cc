@@ -32,6 +32,7 @@
 
 #include "app/reports/provenance.h"
 #include "app/input/record_reader.h"
+#include "common/number_text.h"
 #include "tests/support/read_file.h"
 
 namespace allanlab::app {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "app/reports/kalibr_yaml.h"
+#include "common/number_text.h"
 #include "sim/units.h"
 
 namespace allanlab::app {

@@ -1,4 +1,5 @@
 #include "app/reports/provenance.h"
+#include "common/number_text.h"
 
 #include <cstdlib>
 #include <string>

@@ -1,5 +1,5 @@
 // Statistical checks that `diagnose` names two effects the blind benchmark left unexplained
-// (results/diagnosis/benchmark.md, seed 1): an angle quantizer whose LSB the angle crosses less
+// (results/diagnosis/benchmark/benchmark.md, seed 1): an angle quantizer whose LSB the angle crosses less
 // than once per sample (#14, #40, #56) and a warm-up drift on a model with a bias-instability
 // floor (#5, #16, #42). Fixed seeds; records of 3.6e4 samples so each test takes seconds.
 #include <gtest/gtest.h>

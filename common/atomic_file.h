@@ -12,8 +12,9 @@
 // done) and commit them last, one after the other.
 #include <fstream>
 #include <string>
+#include <string_view>
 
-namespace allanlab::app {
+namespace allanlab {
 
 class AtomicFile {
  public:
@@ -53,4 +54,10 @@ class AtomicFile {
   std::ofstream stream_;
 };
 
-}  // namespace allanlab::app
+// Creates the missing directories above `path` (none for a bare file name).
+bool CreateParentDirectories(const std::string& path, std::string* why);
+
+// `content` written to `path` through an AtomicFile, missing parent directories created first.
+bool WriteFileAtomically(const std::string& path, std::string_view content, std::string* why);
+
+}  // namespace allanlab

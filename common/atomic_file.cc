@@ -1,4 +1,4 @@
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 
 #include <fcntl.h>
 #include <stdlib.h>
@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-namespace allanlab::app {
+namespace allanlab {
 namespace {
 
 namespace fs = std::filesystem;
@@ -129,4 +129,20 @@ void AtomicFile::Discard() {
   }
 }
 
-}  // namespace allanlab::app
+bool CreateParentDirectories(const std::string& path, std::string* why) {
+  const fs::path parent = fs::path(path).parent_path();
+  if (parent.empty()) return true;
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (error) return Fail(why, "cannot create directory " + parent.string() + ": " + error.message());
+  return true;
+}
+
+bool WriteFileAtomically(const std::string& path, std::string_view content, std::string* why) {
+  AtomicFile file;
+  if (!CreateParentDirectories(path, why) || !file.Open(path, why)) return false;
+  file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
+  return file.Commit(why);
+}
+
+}  // namespace allanlab

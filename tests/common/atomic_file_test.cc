@@ -1,4 +1,4 @@
-#include "app/reports/atomic_file.h"
+#include "common/atomic_file.h"
 
 #include <sys/stat.h>
 
@@ -11,7 +11,7 @@
 
 #include "tests/support/read_file.h"
 
-namespace allanlab::app {
+namespace allanlab {
 namespace {
 
 namespace fs = std::filesystem;
@@ -133,4 +133,4 @@ TEST_F(AtomicFileTest, CommitWithoutOpenFails) {
 }
 
 }  // namespace
-}  // namespace allanlab::app
+}  // namespace allanlab
