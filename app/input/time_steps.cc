@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "app/reports/provenance.h"
 #include "common/number_text.h"
 
 namespace allanlab::app {
