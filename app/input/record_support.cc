@@ -1,22 +1,11 @@
 #include "app/input/record_support.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "app/reports/provenance.h"
 #include "common/number_text.h"
 
 namespace allanlab::app {
-namespace {
-
-std::string Seconds(double s) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g s", s);
-  return text;
-}
-
-}  // namespace
-
 int SupportedOctaveTaus(std::int64_t samples) {
   int octaves = 0;
   for (std::int64_t m = 1; m <= samples / kMinClusters; m *= 2) ++octaves;
@@ -28,12 +17,12 @@ bool CheckRecordSupportsFit(std::int64_t samples, double sample_rate_hz, int par
   const int have = SupportedOctaveTaus(samples);
   if (have >= parameters + 1) return true;
   const std::int64_t needed = kMinClusters << parameters;
-  *why = Seconds(static_cast<double>(samples) / sample_rate_hz) + " (" + std::to_string(samples) +
+  *why = (SignificantDigits(static_cast<double>(samples) / sample_rate_hz, 3) + " s") + " (" + std::to_string(samples) +
          " samples at " + ShortestDecimal(sample_rate_hz) + " Hz) gives " + std::to_string(have) +
          " octave tau(s) with at least " + std::to_string(kMinClusters) +
          " clusters (tau <= T/" + std::to_string(kMinClusters) + "); fitting " +
          std::to_string(parameters) + " parameter(s) needs " + std::to_string(parameters + 1) +
-         ": record at least " + Seconds(static_cast<double>(needed) / sample_rate_hz) + " (" +
+         ": record at least " + (SignificantDigits(static_cast<double>(needed) / sample_rate_hz, 3) + " s") + " (" +
          std::to_string(needed) + " samples), or fit fewer terms (--terms)";
   return false;
 }
@@ -59,9 +48,9 @@ std::vector<std::string> WeaklySupportedTerms(const std::vector<double>& tau_s,
     }
     if (!dominates || supported) continue;
     warnings.push_back(t.name + " exceeds half of the fitted curve only from tau " +
-                       Seconds(from_tau) + ", above T/" + std::to_string(kMinClusters) + " = " +
-                       Seconds(static_cast<double>(longest_m) * tau_s.front() /
-                               static_cast<double>(m.front())) +
+                       (SignificantDigits(from_tau, 3) + " s") + ", above T/" + std::to_string(kMinClusters) + " = " +
+                       (SignificantDigits(static_cast<double>(longest_m) * tau_s.front() /
+                               static_cast<double>(m.front()), 3) + " s") +
                        " where fewer than " + std::to_string(kMinClusters) +
                        " clusters average: its value rests on the last few clusters of the "
                        "record; record longer to measure it");

@@ -3,14 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "common/number_text.h"
+
 namespace allanlab::experiments {
 namespace {
-
-std::string G(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
 
 std::string Percent(const Proportion& p) {
   if (p.trials == 0) return "- (0 recordings)";
@@ -35,9 +31,9 @@ std::string RegionsText(const BenchmarkOutcome& o) {
     if (!out.empty()) out += ";";
     out += g.view;
     out += ':';
-    out += G(g.tau_min_s);
+    out += SignificantDigits(g.tau_min_s, 4);
     out += '-';
-    out += G(g.tau_max_s);
+    out += SignificantDigits(g.tau_max_s, 4);
   }
   return out;
 }
@@ -54,20 +50,20 @@ void WriteBenchmarkCsv(std::ostream& os, const std::string& provenance, const st
         "heldout_chi2_before,heldout_chi2_after,heldout_points,shrink,heldout_at_model_level\n";
   for (const BenchmarkRow& r : rows) {
     const BenchmarkOutcome& o = r.outcome;
-    os << r.index << ',' << r.preset << ',' << G(r.rate_hz) << ',' << r.num_samples << ','
-       << G(static_cast<double>(r.num_samples) / r.rate_hz) << ',' << r.truth << ",\"" << r.params << "\","
-       << G(r.target_z) << ',' << G(r.strength_z) << ',' << G(r.oavar_z) << ',' << G(r.kurtosis_z) << ','
-       << G(r.halves_z) << ',' << G(r.relative_peak) << ',' << G(r.peak_tau_s) << ',' << r.strength_class << ','
-       << G(r.expected_tau_min_s) << ',' << G(r.expected_tau_max_s) << ',' << (o.ok ? 1 : 0) << ','
-       << (o.significant ? 1 : 0) << ',' << G(o.threshold_z) << ',' << (o.ok ? o.verdict : "failed") << ",\""
+    os << r.index << ',' << r.preset << ',' << SignificantDigits(r.rate_hz, 4) << ',' << r.num_samples << ','
+       << SignificantDigits(static_cast<double>(r.num_samples) / r.rate_hz, 4) << ',' << r.truth << ",\"" << r.params << "\","
+       << SignificantDigits(r.target_z, 4) << ',' << SignificantDigits(r.strength_z, 4) << ',' << SignificantDigits(r.oavar_z, 4) << ',' << SignificantDigits(r.kurtosis_z, 4) << ','
+       << SignificantDigits(r.halves_z, 4) << ',' << SignificantDigits(r.relative_peak, 4) << ',' << SignificantDigits(r.peak_tau_s, 4) << ',' << r.strength_class << ','
+       << SignificantDigits(r.expected_tau_min_s, 4) << ',' << SignificantDigits(r.expected_tau_max_s, 4) << ',' << (o.ok ? 1 : 0) << ','
+       << (o.significant ? 1 : 0) << ',' << SignificantDigits(o.threshold_z, 4) << ',' << (o.ok ? o.verdict : "failed") << ",\""
        << Joined(o.also_consistent, ";") << "\",\"" << RegionsText(o) << "\"," << (r.detected ? 1 : 0) << ','
        << (r.right ? 1 : 0) << ',' << Tri(r.overlap) << ',' << Tri(r.contain) << ',';
     if (o.has_heldout) {
-      os << G(o.heldout_before_chi2) << ',' << G(o.heldout_after_chi2) << ',' << o.heldout_points;
+      os << SignificantDigits(o.heldout_before_chi2, 4) << ',' << SignificantDigits(o.heldout_after_chi2, 4) << ',' << o.heldout_points;
     } else {
       os << ",,";
     }
-    os << ',' << (r.shrink > 0.0 ? G(r.shrink) : "") << ',' << (r.shrink > 0.0 ? (r.heldout_at_model_level ? "1" : "0") : "")
+    os << ',' << (r.shrink > 0.0 ? SignificantDigits(r.shrink, 4) : "") << ',' << (r.shrink > 0.0 ? (r.heldout_at_model_level ? "1" : "0") : "")
        << '\n';
   }
 }
@@ -79,7 +75,7 @@ std::vector<TargetCheck> CheckTargets(const BenchmarkSummary& s) {
   t.push_back({"right effect (or also_consistent) on clear single effects >= 90 %", Percent(s.clear_right),
                s.clear_right.trials > 0 && s.clear_right.low >= 0.9});
   t.push_back({"held-out chi2 shrinks >= 5x on >= 90 % of right diagnoses",
-               Percent(s.shrink_5x) + "; median " + G(s.shrink_median) + "x, min " + G(s.shrink_min) + "x",
+               Percent(s.shrink_5x) + "; median " + SignificantDigits(s.shrink_median, 4) + "x, min " + SignificantDigits(s.shrink_min, 4) + "x",
                s.shrink_count > 0 && s.shrink_5x.low >= 0.9});
   t.push_back({"(held-out chi2 shrinks >= 5x, or ends within the model's own 95 % chi2 range)",
                Percent(s.shrink_5x_or_model_level), s.shrink_count > 0 && s.shrink_5x_or_model_level.low >= 0.9});
@@ -111,7 +107,7 @@ void WriteBenchmarkMarkdown(std::ostream& os, const std::string& title, const st
   os << "## Detection and right effect vs strength (effect recordings)\n\n"
      << "| strength z | recordings | detected | right effect |\n|---|---|---|---|\n";
   for (const StrengthBin& b : s.bins) {
-    os << "| [" << G(b.lo) << ", " << (b.hi > 1e100 ? std::string("inf") : G(b.hi)) << ") | " << b.detected.trials
+    os << "| [" << SignificantDigits(b.lo, 4) << ", " << (b.hi > 1e100 ? std::string("inf") : SignificantDigits(b.hi, 4)) << ") | " << b.detected.trials
        << " | " << Percent(b.detected) << " | " << Percent(b.right) << " |\n";
   }
   os << "\n## Right effect on clear single effects, per effect\n\n| effect | right |\n|---|---|\n";
@@ -121,8 +117,8 @@ void WriteBenchmarkMarkdown(std::ostream& os, const std::string& title, const st
      << "a reported region overlaps the expected range: " << Percent(s.overlap)
      << "\n\none reported region contains the expected range: " << Percent(s.contain) << "\n\n";
   os << "## Held-out gap shrinkage (right diagnoses)\n\n" << s.shrink_count
-     << " recordings; chi2 before / after on the held-out half: median " << G(s.shrink_median) << "x, min "
-     << G(s.shrink_min) << "x; >= 5x: " << Percent(s.shrink_5x)
+     << " recordings; chi2 before / after on the held-out half: median " << SignificantDigits(s.shrink_median, 4) << "x, min "
+     << SignificantDigits(s.shrink_min, 4) << "x; >= 5x: " << Percent(s.shrink_5x)
      << "; >= 5x or after within the 95 % chi2 range of its points (the half as the model predicts, the gap "
         "having been too small for a 5x ratio): "
      << Percent(s.shrink_5x_or_model_level) << "\n\n";
@@ -131,15 +127,15 @@ void WriteBenchmarkMarkdown(std::ostream& os, const std::string& title, const st
         "before -> after (points) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchmarkRow& r : rows) {
     const BenchmarkOutcome& o = r.outcome;
-    os << "| " << r.index << " | " << r.preset << " | " << G(r.rate_hz) << " | " << r.num_samples << " | " << r.truth
-       << " | " << r.params << " | " << G(r.strength_z) << " (" << G(r.oavar_z) << "/" << G(r.kurtosis_z) << "/"
-       << G(r.halves_z) << ") | " << r.strength_class << " | "
-       << (r.expected_tau_min_s > 0 ? G(r.expected_tau_min_s) + " - " + G(r.expected_tau_max_s) : std::string("-"))
+    os << "| " << r.index << " | " << r.preset << " | " << SignificantDigits(r.rate_hz, 4) << " | " << r.num_samples << " | " << r.truth
+       << " | " << r.params << " | " << SignificantDigits(r.strength_z, 4) << " (" << SignificantDigits(r.oavar_z, 4) << "/" << SignificantDigits(r.kurtosis_z, 4) << "/"
+       << SignificantDigits(r.halves_z, 4) << ") | " << r.strength_class << " | "
+       << (r.expected_tau_min_s > 0 ? SignificantDigits(r.expected_tau_min_s, 4) + " - " + SignificantDigits(r.expected_tau_max_s, 4) : std::string("-"))
        << " | " << (o.ok ? o.verdict : "failed: " + o.failure) << " | " << Joined(o.also_consistent, ", ") << " | "
        << RegionsText(o) << " | " << (r.right ? "yes" : "no") << " | " << Tri(r.overlap) << "/" << Tri(r.contain)
        << " | ";
     if (o.has_heldout) {
-      os << G(o.heldout_before_chi2) << " -> " << G(o.heldout_after_chi2) << " (" << o.heldout_points << ")";
+      os << SignificantDigits(o.heldout_before_chi2, 4) << " -> " << SignificantDigits(o.heldout_after_chi2, 4) << " (" << o.heldout_points << ")";
     }
     os << " |\n";
   }
@@ -207,7 +203,7 @@ void WriteInjectedSection(std::ostream& os, const std::vector<BenchmarkRow>& row
   for (const BenchmarkRow& r : rows) {
     const BenchmarkOutcome& o = r.outcome;
     os << "| " << r.index << " | " << r.preset << " | " << r.num_samples << " | " << r.truth << " | " << r.params
-       << " | " << G(r.strength_z) << " (" << G(r.oavar_z) << "/" << G(r.kurtosis_z) << "/" << G(r.halves_z) << ") | "
+       << " | " << SignificantDigits(r.strength_z, 4) << " (" << SignificantDigits(r.oavar_z, 4) << "/" << SignificantDigits(r.kurtosis_z, 4) << "/" << SignificantDigits(r.halves_z, 4) << ") | "
        << (o.ok ? o.verdict : "failed: " + o.failure) << " | " << Joined(o.also_consistent, ", ") << " | "
        << (NamesEffect(o, r.truth) ? "yes" : "no") << " |\n";
   }
