@@ -23,17 +23,21 @@ void ReportProgress(const Context& ctx, std::string_view stage, int done, int to
 std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
                                            const ViewValues& observed, const sim::SensorModel& model,
                                            bool monte_carlo, int trials, std::uint64_t seed,
-                                           std::string* note) {
-  const OavarTheory theory = ExactOavar(model, layout.oavar_m, layout.num_samples);
+                                           std::string* note, const ViewSet& wanted) {
+  const OavarTheory theory = wanted.test(static_cast<int>(View::kOavar))
+                                 ? ExactOavar(model, layout.oavar_m, layout.num_samples)
+                                 : OavarTheory{};
   ViewEnvelope envelope;
-  const bool have_envelope = monte_carlo && trials >= 3 && SimulateEnvelope(model, layout, trials, seed, &envelope, note);
-  std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr);
-  if (!layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
+  const bool have_envelope = monte_carlo && trials >= 3 && (wanted & MonteCarloViews()).any() &&
+                             SimulateEnvelope(model, layout, trials, seed, &envelope, note, wanted);
+  std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr, wanted);
+  const bool block_means = wanted.test(static_cast<int>(View::kChangePoint)) || wanted.test(static_cast<int>(View::kTrend));
+  if (block_means && !layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
     ViewResiduals change_point, trend;
     BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, layout.rate_random_walk_bound,
                        &change_point, &trend);
-    out.push_back(std::move(change_point));
-    out.push_back(std::move(trend));
+    if (wanted.test(static_cast<int>(View::kChangePoint))) out.push_back(std::move(change_point));
+    if (wanted.test(static_cast<int>(View::kTrend))) out.push_back(std::move(trend));
   }
   return out;
 }
@@ -90,9 +94,8 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
     c.heldout_half = ScoredHalf(ctx, effects);
     std::string ignored;
     if (HeldoutModel(ctx, effects, c.heldout_half, &c.heldout_model, &ignored)) {
-      const HalfRecord& fit = ctx.halves[1 - c.heldout_half];
       const HalfRecord& scored = ctx.halves[c.heldout_half];
-      c.heldout_before = CurveMetrics(ctx.spec.Model(fit.baseline, 1.0 / ctx.curve.sample_period_s), scored.curve);
+      c.heldout_before = scored.against_other_baseline;
       c.after.heldout = CurveMetrics(c.heldout_model, scored.curve);
       c.after.has_heldout = true;
     }
@@ -216,7 +219,11 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   if (ctx.have_halves) {
     ctx.half_length_s = static_cast<double>(half) * tau0;
     // A half is judged against models fitted on the other half: K up to what that half allows.
-    for (int h = 0; h < 2; ++h) ctx.halves[h].layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, ctx.halves[1 - h].baseline);
+    for (int h = 0; h < 2; ++h) {
+      HalfRecord& r = ctx.halves[h];
+      r.layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, ctx.halves[1 - h].baseline);
+      r.against_other_baseline = CurveMetrics(ctx.spec.Model(ctx.halves[1 - h].baseline, 1.0 / tau0), r.curve);
+    }
   } else {
     s.notes.push_back("no held-out score: the halves are too short or their fit failed");
   }
@@ -226,7 +233,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   s.before = Assess(ctx, s.baseline_model, true, options.seed, &note);
   if (!note.empty()) s.notes.push_back("envelope: " + note);
   if (ctx.have_halves) {
-    s.before.heldout = CurveMetrics(ctx.spec.Model(ctx.halves[0].baseline, 1.0 / tau0), ctx.halves[1].curve);
+    s.before.heldout = ctx.halves[1].against_other_baseline;
     s.before.has_heldout = true;
   }
   Finish(ctx, &s);

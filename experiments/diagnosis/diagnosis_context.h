@@ -25,6 +25,7 @@ struct HalfRecord {
   ViewLayout layout;
   ViewValues observed;
   bool have_views = false;
+  GapMetrics against_other_baseline;  // `curve` against the other half's baseline (CurveMetrics)
 };
 
 
@@ -58,11 +59,12 @@ struct Context {
 void ReportProgress(const Context& ctx, std::string_view stage, int done, int total);
 
 // A record's views against a model: OAVAR and the block-mean views exact (block_means.h), the
-// others from a Monte Carlo envelope when `monte_carlo` (and trials >= 3).
+// others from a Monte Carlo envelope when `monte_carlo` (and trials >= 3). Only the views in
+// `wanted`, in View order (the others are not computed, nor simulated when none needs it).
 std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
                                            const ViewValues& observed, const sim::SensorModel& model,
                                            bool monte_carlo, int trials, std::uint64_t seed,
-                                           std::string* note);
+                                           std::string* note, const ViewSet& wanted = EveryView());
 
 // The record (or in curve mode the curve) against a model.
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,

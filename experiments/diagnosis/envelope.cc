@@ -24,7 +24,7 @@ OavarTheory ExactOavar(const sim::SensorModel& model, std::span<const std::int64
 }
 
 bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, int trials,
-                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why) {
+                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why, const ViewSet& wanted) {
   if (!model.IsValid(why)) return false;
   std::vector<ViewValues> per_trial(trials);
   std::vector<char> ok(trials, 0);
@@ -32,7 +32,7 @@ bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, i
   for (int t = 0; t < trials; ++t) {
     const std::vector<double> record = model.Generate(seed, static_cast<std::uint64_t>(t), layout.num_samples);
     std::string ignored;
-    ok[t] = ComputeViews(layout, record, &per_trial[t], &ignored) ? 1 : 0;
+    ok[t] = ComputeViews(layout, record, &per_trial[t], &ignored, wanted) ? 1 : 0;
   }
   ViewEnvelope& e = *envelope;
   e = ViewEnvelope{};
@@ -70,11 +70,13 @@ bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, i
 }
 
 std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues& observed,
-                                     const OavarTheory& theory, const ViewEnvelope* envelope) {
+                                     const OavarTheory& theory, const ViewEnvelope* envelope,
+                                     const ViewSet& wanted) {
   std::vector<ViewResiduals> out;
   for (View view : kAllViews) {
     const int v = static_cast<int>(view);
     if (view == View::kChangePoint || view == View::kTrend) continue;  // against each model (block_means.h)
+    if (!wanted.test(v)) continue;
     ViewResiduals r;
     r.view = view;
     r.x = layout.Axis(view);

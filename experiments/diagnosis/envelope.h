@@ -30,14 +30,17 @@ struct ViewEnvelope {
   int trials = 0;      // successful simulated records
   ViewValues mean, sd;  // per view and point, on the views' (log) scale
 };
-// Returns false with *why when the model is invalid or no simulated record gave values.
+// Returns false with *why when the model is invalid or no simulated record gave values. Views
+// not in `wanted` are left NaN; the others do not depend on which are wanted.
 bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, int trials,
-                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why);
+                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why,
+                      const ViewSet& wanted = EveryView());
 
 // Residuals of `observed` (ComputeViews of the record) against the model: the OAVAR view from
 // `theory`, the others from `envelope` (views absent from the envelope, or with fewer than 3
-// trials, are left out).
+// trials, are left out), the views in `wanted` only, in View order.
 std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues& observed,
-                                     const OavarTheory& theory, const ViewEnvelope* envelope);
+                                     const OavarTheory& theory, const ViewEnvelope* envelope,
+                                     const ViewSet& wanted = EveryView());
 
 }  // namespace allanlab::experiments

@@ -104,7 +104,7 @@ void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std:
   std::string ignored;
   c->heldout_before = MetricsOf(before.residuals, before.gap_views);
   c->after.heldout = MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, c->heldout_model, true,
-                                               ctx.options->trials, seed, &ignored),
+                                               ctx.options->trials, seed, &ignored, ViewSetOf(before.gap_views)),
                                before.gap_views);
   c->heldout_in_gap_views = true;
 }
@@ -114,8 +114,10 @@ GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorM
   const HalfRecord& scored = ctx.halves[h];
   if (!gap_views) return CurveMetrics(model, scored.curve);
   std::string ignored;
-  return MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, model, true, ctx.options->trials, seed, &ignored),
-                   HeldoutBaseline(ctx, h, threshold).gap_views);
+  const std::vector<View>& gap = HeldoutBaseline(ctx, h, threshold).gap_views;
+  return MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, model, true, ctx.options->trials, seed,
+                                   &ignored, ViewSetOf(gap)),
+                   gap);
 }
 
 }  // namespace allanlab::experiments::detail

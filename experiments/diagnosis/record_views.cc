@@ -72,6 +72,71 @@ double ExcessKurtosisOfBlockIncrements(std::span<const double> rate, std::int64_
   return static_cast<double>(n) * m4 / (m2 * m2) - 3.0;
 }
 
+// ln(OAVAR of the first half / OAVAR of the second) at layout.halves_m.
+void HalvesView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* halves) {
+  using estimators::Statistic;
+  const double tau0 = layout.sample_period_s;
+  const std::size_t half = rate.size() / 2;
+  const auto first = StatisticAt(Statistic::kAllanOverlapping, tau0, layout.halves_m, rate.first(half));
+  const auto second =
+      StatisticAt(Statistic::kAllanOverlapping, tau0, layout.halves_m, rate.subspan(half, half));
+  for (std::size_t i = 0; i < first.size(); ++i) halves->push_back(SafeLog(first[i]) - SafeLog(second[i]));
+}
+
+// ln(max / min) of OAVAR(m) over 8 consecutive windows, at layout.dynamic_m.
+void DynamicView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* dynamic) {
+  using estimators::Statistic;
+  constexpr int kWindows = 8;
+  const double tau0 = layout.sample_period_s;
+  const std::size_t window = rate.size() / kWindows;
+  dynamic->assign(layout.dynamic_m.size(), kNaN);
+  if (layout.dynamic_m.empty()) return;
+  std::vector<double> lo(layout.dynamic_m.size(), std::numeric_limits<double>::infinity());
+  std::vector<double> hi(layout.dynamic_m.size(), -std::numeric_limits<double>::infinity());
+  for (int w = 0; w < kWindows; ++w) {
+    const auto a = StatisticAt(Statistic::kAllanOverlapping, tau0, layout.dynamic_m, rate.subspan(w * window, window));
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      lo[i] = std::min(lo[i], SafeLog(a[i]));
+      hi[i] = std::max(hi[i], SafeLog(a[i]));
+    }
+  }
+  for (std::size_t i = 0; i < dynamic->size(); ++i) {
+    if (std::isfinite(lo[i]) && std::isfinite(hi[i])) (*dynamic)[i] = hi[i] - lo[i];
+  }
+}
+
+// ln of the Welch PSD (Hann, 50 % overlap) averaged in the layout's bands.
+void PsdView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* psd) {
+  if (layout.psd_segment <= 0) return;
+  const double tau0 = layout.sample_period_s;
+  const std::size_t seg = static_cast<std::size_t>(layout.psd_segment);
+  std::vector<double> window_fn(seg);
+  double w2 = 0.0;
+  for (std::size_t k = 0; k < seg; ++k) {
+    window_fn[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(seg));
+    w2 += window_fn[k] * window_fn[k];
+  }
+  std::vector<double> periodogram(seg / 2 + 1, 0.0);
+  sim::FftBuffer buffer(seg + 2);
+  int segments = 0;
+  for (std::size_t start = 0; start + seg <= rate.size(); start += seg / 2) {
+    double mean = 0.0;
+    for (std::size_t k = 0; k < seg; ++k) mean += rate[start + k];
+    mean /= static_cast<double>(seg);
+    for (std::size_t k = 0; k < seg; ++k) buffer.data()[k] = (rate[start + k] - mean) * window_fn[k];
+    sim::ForwardRealFft(seg, buffer.data());
+    for (std::size_t b = 0; b <= seg / 2; ++b) periodogram[b] += std::norm(buffer.complex_data()[b]);
+    ++segments;
+  }
+  // One-sided density: 2 |X|^2 tau0 / sum w^2, averaged over segments.
+  const double scale = 2.0 * tau0 / (w2 * segments);
+  for (const auto& [b0, b1] : layout.psd_bands) {
+    double s = 0.0;
+    for (int b = b0; b < b1; ++b) s += periodogram[b];
+    psd->push_back(SafeLog(s * scale / (b1 - b0)));
+  }
+}
+
 }  // namespace
 
 std::string_view ViewId(View v) {
@@ -151,7 +216,7 @@ ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
 }
 
 bool ComputeViews(const ViewLayout& layout, std::span<const double> rate, ViewValues* values,
-                  std::string* why) {
+                  std::string* why, const ViewSet& wanted) {
   if (static_cast<std::int64_t>(rate.size()) != layout.num_samples) {
     *why = "record length differs from the view layout";
     return false;
@@ -165,71 +230,27 @@ bool ComputeViews(const ViewLayout& layout, std::span<const double> rate, ViewVa
   const double tau0 = layout.sample_period_s;
   ViewValues& v = *values;
   v.assign(kNumViews, {});
+  auto want = [&](View view) {
+    if (wanted.test(static_cast<int>(view))) return true;
+    v[static_cast<int>(view)].assign(layout.Size(view), kNaN);
+    return false;
+  };
   using estimators::Statistic;
-  v[static_cast<int>(View::kOavar)] =
-      Logs(StatisticAt(Statistic::kAllanOverlapping, tau0, layout.oavar_m, rate));
-  v[static_cast<int>(View::kHadamard)] =
-      Logs(StatisticAt(Statistic::kHadamardOverlapping, tau0, layout.hadamard_m, rate));
-
-  const std::size_t half = rate.size() / 2;
-  const auto first = StatisticAt(Statistic::kAllanOverlapping, tau0, layout.halves_m, rate.first(half));
-  const auto second =
-      StatisticAt(Statistic::kAllanOverlapping, tau0, layout.halves_m, rate.subspan(half, half));
-  auto& halves = v[static_cast<int>(View::kHalves)];
-  for (std::size_t i = 0; i < first.size(); ++i) halves.push_back(SafeLog(first[i]) - SafeLog(second[i]));
-
-  constexpr int kWindows = 8;
-  const std::size_t window = rate.size() / kWindows;
-  auto& dynamic = v[static_cast<int>(View::kDynamic)];
-  dynamic.assign(layout.dynamic_m.size(), kNaN);
-  if (!layout.dynamic_m.empty()) {
-    std::vector<double> lo(layout.dynamic_m.size(), std::numeric_limits<double>::infinity());
-    std::vector<double> hi(layout.dynamic_m.size(), -std::numeric_limits<double>::infinity());
-    for (int w = 0; w < kWindows; ++w) {
-      const auto a = StatisticAt(Statistic::kAllanOverlapping, tau0, layout.dynamic_m,
-                               rate.subspan(w * window, window));
-      for (std::size_t i = 0; i < a.size(); ++i) {
-        lo[i] = std::min(lo[i], SafeLog(a[i]));
-        hi[i] = std::max(hi[i], SafeLog(a[i]));
-      }
-    }
-    for (std::size_t i = 0; i < dynamic.size(); ++i) {
-      if (std::isfinite(lo[i]) && std::isfinite(hi[i])) dynamic[i] = hi[i] - lo[i];
+  if (want(View::kOavar)) {
+    v[static_cast<int>(View::kOavar)] = Logs(StatisticAt(Statistic::kAllanOverlapping, tau0, layout.oavar_m, rate));
+  }
+  if (want(View::kHadamard)) {
+    v[static_cast<int>(View::kHadamard)] =
+        Logs(StatisticAt(Statistic::kHadamardOverlapping, tau0, layout.hadamard_m, rate));
+  }
+  if (want(View::kHalves)) HalvesView(layout, rate, &v[static_cast<int>(View::kHalves)]);
+  if (want(View::kDynamic)) DynamicView(layout, rate, &v[static_cast<int>(View::kDynamic)]);
+  if (want(View::kPsd)) PsdView(layout, rate, &v[static_cast<int>(View::kPsd)]);
+  if (want(View::kKurtosis)) {
+    for (std::int64_t m : layout.kurtosis_m) {
+      v[static_cast<int>(View::kKurtosis)].push_back(ExcessKurtosisOfBlockIncrements(rate, m));
     }
   }
-
-  auto& psd = v[static_cast<int>(View::kPsd)];
-  if (layout.psd_segment > 0) {
-    const std::size_t seg = static_cast<std::size_t>(layout.psd_segment);
-    std::vector<double> window_fn(seg);
-    double w2 = 0.0;
-    for (std::size_t k = 0; k < seg; ++k) {
-      window_fn[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(seg));
-      w2 += window_fn[k] * window_fn[k];
-    }
-    std::vector<double> periodogram(seg / 2 + 1, 0.0);
-    sim::FftBuffer buffer(seg + 2);
-    int segments = 0;
-    for (std::size_t start = 0; start + seg <= rate.size(); start += seg / 2) {
-      double mean = 0.0;
-      for (std::size_t k = 0; k < seg; ++k) mean += rate[start + k];
-      mean /= static_cast<double>(seg);
-      for (std::size_t k = 0; k < seg; ++k) buffer.data()[k] = (rate[start + k] - mean) * window_fn[k];
-      sim::ForwardRealFft(seg, buffer.data());
-      for (std::size_t b = 0; b <= seg / 2; ++b) periodogram[b] += std::norm(buffer.complex_data()[b]);
-      ++segments;
-    }
-    // One-sided density: 2 |X|^2 tau0 / sum w^2, averaged over segments.
-    const double scale = 2.0 * tau0 / (w2 * segments);
-    for (const auto& [b0, b1] : layout.psd_bands) {
-      double s = 0.0;
-      for (int b = b0; b < b1; ++b) s += periodogram[b];
-      psd.push_back(SafeLog(s * scale / (b1 - b0)));
-    }
-  }
-
-  auto& kurtosis = v[static_cast<int>(View::kKurtosis)];
-  for (std::int64_t m : layout.kurtosis_m) kurtosis.push_back(ExcessKurtosisOfBlockIncrements(rate, m));
   v[static_cast<int>(View::kChangePoint)].assign(layout.block_counts.size(), kNaN);
   v[static_cast<int>(View::kTrend)].assign(layout.block_counts.size(), kNaN);
   return true;

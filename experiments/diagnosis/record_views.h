@@ -19,6 +19,7 @@
 //             in time, with its own exact null, so ComputeViews leaves them NaN
 // Logs make the statistics nearly Gaussian across realisations, so one mean and one standard
 // deviation per point describe the envelope.
+#include <bitset>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -32,6 +33,23 @@ inline constexpr View kAllViews[] = {View::kOavar,    View::kHadamard,    View::
                                      View::kDynamic,  View::kPsd,         View::kKurtosis,
                                      View::kChangePoint, View::kTrend};
 inline constexpr int kNumViews = 8;
+// Which views to compute (bit static_cast<int>(View)): a residual that is not read need not be
+// simulated.
+using ViewSet = std::bitset<kNumViews>;
+inline ViewSet EveryView() { return ViewSet().set(); }
+// The views whose distribution comes from a Monte Carlo envelope (envelope.h).
+inline ViewSet MonteCarloViews() {
+  ViewSet s = EveryView();
+  s.reset(static_cast<int>(View::kOavar));
+  s.reset(static_cast<int>(View::kChangePoint));
+  s.reset(static_cast<int>(View::kTrend));
+  return s;
+}
+inline ViewSet ViewSetOf(const std::vector<View>& views) {
+  ViewSet s;
+  for (View v : views) s.set(static_cast<int>(v));
+  return s;
+}
 // "oavar", "hadamard", "halves", "dynamic", "psd", "kurtosis", "change_point", "trend" (stable
 // JSON ids).
 std::string_view ViewId(View v);
@@ -65,8 +83,9 @@ ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
 using ViewValues = std::vector<std::vector<double>>;
 
 // Returns false with *why for a record whose length differs from the layout or that has a
-// non-finite sample. Values a record cannot give (a constant stretch: log 0) are NaN.
+// non-finite sample. Values a record cannot give (a constant stretch: log 0) are NaN, and so are
+// the views not in `wanted` (each view's values do not depend on which others are computed).
 bool ComputeViews(const ViewLayout& layout, std::span<const double> rate_rad_per_s,
-                  ViewValues* values, std::string* why);
+                  ViewValues* values, std::string* why, const ViewSet& wanted = EveryView());
 
 }  // namespace allanlab::experiments

@@ -49,7 +49,21 @@ void RankSingles(const Context& ctx, DiagnosisSummary* s) {
 // views in which the held-out half departs.
 void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* c, std::uint64_t salt) {
   std::string note;
-  ModelGap full = Assess(ctx, c->model, true, ctx.options->seed + salt, &note);
+  ModelGap full;
+  if (ctx.have_record) {
+    // The exact views are those TryCandidate assessed the same model on: only the Monte Carlo
+    // ones are new. Kept in View order, as Assess gives them.
+    full.views = RecordResiduals(ctx.rate, ctx.layout, ctx.observed, c->model, true, ctx.options->trials,
+                                 ctx.options->seed + salt, &note, MonteCarloViews());
+    for (const ViewResiduals& r : c->after.views) {
+      if (!MonteCarloViews().test(static_cast<int>(r.view))) full.views.push_back(r);
+    }
+    std::stable_sort(full.views.begin(), full.views.end(), [](const ViewResiduals& a, const ViewResiduals& b) {
+      return static_cast<int>(a.view) < static_cast<int>(b.view);
+    });
+  } else {
+    full = Assess(ctx, c->model, true, ctx.options->seed + salt, &note);
+  }
   full.heldout = c->after.heldout;
   full.has_heldout = c->after.has_heldout;
   c->after = std::move(full);
