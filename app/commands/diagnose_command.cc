@@ -478,7 +478,7 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
   for (std::size_t i = 0; i < info.columns.size(); ++i) {
     const ColumnInfo& c = info.columns[i];
     DiagnosisSummary s;
-    DiagnoseProgress progress(c.name, !o.quiet);
+    DiagnoseProgress progress(c.name, !o.quiet, o.progress);
     DiagnoseOptions with_progress = d;
     with_progress.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
     const bool diagnosed = DiagnoseRecord(with_progress, rates[i], 1.0 / info.sample_rate_hz, &s);
@@ -576,7 +576,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     if (const int code = ReadRateFromFile(o.record, kCommand, &rate, &info, &why); code != kExitOk) {
       return Failure{code, why};
     }
-    DiagnoseProgress progress(std::filesystem::path(o.record.path).filename().string(), !o.quiet);
+    DiagnoseProgress progress(std::filesystem::path(o.record.path).filename().string(), !o.quiet, o.progress);
     d.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
     const bool diagnosed = DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s);
     d.progress = nullptr;
@@ -674,7 +674,11 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)")->type_name("N");
   cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)")->type_name("P");
   cmd->add_option("--jobs", options->jobs, "threads (default: every core; the output is the same for any N)")->type_name("N");
-  cmd->add_flag("--quiet", options->quiet, "no progress line on stderr (shown only when stderr is a terminal)");
+  auto* quiet = cmd->add_flag("--quiet", options->quiet, "no progress line on stderr (shown only when stderr is a terminal)");
+  cmd->add_flag("--progress", options->progress,
+                "progress on stderr (stage, steps, time so far, time left in the stage) also when it is not a terminal: "
+                "one line per stage or every 5 s")
+      ->excludes(quiet);
   cmd->add_option("--json", options->json_path, "write the diagnosis as JSON (stable keys)")->type_name("OUT.json");
   cmd->add_option("--report", options->report_path, "write a Markdown report")->type_name("OUT.md");
   cmd->add_option("--html", options->html_path,

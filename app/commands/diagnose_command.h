@@ -12,6 +12,7 @@
 //   --false-alarm A     chance that a record of the model itself is flagged (default 0.05)
 //   --jobs N            threads (default: every core; same output for any N)
 //   --quiet             no progress line on stderr (there is none when stderr is not a terminal)
+//   --progress          progress lines on stderr also when it is not a terminal
 //   --json OUT          stable keys (add, never rename): gap{significant, threshold_z, regions[{view,
 //                       tau_min_s, tau_max_s, max_abs_z}], views}, verdict{effect, params,
 //                       also_consistent, separating_views}, candidates[{effect, params,
@@ -54,6 +55,7 @@ struct DiagnoseCommandOptions {
   double false_alarm = 0.05;
   int jobs = 0;        // threads (0: every core); the result is the same for any count
   bool quiet = false;  // no progress line on stderr
+  bool progress = false;  // progress on stderr also when it is not a terminal
   std::string json_path, report_path, plot_path, html_path, validate_path;
   CurveCommandOptions curve;  // --curve mode (app/input/curve_options.h)
 };

@@ -6,9 +6,10 @@
 
 namespace allanlab::app {
 
-DiagnoseProgress::DiagnoseProgress(std::string label, bool enabled)
+DiagnoseProgress::DiagnoseProgress(std::string label, bool enabled, bool off_terminal)
     : label_(std::move(label)),
-      enabled_(enabled && experiments::StderrIsTerminal()),
+      enabled_(enabled && (off_terminal || experiments::StderrIsTerminal())),
+      lines_(!experiments::StderrIsTerminal()),
       start_(Clock::now()),
       stage_start_(start_),
       last_(start_ - std::chrono::seconds(1)) {}
@@ -21,7 +22,7 @@ void DiagnoseProgress::Update(std::string_view stage, int done, int total) {
   if (stage != stage_) {
     stage_ = stage;
     stage_start_ = now;
-  } else if (now - last_ < std::chrono::milliseconds(200) && done < total) {
+  } else if (now - last_ < (lines_ ? std::chrono::milliseconds(5000) : std::chrono::milliseconds(200)) && done < total) {
     return;
   }
   last_ = now;
@@ -39,9 +40,13 @@ void DiagnoseProgress::Update(std::string_view stage, int done, int total) {
     std::snprintf(buffer, sizeof buffer, ", about %.0f s left in this stage", in_stage * (total - done) / done);
     line += buffer;
   }
-  std::fprintf(stderr, "\r%-78s", line.c_str());
+  if (lines_) {
+    std::fprintf(stderr, "%s\n", line.c_str());
+  } else {
+    std::fprintf(stderr, "\r%-78s", line.c_str());
+    shown_ = true;
+  }
   std::fflush(stderr);
-  shown_ = true;
 }
 
 void DiagnoseProgress::Clear() {

@@ -56,6 +56,25 @@ TEST_F(DiagnoseCommandTest, WritesTheJsonContract) {
   EXPECT_NE(Read("d.md").find("verdict"), std::string::npos);
 }
 
+// stderr is a file here: no progress unless asked; with --progress one line per stage on stderr
+// and none in the JSON or on stdout; --progress with --quiet is refused.
+TEST_F(DiagnoseCommandTest, ProgressOnStderrOnlyWhenAskedOffATerminal) {
+  WriteRecord("rec.csv", 4096);
+  std::ostringstream args;
+  args << Path("rec.csv") << " --units rad/s --rate 100 --trials 5 --json " << Path("d.json");
+  ASSERT_EQ(Run(args.str()), 0) << Read("err.txt");
+  EXPECT_EQ(Read("err.txt").find("diagnose rec.csv:"), std::string::npos) << Read("err.txt");
+  ASSERT_EQ(Run(args.str() + " --progress"), 0) << Read("err.txt");
+  const std::string err = Read("err.txt");
+  EXPECT_NE(err.find("diagnose rec.csv: baseline, "), std::string::npos) << err;
+  EXPECT_NE(err.find("diagnose rec.csv: views, "), std::string::npos) << err;
+  EXPECT_EQ(err.find('\r'), std::string::npos) << err;
+  EXPECT_EQ(Read("out.txt").find("diagnose rec.csv:"), std::string::npos);
+  EXPECT_EQ(Read("d.json").find("diagnose rec.csv:"), std::string::npos);
+  EXPECT_EQ(Run(args.str() + " --progress --quiet"), 2);
+  EXPECT_NE(Read("err.txt").find("--quiet excludes --progress"), std::string::npos) << Read("err.txt");
+}
+
 TEST_F(DiagnoseCommandTest, RefusesTooShortRecordsAndMissingInput) {
   WriteRecord("short.csv", 100);
   std::string args = Path("short.csv");
