@@ -168,11 +168,13 @@ GapMetrics HeldoutOnSameFooting(const Context& ctx, double threshold, const Cand
 
 // Whether `next` (current plus one effect) earns its place: the held-out chi2 falls by the
 // margin and by the added effect's AIC penalty; on some view the added effect shows in (the
-// registry's views) where the current set still departs, the record's chi2 falls by the margin
-// (the effect explains something it is known by); and no view within the threshold before
-// leaves it.
-bool EarnsItsPlace(const Context& ctx, double threshold, const CandidateResult& current, const CandidateResult& next,
-                   const GapMetrics& heldout_before, std::string* why) {
+// registry's views) where the record departs from the baseline and the current set still
+// departs, the record's chi2 falls by the margin (the effect explains part of the record's gap
+// by something it is known by, not a departure the other members' refit made: a quantizer's
+// refit that moves the trend view over the threshold does not call for a warm-up drift); and no
+// view within the threshold before leaves it (docs/theory.md §6.4).
+bool EarnsItsPlace(const Context& ctx, double threshold, const ModelGap& baseline, const CandidateResult& current,
+                   const CandidateResult& next, const GapMetrics& heldout_before, std::string* why) {
   const double margin = ctx.options->set_margin;
   const EffectInstance& added = next.effects.back();
   const double penalty = 2.0 * static_cast<double>(EffectParameterNames(added.effect).size());
@@ -186,7 +188,8 @@ bool EarnsItsPlace(const Context& ctx, double threshold, const CandidateResult& 
   for (const ViewResiduals& r : next.after.views) {
     const GapMetrics was = current.after.View(r.view), now = Metrics(r.z);
     if (was.points == 0) continue;
-    if (was.max_abs_z > threshold && std::find(shows.begin(), shows.end(), r.view) != shows.end()) {
+    if (was.max_abs_z > threshold && baseline.View(r.view).max_abs_z > threshold &&
+        std::find(shows.begin(), shows.end(), r.view) != shows.end()) {
       if (now.chi2 <= (1.0 - margin) * was.chi2) {
         explains = true;
       } else if (unexplained.empty()) {
@@ -198,7 +201,7 @@ bool EarnsItsPlace(const Context& ctx, double threshold, const CandidateResult& 
       return false;
     }
   }
-  if (!explains) *why = unexplained.empty() ? "no view of the effect departs" : unexplained;
+  if (!explains) *why = unexplained.empty() ? "no view of the effect holds a gap the set leaves" : unexplained;
   return explains;
 }
 
@@ -292,7 +295,7 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
       const GapMetrics before =
           HeldoutOnSameFooting(ctx, s->threshold, current, next, ctx.options->seed + 3000 + 10 * round + t);
       std::string why;
-      if (!EarnsItsPlace(ctx, s->threshold, current, next, before, &why)) {
+      if (!EarnsItsPlace(ctx, s->threshold, s->before, current, next, before, &why)) {
         s->notes.push_back("set: " + next.id() + " not kept over " + current.id() + " (" + why + ")");
         continue;
       }

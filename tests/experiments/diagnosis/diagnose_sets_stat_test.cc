@@ -10,6 +10,7 @@
 #include <string>
 
 #include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/independent_case.h"
 #include "independent/generate.h"
 #include "independent/recipe.h"
 #include "tests/support/diagnosis_record.h"
@@ -112,6 +113,35 @@ TEST(DiagnoseSetsStatTest, OneEffectStaysSingle) {
   const DiagnosisSummary s = DiagnoseIndependent(r, 52);
   ASSERT_TRUE(s.significant);
   EXPECT_EQ(s.verdict, "harmonic") << DescribeVerdict(s);
+}
+
+// A record of the independent benchmark (seed 3, recording 17 of a draw of 600-900 s records at
+// 100 Hz, a fifth of them controls): an angle quantizer alone (LSB 9.6e-6 rad) over N, B, K.
+// Against the baseline the trend view stays within the threshold (|z| 3.37 < 3.52); the
+// quantizer's refit moves it over (3.65), and a warm-up drift of -1.3e-4 rad/s settling in 26 s
+// "explained" that and joined the set (angle_quantization+exponential_drift). A member must
+// explain part of the record's own gap: the verdict is the quantizer alone.
+TEST(DiagnoseSetsStatTest, NoMemberForADepartureAnotherMembersRefitMade) {
+  IndependentDrawOptions draw;
+  draw.rate_hz = 100.0;
+  draw.min_duration_s = 600.0;
+  draw.max_duration_s = 900.0;
+  draw.control_fraction = 0.2;
+  draw.with_resonance = true;
+  IndependentCase c;
+  std::string why;
+  ASSERT_TRUE(DrawIndependentCase(draw, 3, 17, &c, &why)) << why;
+  ASSERT_EQ(c.effect_id, "angle_quantization");
+  const std::vector<double> record = independent::Generate(c.recipe, c.num_samples, 3, 17);
+  DiagnoseOptions options;
+  options.baseline = DiagnoseOptions::Baseline::kTerms;
+  options.terms = {estimators::Coefficient::kN, estimators::Coefficient::kB, estimators::Coefficient::kK};
+  DiagnosisSummary s;
+  ASSERT_TRUE(DiagnoseRecord(options, record, c.recipe.sample_period_s(), &s)) << s.message;
+  ASSERT_TRUE(s.significant);
+  EXPECT_LE(s.before.View(View::kTrend).max_abs_z, s.threshold);
+  EXPECT_FALSE(Names(s, "exponential_drift")) << DescribeVerdict(s);
+  EXPECT_EQ(s.verdict, "angle_quantization") << DescribeVerdict(s);
 }
 
 }  // namespace
