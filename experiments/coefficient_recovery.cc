@@ -45,7 +45,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
   std::vector<std::string> header = {"sensor", "T", "T_s", "sample_rate_hz", "samples", "method",
                                      "coefficient", "truth", "unit", "n", "failure_rate",
                                      "bias", "bias_se", "rmse", "rmse_se", "empirical_sd",
-                                     "mean_reported_sigma", "sigma_ratio"};
+                                     "mean_reported_sigma", "sigma_ratio", "sigma_ratio_se"};
   for (double level : spec.confidence_levels) {
     header.push_back("coverage" + Cell(level * 100, 4));
     header.push_back("coverage" + Cell(level * 100, 4) + "_se");
@@ -67,7 +67,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
         << CsvField(std::string(estimators::DatasheetUnit(c))) << "," << r.n << ","
         << Cell(r.failure_rate) << "," << Cell(r.bias) << "," << Cell(r.bias_se) << ","
         << Cell(r.rmse) << "," << Cell(r.rmse_se) << "," << Cell(r.empirical_sd) << ","
-        << Cell(r.mean_sigma) << "," << Cell(r.mean_sigma / r.empirical_sd);
+        << Cell(r.mean_sigma) << "," << Cell(r.sigma_ratio) << "," << Cell(r.sigma_ratio_se);
     for (std::size_t k = 0; k < r.coverage.size(); ++k) {
       csv << "," << Cell(r.coverage[k]) << "," << Cell(r.coverage_se[k]) << "," << Cell(r.coverage_low[k])
           << "," << Cell(r.coverage_high[k]);
@@ -79,7 +79,9 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
   md << "# " << spec.name << "\n\n" << Question() << "\n\n## Provenance\n\n"
      << ProvenanceBlock(spec, context, choices, "    ")
      << "\nErrors are relative (estimate / truth - 1); +- is one Monte Carlo standard error. "
-        "sigma ratio = mean reported sigma / empirical sd (1 = honest error bars). A coefficient "
+        "sigma ratio = mean reported sigma / empirical sd (1 = honest error bars), +- its standard "
+        "error (delta method: the mean sigma's and the sd's, the latter from the squared errors' "
+        "spread). A coefficient "
         "a fit leaves at zero counts as -1 (-100 %). Coverage: share of trials whose interval holds "
         "the truth, +- its binomial error at the nominal level, [Wilson 95 % interval]. The default "
         "method's intervals are profile-likelihood ones (68.3 %: chi2 + 1, 95 %: chi2 + 3.84); "
@@ -101,7 +103,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
          << " " << estimators::DatasheetUnit(c) << " | " << r.n << " | " << Cell(r.failure_rate, 3)
          << " | " << PlusMinus(r.bias, r.bias_se) << " | " << PlusMinus(r.rmse, r.rmse_se) << " | "
          << Cell(r.empirical_sd, 3) << " | " << Cell(r.mean_sigma, 3) << " | "
-         << Cell(r.mean_sigma / r.empirical_sd, 3) << " |";
+         << PlusMinus(r.sigma_ratio, r.sigma_ratio_se) << " |";
       for (std::size_t k = 0; k < r.coverage.size(); ++k) {
         md << " " << PlusMinus(r.coverage[k], r.coverage_se[k]);
         if (!std::isnan(r.coverage_low[k])) {

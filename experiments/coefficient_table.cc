@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/gnuplot.h"
 #include "estimators/tau_grid.h"
 #include "experiments/coefficient_trial.h"
 #include "experiments/report_files.h"
@@ -40,14 +41,6 @@ std::string CsvField(const std::string& text) {
   }
   out += "\"";
   return out;
-}
-
-void WilsonInterval(double share, std::int64_t n, double* low, double* high) {
-  const double z = 1.959963984540054, nn = static_cast<double>(n);
-  const double center = (share + z * z / (2.0 * nn)) / (1.0 + z * z / nn);
-  const double half = z / (1.0 + z * z / nn) * std::sqrt(share * (1.0 - share) / nn + z * z / (4.0 * nn * nn));
-  *low = std::max(0.0, center - half);
-  *high = std::min(1.0, center + half);
 }
 
 std::string DurationText(double seconds) {
@@ -99,15 +92,19 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
         r.failure_rate = trials > 0 ? 1.0 - (std::isnan(missing) ? 0.0 : (1.0 - missing)) *
                                                 (trials - static_cast<double>(ps.failed)) / trials
                                     : kNaN;
-        r.mean_sigma = mean("rel_sigma", nullptr);
+        double mean_sigma_se = kNaN;
+        r.mean_sigma = mean("rel_sigma", &mean_sigma_se);
+        r.sigma_ratio = r.mean_sigma / r.empirical_sd;
+        const double sd_se = mse_se / (2.0 * r.empirical_sd);
+        r.sigma_ratio_se = std::abs(r.sigma_ratio) *
+                           std::hypot(mean_sigma_se / r.mean_sigma, sd_se / r.empirical_sd);
         for (double level : spec.confidence_levels) {
           const ColumnStats* s = ps.Find(LevelName(level) + suffix);
           r.coverage.push_back(s && s->count > 0 ? s->mean : kNaN);
           r.coverage_se.push_back(s && s->count > 0 ? CoverageStandardError(level, s->count) : kNaN);
-          double low = kNaN, high = kNaN;
-          if (s && s->count > 0) WilsonInterval(s->mean, s->count, &low, &high);
-          r.coverage_low.push_back(low);
-          r.coverage_high.push_back(high);
+          const RateInterval wilson = s && s->count > 0 ? WilsonInterval(s->mean, s->count) : RateInterval{kNaN, kNaN};
+          r.coverage_low.push_back(wilson.low);
+          r.coverage_high.push_back(wilson.high);
         }
         r.read_bias = mean("rel_err_read", &r.read_bias_se);
         rows.push_back(std::move(r));
@@ -118,17 +115,6 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
 }
 
 namespace {
-
-// gnuplot single-quoted literal ('' for a quote).
-std::string Quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') out += '\'';
-    out += c;
-  }
-  out += "'";
-  return out;
-}
 
 const char* MethodColor(const std::string& method) {
   if (method == "slope") return "#d62728";
@@ -198,7 +184,7 @@ std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const s
     if (std::find(methods.begin(), methods.end(), r.method) == methods.end()) methods.push_back(r.method);
   }
   std::ostringstream os;
-  os << "set title " << Quoted(title) << " noenhanced\n"
+  os << "set title " << GnuplotQuoted(title) << " noenhanced\n"
      << "set logscale xy\nset format x '%g'\nset format y '%g'\n"
      << "set xlabel 'record length T [h]'\nset ylabel 'relative error of "
      << estimators::CoefficientId(c) << "'\n"
@@ -227,14 +213,14 @@ std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const s
       os << "$r" << block << " << EOD\n" << rmse.str() << "EOD\n";
       std::ostringstream clause;
       clause << "$r" << block << " using 1:2:3:4 with yerrorlines pt 7 ps 0.8 lw 2 lc rgb '"
-             << color << "' title " << Quoted(method + " RMSE");
+             << color << "' title " << GnuplotQuoted(method + " RMSE");
       clauses.push_back(clause.str());
     }
     if (bias.tellp() > 0) {
       os << "$b" << block << " << EOD\n" << bias.str() << "EOD\n";
       std::ostringstream clause;
       clause << "$b" << block << " using 1:2 with linespoints pt 6 ps 0.6 dt 2 lc rgb '" << color
-             << "' title " << Quoted(method + " |bias|");
+             << "' title " << GnuplotQuoted(method + " |bias|");
       clauses.push_back(clause.str());
     }
     ++block;
@@ -247,7 +233,7 @@ std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const s
     os << fn.str() << "(x) = " << Cell(line.anchor_y, 10) << " * (x / " << Cell(line.anchor_x / 3600.0, 10)
        << ")**(" << Cell(line.slope) << ")\n";
     std::ostringstream clause;
-    clause << fn.str() << "(x) with lines lw 1 dt 3 lc rgb '#606060' title " << Quoted(line.title);
+    clause << fn.str() << "(x) with lines lw 1 dt 3 lc rgb '#606060' title " << GnuplotQuoted(line.title);
     clauses.push_back(clause.str());
   }
   if (x_hi > 0) os << "set xrange [" << Cell(x_lo / 1.5) << ":" << Cell(x_hi * 1.5) << "]\n";

@@ -29,6 +29,11 @@ struct CoefficientRow {
   double rmse = 0.0, rmse_se = 0.0;  // sqrt(mean((estimate / truth - 1)^2))
   double empirical_sd = 0.0;         // std of estimate / truth
   double mean_sigma = 0.0;           // mean reported sigma / truth (NaN for slope)
+  // mean_sigma / empirical_sd (1 = honest error bars) and its standard error by the delta method:
+  // the mean's own error and the sd's, se(sd) ~ se(mean squared error) / (2 sd), which takes the
+  // errors' fourth moment from the trials (conservative when the bias is not small against the
+  // sd); the correlation between a trial's reported sigma and its error is neglected.
+  double sigma_ratio = 0.0, sigma_ratio_se = 0.0;
   std::vector<double> coverage;      // per confidence level (NaN for slope)
   std::vector<double> coverage_se;   // binomial, at the nominal level
   // Wilson score 95 % interval of each coverage (from its count of trials).
@@ -39,9 +44,6 @@ struct CoefficientRow {
 
 std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
                                             const std::vector<PointStats>& stats);
-
-// Wilson score interval at 95 % of a proportion observed as `share` of n trials: [low, high].
-void WilsonInterval(double share, std::int64_t n, double* low, double* high);
 
 // "10 min", "2 h", "24 h".
 std::string DurationText(double seconds);

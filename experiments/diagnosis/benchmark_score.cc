@@ -1,10 +1,11 @@
 #include "experiments/diagnosis/benchmark_score.h"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 
 #include <boost/math/distributions/chi_squared.hpp>
+
+#include "experiments/aggregate.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -31,12 +32,9 @@ Proportion MakeProportion(int k, int n) {
   p.successes = k;
   p.trials = n;
   if (n == 0) return p;
-  const double z = 1.959963984540054, z2 = z * z;
-  const double phat = static_cast<double>(k) / n;
-  const double centre = (phat + z2 / (2.0 * n)) / (1.0 + z2 / n);
-  const double half = z * std::sqrt(phat * (1.0 - phat) / n + z2 / (4.0 * n * n)) / (1.0 + z2 / n);
-  p.low = std::max(0.0, centre - half);
-  p.high = std::min(1.0, centre + half);
+  const RateInterval wilson = WilsonInterval(static_cast<double>(k) / n, n);
+  p.low = wilson.low;
+  p.high = wilson.high;
   return p;
 }
 
