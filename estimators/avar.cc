@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "estimators/allan_family.h"
 #include "estimators/confidence.h"
+#include "estimators/estimate_distribution.h"
 #include "estimators/noise_identification.h"
 #include "estimators/record_edf.h"
 
@@ -41,6 +43,10 @@ int SteadyAlpha(const AvarOptions& options, const NoiseId& id, int previous, boo
       id.averages >= kSteadyIdentificationAverages || !std::isfinite(id.estimate)) {
     return id.alpha;
   }
+  // At few clusters the reading scatters by a step or more (random-walk records at 8 clusters read
+  // as flicker or white in 4 of 10), and there the interval rests on alpha's whole distribution
+  // (estimate_distribution.h): the longer-averaged reading stands.
+  if (id.averages <= kDistributionIntervalMaxClusters) return previous;
   if (std::abs(id.estimate - previous) <= 1.0) return previous;
   return id.alpha > std::max(previous, 0) ? previous : id.alpha;
 }
@@ -124,7 +130,13 @@ bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSumma
   for (AvarPoint& point : summary->points) {
     point.edf = PointEdf(options, phase, &point, n_rate);
     if (point.edf > 0.0) {
-      const Interval interval = ChiSquareInterval(point.value, point.edf, options.confidence);
+      // kAuto at few clusters: the estimate's own distribution at the point's alpha, where
+      // chi-square(EDF) misses the nominal level (estimate_distribution.h).
+      point.ci_from_distribution =
+          options.confidence_method == ConfidenceMethod::kAuto &&
+          n_rate / point.m <= kDistributionIntervalMaxClusters &&
+          EstimateQuantilesAt(options.statistic, point.alpha, point.m, n_rate, options.confidence).ok;
+      const Interval interval = PointInterval(*summary, point, options.confidence);
       point.ci_low = interval.low;
       point.ci_high = interval.high;
     }
@@ -137,6 +149,15 @@ bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSumma
 }
 
 }  // namespace
+
+Interval PointInterval(const AvarSummary& summary, const AvarPoint& point, double confidence) {
+  if (!(point.edf > 0.0)) return {0.0, std::numeric_limits<double>::infinity()};
+  if (!point.ci_from_distribution) return ChiSquareInterval(point.value, point.edf, confidence);
+  const EstimateQuantiles q = EstimateQuantilesAt(summary.options.statistic, point.alpha, point.m,
+                                                  summary.num_samples, confidence);
+  if (!q.ok) return {0.0, std::numeric_limits<double>::infinity()};
+  return {point.value / q.high, point.value / q.low};
+}
 
 bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary) {
   std::vector<double> differenced;

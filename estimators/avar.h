@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "estimators/avar_summary.h"
+#include "estimators/confidence.h"
 
 namespace allanlab::estimators {
 
@@ -19,5 +20,11 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
 // ComputeAvar, except that a non-finite running sum is reported by position only.
 bool ComputeAvarInPlace(const AvarOptions& options, std::vector<double>* record,
                         AvarSummary* summary);
+
+// The interval of a computed point at `confidence`, by the rule ComputeAvar applied at
+// options.confidence: [v edf / chi2_{1-p}, v edf / chi2_p] (confidence.h), or, where
+// point.ci_from_distribution, [v / q_{1-p}, v / q_p] with q the quantiles of the estimate's own
+// distribution at point.alpha (estimate_distribution.h). [0, inf) when the point has no interval.
+Interval PointInterval(const AvarSummary& summary, const AvarPoint& point, double confidence);
 
 }  // namespace allanlab::estimators

@@ -17,6 +17,9 @@ struct AvarPoint {
   bool alpha_identified = false;  // false when fixed by the options or when identification failed
   double edf = 0.0;          // equivalent degrees of freedom (0 when no interval)
   bool edf_from_record = false;  // kAuto: the EDF was measured on the record (record_edf.h)
+  // kAuto at <= kDistributionIntervalMaxClusters clusters: the interval comes from the estimate's
+  // distribution at alpha (estimate_distribution.h), not from chi-square(edf).
+  bool ci_from_distribution = false;
   double ci_low = 0.0;       // interval for the variance at options.confidence
   double ci_high = 0.0;
 };

@@ -99,7 +99,7 @@ std::vector<double> DefaultIntervalsDriver::Run(const SweepSpec& spec, const Swe
           ratio_written = true;
         }
         row.push_back(p && p->edf > 0.0 ? p->edf : kNaN);
-        AppendCoverageHits(p, expected, spec.confidence_levels, &row);
+        AppendCoverageHits(summaries[k], p, expected, spec.confidence_levels, &row);
       }
     }
   }

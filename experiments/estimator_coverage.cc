@@ -162,7 +162,7 @@ std::vector<double> EstimatorCoverageDriver::Run(const SweepSpec& spec, const Sw
           if (candidate.m == m) p = &candidate;
         }
         row.push_back(p ? p->value / expected : kNaN);
-        AppendCoverageHits(p, expected, spec.confidence_levels, &row);
+        AppendCoverageHits(summary, p, expected, spec.confidence_levels, &row);
       }
     }
   }

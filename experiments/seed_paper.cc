@@ -306,7 +306,7 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
         row.push_back(kNaN);
         continue;
       }
-      const estimators::Interval ci = estimators::ChiSquareInterval(p->value, p->edf, level);
+      const estimators::Interval ci = estimators::PointInterval(summary, *p, level);
       row.push_back(ci.low <= expected && expected <= ci.high ? 1.0 : 0.0);
     }
   }

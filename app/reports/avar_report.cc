@@ -5,8 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sim/units.h"
 #include "common/number_text.h"
+#include "estimators/estimate_distribution.h"
+#include "sim/units.h"
 
 namespace allanlab::app {
 namespace {
@@ -66,7 +67,9 @@ std::string IntervalDescription(const AvarReport& r) {
     case estimators::ConfidenceMethod::kAuto:
       return "chi-square " + level +
              " with the EDF measured on the record at short taus (edf marked r) and the "
-             "Greenhall-Riley EDF at the identified alpha elsewhere" + from;
+             "Greenhall-Riley EDF at the identified alpha elsewhere; at <= " +
+             std::to_string(estimators::kDistributionIntervalMaxClusters) +
+             " clusters the estimate's own distribution at that alpha (edf marked d)" + from;
   }
   return "?";
 }
@@ -170,6 +173,7 @@ std::vector<AvarRow> AvarRows(const AvarReport& r) {
     row.alpha = p.alpha;
     row.alpha_identified = p.alpha_identified;
     row.edf_from_record = p.edf_from_record;
+    row.ci_from_distribution = p.ci_from_distribution;
     rows.push_back(row);
   }
   return rows;
@@ -197,8 +201,10 @@ void WriteAvarTable(std::ostream& os, const AvarReport& r) {
     if (row.has_interval) {
       std::snprintf(low, sizeof low, "%.6g", row.dev_low);
       std::snprintf(high, sizeof high, "%.6g", row.dev_high);
-      std::snprintf(edf, sizeof edf, "%.4g%s", row.edf, row.edf_from_record ? "r" : "");
-      // alpha only matters for (and is only identified by) the Greenhall-Riley EDF.
+      std::snprintf(edf, sizeof edf, "%.4g%s", row.edf,
+                    row.edf_from_record ? "r" : (row.ci_from_distribution ? "d" : ""));
+      // alpha only matters for (and is only identified by) the Greenhall-Riley EDF and the
+      // estimate's distribution.
       const estimators::ConfidenceMethod method = r.summary.options.confidence_method;
       if (method == estimators::ConfidenceMethod::kGreenhallRiley ||
           (method == estimators::ConfidenceMethod::kAuto && !row.edf_from_record)) {
@@ -309,6 +315,7 @@ nlohmann::ordered_json AvarJson(const AvarReport& r) {
       p["dev_high"] = nullptr;
     }
     p["edf_from_record"] = row.edf_from_record;
+    p["ci_from_distribution"] = row.ci_from_distribution;
     if (r.streamed) p["overlap_stride"] = r.overlap_stride[k];
     points.push_back(p);
   }

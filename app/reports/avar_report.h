@@ -49,6 +49,7 @@ struct AvarRow {
   int alpha = 0;
   bool alpha_identified = false;
   bool edf_from_record = false;  // the EDF was measured on the record (--ci auto)
+  bool ci_from_distribution = false;  // the interval from the estimate's distribution (--ci auto)
 };
 std::vector<AvarRow> AvarRows(const AvarReport& report);
 
