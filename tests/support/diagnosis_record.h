@@ -7,21 +7,49 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "experiments/diagnosis/diagnose.h"
+#include "independent/generate.h"
+#include "independent/recipe.h"
 #include "sim/sensor_model.h"
 
 namespace allanlab::testing {
 
 inline constexpr std::int64_t kDiagnosisTestSamples = 36000;
 
-inline experiments::DiagnosisSummary DiagnoseShortRecord(const sim::SensorModel& model, std::uint64_t seed) {
-  const std::vector<double> record = model.Generate(seed, 0, kDiagnosisTestSamples);
+// The options the diagnosis tests share: 12 Monte Carlo trials; `terms` the baseline's IEEE terms
+// (empty: DiagnoseOptions' default Q, N, B, K, R).
+inline experiments::DiagnoseOptions TestDiagnoseOptions(std::vector<estimators::Coefficient> terms = {}) {
   experiments::DiagnoseOptions options;
   options.trials = 12;
+  if (!terms.empty()) options.terms = std::move(terms);
+  return options;
+}
+
+inline experiments::DiagnosisSummary DiagnoseShortRecord(const sim::SensorModel& model, std::uint64_t seed) {
+  const std::vector<double> record = model.Generate(seed, 0, kDiagnosisTestSamples);
   experiments::DiagnosisSummary s;
-  EXPECT_TRUE(experiments::DiagnoseRecord(options, record, 1.0 / model.sample_rate_hz, &s)) << s.message;
+  EXPECT_TRUE(experiments::DiagnoseRecord(TestDiagnoseOptions(), record, 1.0 / model.sample_rate_hz, &s))
+      << s.message;
+  return s;
+}
+
+// The user's model `--model N,B,K` as the baseline.
+inline experiments::DiagnoseOptions UserModelNBK() {
+  return TestDiagnoseOptions({estimators::Coefficient::kN, estimators::Coefficient::kB,
+                              estimators::Coefficient::kK});
+}
+
+// A record of the independent generator (independent/generate.h: written apart from sim/) of n
+// samples for `seed`, diagnosed with `options`.
+inline experiments::DiagnosisSummary DiagnoseIndependentRecord(const independent::Recipe& recipe,
+                                                               std::int64_t n, std::uint64_t seed,
+                                                               const experiments::DiagnoseOptions& options) {
+  const std::vector<double> record = independent::Generate(recipe, n, seed, 0);
+  experiments::DiagnosisSummary s;
+  EXPECT_TRUE(experiments::DiagnoseRecord(options, record, 1.0 / recipe.rate_hz, &s)) << s.message;
   return s;
 }
 

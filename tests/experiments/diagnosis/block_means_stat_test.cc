@@ -99,13 +99,7 @@ TEST(BlockMeansStat, FalseAlarmRateUnderTheModel) {
 }
 
 DiagnosisSummary DiagnoseIndependent(const independent::Recipe& recipe, std::int64_t n, std::uint64_t seed) {
-  const std::vector<double> y = independent::Generate(recipe, n, seed, 0);
-  DiagnoseOptions options;
-  options.terms = {estimators::Coefficient::kN, estimators::Coefficient::kB, estimators::Coefficient::kK};
-  options.trials = 12;
-  DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, y, 1.0 / recipe.rate_hz, &s)) << s.message;
-  return s;
+  return testing::DiagnoseIndependentRecord(recipe, n, seed, testing::UserModelNBK());
 }
 
 std::string Regions(const DiagnosisSummary& s) {

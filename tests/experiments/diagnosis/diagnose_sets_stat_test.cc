@@ -21,13 +21,9 @@ namespace {
 using testing::DescribeVerdict;
 
 DiagnosisSummary DiagnoseIndependent(const independent::Recipe& r, std::uint64_t seed, int max_effects = 3) {
-  const std::vector<double> record = independent::Generate(r, testing::kDiagnosisTestSamples, seed, 0);
-  DiagnoseOptions options;
-  options.trials = 12;
+  DiagnoseOptions options = testing::TestDiagnoseOptions();
   options.max_effects = max_effects;
-  DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, record, 1.0 / r.rate_hz, &s)) << s.message;
-  return s;
+  return testing::DiagnoseIndependentRecord(r, testing::kDiagnosisTestSamples, seed, options);
 }
 
 independent::Recipe Control() {

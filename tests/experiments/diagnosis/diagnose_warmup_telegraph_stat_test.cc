@@ -43,12 +43,7 @@ independent::Recipe Sensor() {
 int Named(const independent::Recipe& r, const std::string& id, int seeds) {
   int named = 0;
   for (int seed = kFirstSeed; seed < kFirstSeed + seeds; ++seed) {
-    const std::vector<double> y = independent::Generate(r, kSamples, seed, 0);
-    DiagnoseOptions options;
-    options.terms = {estimators::Coefficient::kN, estimators::Coefficient::kB, estimators::Coefficient::kK};
-    options.trials = 12;
-    DiagnosisSummary s;
-    EXPECT_TRUE(DiagnoseRecord(options, y, 1.0 / r.rate_hz, &s)) << s.message;
+    const DiagnosisSummary s = testing::DiagnoseIndependentRecord(r, kSamples, seed, testing::UserModelNBK());
     named += s.verdict == id;
     std::printf("seed %d: %s\n", seed, testing::DescribeVerdict(s).c_str());
   }
