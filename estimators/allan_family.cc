@@ -10,6 +10,7 @@
 #include "estimators/modified_allan_sums.h"
 #include "estimators/phase_integral.h"
 #include "estimators/total_variance_sums.h"
+#include "common/huge_pages.h"
 #include "common/number_text.h"
 
 namespace allanlab::estimators {
@@ -106,6 +107,7 @@ std::span<double> AllanFamilyWorkspace::Buffer::Get(std::size_t size) {
   if (size > capacity_) {
     data_.reset();  // release first: peak memory is the new size, not old + new
     data_ = std::make_unique_for_overwrite<double[]>(size);
+    AdviseHugePages(data_.get(), size * sizeof(double));
     capacity_ = size;
   }
   return {data_.get(), size};

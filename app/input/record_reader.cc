@@ -22,6 +22,7 @@
 #include "app/input/stated_units.h"
 #include "app/failure.h"
 #include "app/input/text_record_parser.h"
+#include "common/huge_pages.h"
 #include "common/number_text.h"
 
 namespace allanlab::app {
@@ -655,6 +656,7 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
     } catch (const std::exception&) {  // an estimate too large to reserve: grow as rows come
     }
   }
+  AdviseHugePages(values->data(), values->capacity() * sizeof(double));
   const std::function<void(double)> sink = [values](double v) { values->push_back(v); };
   const std::function<void(std::span<const double>)> block_sink =
       [values](std::span<const double> block) {

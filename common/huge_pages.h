@@ -1,0 +1,16 @@
+#pragma once
+// Large arrays backed by 2 MiB pages. A record of 1e8 samples is 800 MB; touched first through
+// 4 KiB pages it costs ~200000 page faults, which in our VM took 1.5 s of system time and slowed
+// the Allan pass itself through TLB misses (`avar` on 1e8 float64 samples: 3.5 s CPU with 4 KiB
+// pages, 1.0 s with 2 MiB pages; results/benchmarks/whole_process.md). Linux only honours the
+// request when transparent huge pages are in "madvise" or "always" mode; elsewhere it is a no-op.
+#include <cstddef>
+
+namespace allanlab {
+
+// Advises the kernel to back the whole 4 KiB pages of [data, data + bytes) with huge pages.
+// Call before the first write to the memory; results never depend on it. Arrays below 4 MiB are
+// left alone (at most one huge page would fit, and small blocks are reused from the heap).
+void AdviseHugePages(void* data, std::size_t bytes);
+
+}  // namespace allanlab
