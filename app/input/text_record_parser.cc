@@ -96,6 +96,16 @@ bool ParsePlainDecimal(std::string_view s, double* value) {
 }  // namespace
 
 bool ParseNumberField(std::string_view field, double* value) {
+  // Nearly every field is a bare signed decimal: try that before trimming, quotes and markers.
+  if (!field.empty()) {
+    std::string_view bare = field;
+    const bool minus = bare.front() == '-';
+    if (minus || bare.front() == '+') bare.remove_prefix(1);
+    if (ParsePlainDecimal(bare, value)) {
+      if (minus) *value = -*value;
+      return true;
+    }
+  }
   std::string_view s = Trim(field);
   if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = Trim(s.substr(1, s.size() - 2));
   if (IsMissingMarker(s)) {

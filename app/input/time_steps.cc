@@ -36,7 +36,9 @@ bool TimeSteps::Add(double time_s, std::int64_t line, std::string* why) {
     }
     bool placed = false;
     for (Group& g : groups_) {
-      if (std::abs(step - g.mean()) <= kStepTolerance * g.mean()) {
+      // |step - mean| <= tolerance * mean, times count: no division per row.
+      const double count = static_cast<double>(g.count);
+      if (std::abs(step * count - g.sum_s) <= kStepTolerance * g.sum_s) {
         g.sum_s += step;
         ++g.count;
         placed = true;
