@@ -170,22 +170,27 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
   return Compute(options, rate, summary, &workspace);
 }
 
+bool ComputeAvarOnStorage(const AvarOptions& options, std::span<double> storage,
+                          AvarSummary* summary) {
+  if (storage.empty()) return ComputeAvar(options, {}, summary);  // no spare slot: no samples
+  std::span<double> phase = storage;
+  if (options.input == InputKind::kAngle && storage.size() >= 2) {
+    // rate_k = (angle_{k+1} - angle_k) / tau0 into the slot of angle_{k+1}, from the top down, so
+    // that each angle is read before its slot is written; the first angle's slot becomes the
+    // integrated record's spare.
+    const double tau0 = options.sample_period_s;
+    for (std::size_t k = storage.size(); k-- > 2;) storage[k] = (storage[k] - storage[k - 1]) / tau0;
+    phase = storage.subspan(1);
+  }
+  AllanFamilyWorkspace workspace;
+  workspace.AdoptPhase(phase);
+  return Compute(options, phase.subspan(1), summary, &workspace);
+}
+
 bool ComputeAvarInPlace(const AvarOptions& options, std::vector<double>* record,
                         AvarSummary* summary) {
-  std::vector<double>& r = *record;
-  if (options.input == InputKind::kAngle) {
-    // rate_k = (angle_{k+1} - angle_k) / tau0 into slot k + 1, from the top down, so that each
-    // angle is read before its slot is written; slot 0 becomes the spare.
-    const double tau0 = options.sample_period_s;
-    for (std::size_t k = r.size(); k-- > 1;) r[k] = (r[k] - r[k - 1]) / tau0;
-    if (r.empty()) r.push_back(0.0);
-  } else {
-    r.insert(r.begin(), 0.0);
-  }
-  const std::span<double> storage(r);
-  AllanFamilyWorkspace workspace;
-  workspace.AdoptPhase(storage);
-  return Compute(options, storage.subspan(1), summary, &workspace);
+  record->insert(record->begin(), 0.0);
+  return ComputeAvarOnStorage(options, *record, summary);
 }
 
 }  // namespace allanlab::estimators

@@ -192,15 +192,15 @@ class InputScale {
   double angle_to_si_ = 1.0;
 };
 
-// The curve of values in the record's units (report->record says which, and the sample rate),
-// converted to SI (rad/s or rad) in place.
-std::optional<Failure> CurveOfValues(const Plan& plan, std::vector<double>* values, AvarReport* report) {
-  InputScale(plan.input, report->record.units).Apply(*values);
+// The curve of the values in storage[1..] (storage[0] a spare slot), in the record's units
+// (report->record says which, and the sample rate), converted to SI (rad/s or rad) in place.
+std::optional<Failure> CurveOfValues(const Plan& plan, std::span<double> storage, AvarReport* report) {
+  InputScale(plan.input, report->record.units).Apply(storage.subspan(1));
   report->input_units = report->record.units;
   estimators::AvarOptions options = plan.avar;
   options.sample_period_s = 1.0 / report->record.sample_rate_hz;
   // The record is not needed afterwards: its storage becomes the integrated record.
-  if (!estimators::ComputeAvarInPlace(options, values, &report->summary)) {
+  if (!estimators::ComputeAvarOnStorage(options, storage, &report->summary)) {
     return Runtime(plan.read.path + ": " + report->summary.message);
   }
   return std::nullopt;
@@ -208,12 +208,12 @@ std::optional<Failure> CurveOfValues(const Plan& plan, std::vector<double>* valu
 
 // Reads the record and computes its curve in memory.
 std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
-  std::vector<double> values;
+  std::vector<double> storage;
   RecordError error;
-  if (!ReadRecordValues(plan.read, &values, &report->record, &error)) {
+  if (!ReadRecordValues(plan.read, &storage, &report->record, &error, kSpareSlot)) {
     return Failure{error.exit_code, error.message};
   }
-  return CurveOfValues(plan, &values, report);
+  return CurveOfValues(plan, storage, report);
 }
 
 // A record handed over in memory (ComputeCurveFromSamples): described as the reader describes a
@@ -581,7 +581,8 @@ int ComputeCurveFromSamples(const RecordCurveOptions& options, std::vector<doubl
   if (!failure) {
     report->output_unit = plan.output_unit;
     report->taus_text = options.taus;
-    failure = CurveOfValues(plan, &values, report);
+    values.insert(values.begin(), 0.0);  // the spare slot
+    failure = CurveOfValues(plan, values, report);
   }
   if (failure) {
     *error = failure->message;

@@ -638,7 +638,7 @@ std::size_t EstimatedTextRows(const std::string& path, std::uintmax_t bytes) {
 }  // namespace
 
 bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
-                      RecordInfo* info, RecordError* error) {
+                      RecordInfo* info, RecordError* error, std::size_t leading_zeros) {
   values->clear();
   // A raw record's size tells the sample count (exactly when uncompressed, a lower bound when
   // compressed): reserving it spares the growth copies and page faults of push_back, which cost
@@ -648,15 +648,15 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
                                                                       : 0;
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(options.path, ec);
-  // One spare slot: ComputeAvarInPlace integrates N samples into N + 1 values.
-  if (width > 0 && !ec) values->reserve(static_cast<std::size_t>(bytes) / width + 1);
+  if (width > 0 && !ec) values->reserve(leading_zeros + static_cast<std::size_t>(bytes) / width);
   if (width == 0 && !ec) {
     try {
-      values->reserve(EstimatedTextRows(options.path, bytes) + 1);
+      values->reserve(leading_zeros + EstimatedTextRows(options.path, bytes));
     } catch (const std::exception&) {  // an estimate too large to reserve: grow as rows come
     }
   }
   AdviseHugePages(values->data(), values->capacity() * sizeof(double));
+  values->assign(leading_zeros, 0.0);
   const std::function<void(double)> sink = [values](double v) { values->push_back(v); };
   const std::function<void(std::span<const double>)> block_sink =
       [values](std::span<const double> block) {

@@ -130,9 +130,11 @@ struct RecordError {
 bool ReadRecord(const RecordReaderOptions& options, const std::function<void(double)>& sink,
                 RecordInfo* info, RecordError* error);
 
-// ReadRecord into a vector.
+// ReadRecord into a vector: `leading_zeros` zeros, then the kept values. A leading spare slot
+// (kSpareSlot) lets estimators::ComputeAvarOnStorage integrate the record where it lies.
+inline constexpr std::size_t kSpareSlot = 1;
 bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
-                      RecordInfo* info, RecordError* error);
+                      RecordInfo* info, RecordError* error, std::size_t leading_zeros = 0);
 
 // Several columns (options.columns or options.imu) read in one pass: values[k] holds column k's
 // kept samples in file units, every column the same length.

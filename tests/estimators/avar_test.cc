@@ -26,8 +26,9 @@ AvarOptions Options(ConfidenceMethod method) {
   return options;
 }
 
-// In place: the same summary as from a copy, for rate (with and without the spare slot of
-// capacity) and angle input, the overlapping statistics (integrated in place) and MVAR (in place
+// In place (ComputeAvarInPlace on a vector, ComputeAvarOnStorage behind a spare slot): the same
+// summary as from a copy, for rate (with and without spare capacity)
+// and angle input, the overlapping statistics (integrated in place) and MVAR (in place
 // too, with its own work space); a record that overflows fails with the position.
 TEST(ComputeAvar, InPlaceGivesTheSameSummary) {
   const std::vector<double> rate = WhiteRecord(70001);
@@ -46,19 +47,27 @@ TEST(ComputeAvar, InPlaceGivesTheSameSummary) {
       consumed.reserve(data.size() + 1);
       consumed.assign(data.begin(), data.end());
       ASSERT_TRUE(ComputeAvarInPlace(options, &consumed, &in_place)) << in_place.message;
-      ASSERT_EQ(copy.points.size(), in_place.points.size());
-      for (std::size_t k = 0; k < copy.points.size(); ++k) {
-        SCOPED_TRACE("m=" + std::to_string(copy.points[k].m));
-        EXPECT_EQ(copy.points[k].value, in_place.points[k].value);
-        EXPECT_EQ(copy.points[k].alpha, in_place.points[k].alpha);
-        EXPECT_EQ(copy.points[k].edf, in_place.points[k].edf);
+      std::vector<double> storage(1, -7.0);  // the spare slot: its value must not matter
+      storage.insert(storage.end(), data.begin(), data.end());
+      AvarSummary on_storage;
+      ASSERT_TRUE(ComputeAvarOnStorage(options, storage, &on_storage)) << on_storage.message;
+      for (const AvarSummary* other : {&in_place, &on_storage}) {
+        ASSERT_EQ(copy.points.size(), other->points.size());
+        for (std::size_t k = 0; k < copy.points.size(); ++k) {
+          SCOPED_TRACE("m=" + std::to_string(copy.points[k].m));
+          EXPECT_EQ(copy.points[k].value, other->points[k].value);
+          EXPECT_EQ(copy.points[k].alpha, other->points[k].alpha);
+          EXPECT_EQ(copy.points[k].edf, other->points[k].edf);
+        }
+        EXPECT_EQ(copy.message, other->message);
       }
-      EXPECT_EQ(copy.message, in_place.message);
     }
   }
   std::vector<double> tight = rate;  // no spare capacity: grows once
   AvarSummary s;
   EXPECT_TRUE(ComputeAvarInPlace(Options(ConfidenceMethod::kSimple), &tight, &s)) << s.message;
+  std::vector<double> none;
+  EXPECT_FALSE(ComputeAvarOnStorage(Options(ConfidenceMethod::kSimple), none, &s));
   std::vector<double> huge(100, 1.5e308);  // mean ~0, so the running sum about it overflows
   for (std::size_t k = 50; k < huge.size(); ++k) huge[k] = -1.5e308;
   EXPECT_FALSE(ComputeAvarInPlace(Options(ConfidenceMethod::kSimple), &huge, &s));
