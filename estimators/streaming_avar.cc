@@ -1,7 +1,9 @@
 #include "estimators/streaming_avar.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace allanlab::estimators {
 namespace {
@@ -11,6 +13,67 @@ void CompensatedAdd(double* sum, double* comp, double v) {
   const double t = *sum + v;
   *comp += std::abs(*sum) >= std::abs(v) ? (*sum - t) + v : (v - t) + *sum;
   *sum = t;
+}
+
+// D = S_a - 2 S_b + S_c from double-double prefix sums. Neighbouring prefix sums are close, so the
+// differences of the high parts are exact (Sterbenz) and the low parts carry what the high parts
+// rounded away.
+inline double SecondDifference(double a_hi, double a_lo, double b_hi, double b_lo, double c_hi,
+                               double c_lo) {
+  return ((a_hi - b_hi) - (b_hi - c_hi)) + ((a_lo - b_lo) - (b_lo - c_lo));
+}
+
+// Sum of D^2 over the block indices a = first .. last, D at lag m from S_a, S_{a-m}, S_{a-2m}.
+// Eight partial sums, each over every eighth index, added in a fixed order: every version below
+// gives the same bits, whatever vector width the compiler uses for the eight lanes.
+__attribute__((always_inline)) inline double SquaresBody(const double* hi, const double* lo,
+                                                         std::int64_t first, std::int64_t last,
+                                                         std::int64_t m) {
+  double lanes[8] = {};
+  std::int64_t i = first;
+  for (; i + 8 <= last + 1; i += 8) {
+    for (int k = 0; k < 8; ++k) {
+      const std::int64_t a = i + k;
+      const double d =
+          SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
+      lanes[k] += d * d;
+    }
+  }
+  for (; i <= last; ++i) {
+    const double d =
+        SecondDifference(hi[i], lo[i], hi[i - m], lo[i - m], hi[i - 2 * m], lo[i - 2 * m]);
+    lanes[0] += d * d;
+  }
+  return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
+         ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+}
+
+double PortableSquares(const double* hi, const double* lo, std::int64_t first, std::int64_t last,
+                       std::int64_t m) {
+  return SquaresBody(hi, lo, first, last, m);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// No FMA: a fused d * d + lane would round differently from the portable version.
+__attribute__((target("avx2"))) double Avx2Squares(const double* hi, const double* lo,
+                                                   std::int64_t first, std::int64_t last,
+                                                   std::int64_t m) {
+  return SquaresBody(hi, lo, first, last, m);
+}
+#endif
+
+using SquaresFn = double (*)(const double*, const double*, std::int64_t, std::int64_t, std::int64_t);
+
+SquaresFn BlockSquares() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const SquaresFn best = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") ? Avx2Squares : PortableSquares;
+  }();
+  return best;
+#else
+  return PortableSquares;
+#endif
 }
 
 }  // namespace
@@ -29,13 +92,23 @@ bool StreamingAvarOptions::IsValid(std::string* why) const {
 
 StreamingAvar::StreamingAvar(StreamingAvarOptions options) : options_(options) {
   if (!options_.IsValid(nullptr)) options_ = StreamingAvarOptions();
-  Octave first;
-  first.m = 1;
-  first.stride = 1;
-  first.span = 1;
-  first.ring.resize(3);
-  octaves_.push_back(std::move(first));
-  Push(&octaves_.back(), DoubleDouble(), 0);
+  const std::int64_t largest = options_.exact_overlap_max_m;
+  for (std::int64_t m = 1; m <= largest; m *= 2) {
+    exact_.push_back({m, {}});
+    if (m > std::numeric_limits<std::int64_t>::max() / 2) break;
+  }
+  // Kept: 2 largest + 1 prefix sums; the block: as many again (at least 2048), so that moving
+  // the kept ones to the front costs at most one copy per new value.
+  const std::uint64_t limit = std::numeric_limits<std::size_t>::max() / 32;
+  const std::uint64_t kept = std::min<std::uint64_t>(static_cast<std::uint64_t>(largest) * 2 + 1, limit);
+  const std::uint64_t block = std::max<std::uint64_t>(kept - 1, 2048);
+  kept_ = static_cast<std::size_t>(kept);
+  capacity_ = static_cast<std::size_t>(kept + block);
+  const std::size_t reserved = std::min<std::size_t>(capacity_, std::size_t{1} << 17);
+  hi_.reserve(reserved);
+  lo_.reserve(reserved);
+  hi_.push_back(0.0);  // S_0
+  lo_.push_back(0.0);
 }
 
 const StreamingAvar::DoubleDouble& StreamingAvar::Octave::Back(std::int64_t k) const {
@@ -45,29 +118,41 @@ const StreamingAvar::DoubleDouble& StreamingAvar::Octave::Back(std::int64_t k) c
 }
 
 void StreamingAvar::Push(Octave* o, const DoubleDouble& s, std::int64_t n) {
-  // Ring positions and the power-of-two tests below avoid integer division: this runs for
-  // every sample in every octave whose stride is 1.
   o->ring[static_cast<std::size_t>(o->head)] = s;
   if (++o->head == static_cast<std::int64_t>(o->ring.size())) o->head = 0;
   ++o->pushed;
+  o->last_index = n;
   if (o->pushed < 2 * o->span + 1) return;
   const DoubleDouble& a = o->Back(0);
   const DoubleDouble& b = o->Back(o->span);
   const DoubleDouble& c = o->Back(2 * o->span);
-  // Neighbouring prefix sums are close, so the differences of the high parts are exact
-  // (Sterbenz) and the low parts carry what the high parts rounded away.
-  const double d = ((a.hi - b.hi) - (b.hi - c.hi)) + ((a.lo - b.lo) - (b.lo - c.lo));
-  CompensatedAdd(&o->o_sum, &o->o_comp, d * d);
-  ++o->o_terms;
-  if ((n & (o->m - 1)) == 0) {
-    CompensatedAdd(&o->n_sum, &o->n_comp, d * d);
-    ++o->n_terms;
+  const double d = SecondDifference(a.hi, a.lo, b.hi, b.lo, c.hi, c.lo);
+  CompensatedAdd(&o->sums.o_sum, &o->sums.o_comp, d * d);
+  ++o->sums.o_terms;
+  if ((n & (o->m - 1)) == 0) {  // m is a power of two: no division per push
+    CompensatedAdd(&o->sums.n_sum, &o->sums.n_comp, d * d);
+    ++o->sums.n_terms;
   }
 }
 
+StreamingAvar::DoubleDouble StreamingAvar::PrefixAt(std::int64_t n) const {
+  const auto i = static_cast<std::size_t>(n - first_);
+  return {hi_[i], lo_[i]};
+}
+
 void StreamingAvar::StartNextOctave() {
-  const Octave& last = octaves_.back();
   Octave next;
+  if (octaves_.empty()) {
+    // The first strided octave: the block still holds S_0 .. S_{next.m}.
+    next.m = 2 * exact_.back().m;
+    next.stride = 2;
+    next.span = next.m / next.stride;
+    next.ring.resize(static_cast<std::size_t>(2 * next.span + 1));
+    for (std::int64_t k = 0; k <= next.m; k += next.stride) Push(&next, PrefixAt(k), k);
+    octaves_.push_back(std::move(next));
+    return;
+  }
+  const Octave& last = octaves_.back();
   next.m = 2 * last.m;
   next.stride = std::max<std::int64_t>(1, next.m / options_.exact_overlap_max_m);
   next.span = next.m / next.stride;
@@ -81,6 +166,59 @@ void StreamingAvar::StartNextOctave() {
   octaves_.push_back(std::move(next));
 }
 
+void StreamingAvar::Fold() {
+  const std::int64_t from = folded_ + 1;
+  const std::int64_t to = n_;
+  if (from > to) return;
+  const double* hi = hi_.data();
+  const double* lo = lo_.data();
+  const SquaresFn squares = BlockSquares();
+  for (ExactOctave& o : exact_) {
+    const std::int64_t m = o.m;
+    if (2 * m > to) break;  // this octave and every longer one: no term yet
+    const std::int64_t begin = std::max(from, 2 * m);
+    // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
+    const std::int64_t first = begin - first_;
+    const std::int64_t last = to - first_;
+    // Partial sums over the block (vectorised), then one compensated addition per block.
+    const double block = squares(hi, lo, first, last, m);
+    CompensatedAdd(&o.sums.o_sum, &o.sums.o_comp, block);
+    o.sums.o_terms += to - begin + 1;
+    for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
+      const std::int64_t a = t - first_;
+      const double d =
+          SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
+      CompensatedAdd(&o.sums.n_sum, &o.sums.n_comp, d * d);
+      ++o.sums.n_terms;
+    }
+  }
+  const std::int64_t first_strided_start = 2 * exact_.back().m;
+  if (octaves_.empty() && exact_.back().m <= std::numeric_limits<std::int64_t>::max() / 4 &&
+      first_strided_start >= from && first_strided_start <= to) {
+    StartNextOctave();
+  }
+  // Octaves may be added inside the loop: index, not iterators or references.
+  for (std::size_t j = 0; j < octaves_.size(); ++j) {
+    const std::int64_t stride = octaves_[j].stride;
+    for (std::int64_t t = octaves_[j].last_index + stride; t <= to; t += stride) {
+      Push(&octaves_[j], PrefixAt(t), t);
+      if (j + 1 == octaves_.size() && t == 2 * octaves_[j].m) StartNextOctave();
+    }
+  }
+  folded_ = to;
+  // Keep S_{to - 2 largest} .. S_to for the next block's lags.
+  const std::int64_t held = to - first_ + 1;
+  const auto keep = static_cast<std::int64_t>(kept_);
+  if (held > keep) {
+    const std::int64_t drop = held - keep;
+    std::copy(hi_.begin() + drop, hi_.end(), hi_.begin());
+    std::copy(lo_.begin() + drop, lo_.end(), lo_.begin());
+    hi_.resize(static_cast<std::size_t>(keep));
+    lo_.resize(static_cast<std::size_t>(keep));
+    first_ += drop;
+  }
+}
+
 void StreamingAvar::Add(double y) {
   if (n_ == 0) reference_ = y;
   const double x = y - reference_;
@@ -92,31 +230,48 @@ void StreamingAvar::Add(double y) {
   prefix_.hi = t + lo;
   prefix_.lo = lo - (prefix_.hi - t);
   ++n_;
-  for (Octave& o : octaves_) {
-    if ((n_ & (o.stride - 1)) == 0) Push(&o, prefix_, n_);
-  }
-  if (n_ == 2 * octaves_.back().m) StartNextOctave();
+  hi_.push_back(prefix_.hi);
+  lo_.push_back(prefix_.lo);
+  if (hi_.size() == capacity_) Fold();
+}
+
+void StreamingAvar::Add(std::span<const double> y) {
+  for (const double v : y) Add(v);
 }
 
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
+  if (folded_ < n_) {
+    StreamingAvar folded = *this;
+    folded.Fold();
+    return folded.Points();
+  }
   std::vector<StreamingAvarPoint> points;
+  const auto point = [this](std::int64_t m, std::int64_t stride, const Sums& s) {
+    StreamingAvarPoint p;
+    p.m = m;
+    const double denominator = 2.0 * static_cast<double>(m) * static_cast<double>(m);
+    p.overlapping = (s.o_sum + s.o_comp) / (denominator * static_cast<double>(s.o_terms));
+    p.overlapping_terms = s.o_terms;
+    p.overlapping_stride = stride;
+    p.nonoverlapping = (s.n_sum + s.n_comp) / (denominator * static_cast<double>(s.n_terms));
+    p.nonoverlapping_terms = s.n_terms;
+    return p;
+  };
+  for (const ExactOctave& o : exact_) {
+    if (n_ < 2 * o.m) return points;
+    points.push_back(point(o.m, 1, o.sums));
+  }
   for (const Octave& o : octaves_) {
     if (n_ < 2 * o.m) break;
-    StreamingAvarPoint p;
-    p.m = o.m;
-    const double denominator = 2.0 * static_cast<double>(o.m) * static_cast<double>(o.m);
-    p.overlapping = (o.o_sum + o.o_comp) / (denominator * static_cast<double>(o.o_terms));
-    p.overlapping_terms = o.o_terms;
-    p.overlapping_stride = o.stride;
-    p.nonoverlapping = (o.n_sum + o.n_comp) / (denominator * static_cast<double>(o.n_terms));
-    p.nonoverlapping_terms = o.n_terms;
-    points.push_back(p);
+    points.push_back(point(o.m, o.stride, o.sums));
   }
   return points;
 }
 
 std::size_t StreamingAvar::StateBytes() const {
-  std::size_t bytes = sizeof *this + octaves_.capacity() * sizeof(Octave);
+  std::size_t bytes = sizeof *this + (hi_.capacity() + lo_.capacity()) * sizeof(double) +
+                      exact_.capacity() * sizeof(ExactOctave) +
+                      octaves_.capacity() * sizeof(Octave);
   for (const Octave& o : octaves_) bytes += o.ring.capacity() * sizeof(DoubleDouble);
   return bytes;
 }

@@ -20,14 +20,19 @@
 // 2 exact_overlap_max_m + 1 per octave, whatever N. So the state is O(exact_overlap_max_m log N)
 // (about 0.5 MiB per octave above 2^14 at the default), and exact overlapping AVAR for every m
 // would need O(N) (no one-pass method can do better: the lag-m sum needs the last m values).
-// Octave j+1 starts when octave j has seen its first 2m samples, seeded from octave j's ring
-// (every other entry once the stride grows): the decimate-by-2 cascade.
+// The octaves with every start (stride 1) share one array: the last 2 exact_overlap_max_m + 1
+// prefix sums and a block of new ones, folded into every such octave a block at a time (a loop
+// over contiguous memory the compiler vectorises: ~1 s for 1e8 samples instead of ~20 s term by
+// term). The first strided octave is seeded from that array when it has seen its first 2m
+// samples; each later one from its predecessor's ring (every other entry): the decimate-by-2
+// cascade.
 //
 // Precision: the first sample is subtracted (AVAR does not see a constant) and the prefix sum is
 // kept in double-double, so a large bias or drift does not eat the digits of the differences;
 // squared differences are summed with Neumaier compensation.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -57,11 +62,13 @@ class StreamingAvar {
 
   // The next rate sample (finite: a NaN would poison every octave; the reader drops them).
   void Add(double y);
+  // The next samples, in order: the same as Add for each.
+  void Add(std::span<const double> y);
 
   std::int64_t count() const { return n_; }
   // Every octave m = 2^j with count() >= 2m, ascending.
   std::vector<StreamingAvarPoint> Points() const;
-  // Bytes held by the state (the rings), for memory checks.
+  // Bytes held by the state (the prefix-sum block and the rings), for memory checks.
   std::size_t StateBytes() const;
 
  private:
@@ -69,27 +76,49 @@ class StreamingAvar {
   struct DoubleDouble {
     double hi = 0.0, lo = 0.0;
   };
+  // Sums of D^2 over the octave's starts (Neumaier compensated).
+  struct Sums {
+    double o_sum = 0.0, o_comp = 0.0;  // over overlapping starts
+    std::int64_t o_terms = 0;
+    double n_sum = 0.0, n_comp = 0.0;  // over non-overlapping starts
+    std::int64_t n_terms = 0;
+  };
+  // An octave with every start (m <= exact_overlap_max_m): its terms come from the shared block.
+  struct ExactOctave {
+    std::int64_t m = 0;
+    Sums sums;
+  };
+  // An octave with strided starts: its own ring of prefix sums at multiples of the stride.
   struct Octave {
     std::int64_t m = 0;
     std::int64_t stride = 1;
-    std::int64_t span = 0;             // m / stride: ring positions between t and t + m
-    std::vector<DoubleDouble> ring;    // 2 span + 1 prefix sums at multiples of stride
-    std::int64_t pushed = 0;           // prefix sums pushed so far
-    std::int64_t head = 0;             // ring position of the next push
-    double o_sum = 0.0, o_comp = 0.0;  // Neumaier sum of D^2 over overlapping starts
-    std::int64_t o_terms = 0;
-    double n_sum = 0.0, n_comp = 0.0;  // the same over non-overlapping starts
-    std::int64_t n_terms = 0;
+    std::int64_t span = 0;           // m / stride: ring positions between t and t + m
+    std::vector<DoubleDouble> ring;  // 2 span + 1 prefix sums at multiples of stride
+    std::int64_t pushed = 0;         // prefix sums pushed so far
+    std::int64_t head = 0;           // ring position of the next push
+    std::int64_t last_index = 0;     // sample index n of the latest push
+    Sums sums;
     const DoubleDouble& Back(std::int64_t k) const;  // k-th latest pushed value (0 = latest)
   };
   void Push(Octave* o, const DoubleDouble& s, std::int64_t n);
   void StartNextOctave();
+  // Folds the prefix sums S_{folded_ + 1} .. S_{n_} into every octave and keeps the last
+  // 2 exact_overlap_max_m + 1 of them for the next block.
+  void Fold();
+  DoubleDouble PrefixAt(std::int64_t n) const;  // S_n, held in the block
 
   StreamingAvarOptions options_;
   std::int64_t n_ = 0;
   double reference_ = 0.0;
   DoubleDouble prefix_;
-  std::vector<Octave> octaves_;
+  // S_{first_} .. S_{n_} as high and low parts; capacity history + block.
+  std::vector<double> hi_, lo_;
+  std::int64_t first_ = 0;
+  std::int64_t folded_ = 0;  // S up to this index are in every octave's sums
+  std::size_t kept_ = 0;      // 2 exact_overlap_max_m + 1: S values a block needs before its own
+  std::size_t capacity_ = 0;  // kept_ and a block
+  std::vector<ExactOctave> exact_;
+  std::vector<Octave> octaves_;  // strided, ascending m
 };
 
 }  // namespace allanlab::estimators

@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "estimators/allan_variance.h"
@@ -78,27 +81,33 @@ TEST(StreamingAvarTest, DefaultIsExactUpToItsLimit) {
 }
 
 // Above exact_overlap_max_m the starts are every s = m / exact_overlap_max_m samples: checked
-// against a direct sum over exactly those starts.
+// against a direct sum over exactly those starts. The second record spans ~15 of the blocks in
+// which the estimator folds its prefix sums (2 exact_overlap_max_m + 1 + 2048 values), so every
+// octave's terms cross block boundaries.
 TEST(StreamingAvarTest, StridedStartsAboveTheExactLimit) {
-  const std::int64_t n = 5000;
-  const std::vector<double> y = Record(n, 3);
-  const std::int64_t exact_max_m = 4;
-  const StreamingAvar s = Stream(y, exact_max_m);
-  std::vector<long double> prefix(y.size() + 1, 0.0L);
-  for (std::size_t k = 0; k < y.size(); ++k) prefix[k + 1] = prefix[k] + (y[k] - y[0]);
-  for (const StreamingAvarPoint& p : s.Points()) {
-    const std::int64_t stride = std::max<std::int64_t>(1, p.m / exact_max_m);
-    EXPECT_EQ(p.overlapping_stride, stride);
-    long double sum = 0;
-    std::int64_t terms = 0;
-    for (std::int64_t t = 0; t + 2 * p.m <= n; t += stride) {
-      const long double d = prefix[t + 2 * p.m] - 2 * prefix[t + p.m] + prefix[t];
-      sum += d * d;
-      ++terms;
+  for (const auto& [n, exact_max_m] : {std::pair<std::int64_t, std::int64_t>{5000, 4}, {30011, 8}}) {
+    const std::vector<double> y = Record(n, 3);
+    StreamingAvar s(StreamingAvarOptions{exact_max_m});
+    s.Add(std::span<const double>(y).first(1000));
+    for (std::size_t k = 1000; k < y.size(); ++k) s.Add(y[k]);
+    std::vector<long double> prefix(y.size() + 1, 0.0L);
+    for (std::size_t k = 0; k < y.size(); ++k) prefix[k + 1] = prefix[k] + (y[k] - y[0]);
+    const std::vector<StreamingAvarPoint> points = s.Points();
+    EXPECT_EQ(points.size(), static_cast<std::size_t>(std::bit_width(static_cast<std::uint64_t>(n / 2))));
+    for (const StreamingAvarPoint& p : points) {
+      const std::int64_t stride = std::max<std::int64_t>(1, p.m / exact_max_m);
+      EXPECT_EQ(p.overlapping_stride, stride);
+      long double sum = 0;
+      std::int64_t terms = 0;
+      for (std::int64_t t = 0; t + 2 * p.m <= n; t += stride) {
+        const long double d = prefix[t + 2 * p.m] - 2 * prefix[t + p.m] + prefix[t];
+        sum += d * d;
+        ++terms;
+      }
+      EXPECT_EQ(p.overlapping_terms, terms) << "n = " << n << ", m = " << p.m;
+      const double expected = static_cast<double>(sum / (2.0L * p.m * p.m * terms));
+      ExpectRelativeNear(p.overlapping, expected, 1e-9, "strided overlapping", p.m);
     }
-    EXPECT_EQ(p.overlapping_terms, terms) << "m = " << p.m;
-    const double expected = static_cast<double>(sum / (2.0L * p.m * p.m * terms));
-    ExpectRelativeNear(p.overlapping, expected, 1e-9, "strided overlapping", p.m);
   }
 }
 
