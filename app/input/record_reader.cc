@@ -35,9 +35,7 @@ constexpr std::size_t kBlockValues = 4096;  // raw values decoded per block
 // t = 0.00, 0.01, ... comes out as 99.99999999999993 Hz); ten digits are more than a time column
 // can resolve and less than its noise.
 double RoundToSignificantDigits(double value, int digits) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.*g", digits, value);
-  return std::strtod(text, nullptr);
+  return std::strtod(SignificantDigits(value, digits).c_str(), nullptr);
 }
 
 // Non-finite values are collected over the whole file so that the message can say how many

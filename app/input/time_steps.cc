@@ -1,7 +1,6 @@
 #include "app/input/time_steps.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "common/number_text.h"
 
@@ -79,11 +78,7 @@ TimeSteps::Summary TimeSteps::Summarize() const {
 
 std::string TimeSteps::Describe(const Summary& s, const std::string& column) {
   // Steps are differences of printed times: their last digits are noise, not information.
-  const auto seconds = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g s", v);
-    return std::string(text);
-  };
+  const auto seconds = [](double v) { return SignificantDigits(v, 6) + " s"; };
   std::string out = std::to_string(s.irregular_steps) + " irregular time step(s) in " + column +
                     " (nominal " + seconds(s.nominal_step_s);
   if (s.largest_step_s > s.nominal_step_s * (1 + kStepTolerance)) {

@@ -16,11 +16,7 @@ using estimators::Statistic;
 
 
 // 0.683 -> "68.3 %" (0.683 * 100 is 68.30000000000001 in binary).
-std::string Percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g %%", fraction * 100);
-  return text;
-}
+std::string Percent(double fraction) { return SignificantDigits(fraction * 100, 6) + " %"; }
 
 std::string Identifier(const std::string& unit) {
   std::string out;
