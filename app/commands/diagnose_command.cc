@@ -108,7 +108,7 @@ std::string BaselineDescription(const DiagnoseCommandOptions& o) {
 }
 
 Json MetricsJson(const GapMetrics& m) {
-  return Json{{"chi2", m.chi2}, {"points", m.points}, {"fraction_in_95", m.fraction_in_95},
+  return Json{{"chi2", m.chi2}, {"points", m.points}, {"percent_in_95", 100.0 * m.fraction_in_95},
               {"max_abs_z", m.max_abs_z}};
 }
 
@@ -261,6 +261,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
     cj["full_score"] = c.full_score;
     cj["monte_carlo_views"] = c.full_views;
     cj["closes_gap"] = c.closes_gap;
+    if (!c.why_not_verdict.empty()) cj["not_the_verdict_because"] = c.why_not_verdict;
     cj["coefficients"] = CoefficientsJson(c.fit, unit);
     candidates.push_back(cj);
   }
@@ -304,22 +305,20 @@ std::string RegionMeaning(const GapRegion& r, const DiagnoseUnits& unit) {
 void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const DiagnoseUnits& unit = {},
                bool plain = true) {
   const std::string h = markdown ? "## " : "";
+  const PlainSummary summary = MakePlainSummary(s, unit);
   if (markdown) os << "# allanlab diagnose\n\n";
   if (plain && markdown) {
-    WritePlainMarkdown(os, MakePlainSummary(s, unit));
+    WritePlainMarkdown(os, summary);
   } else if (plain) {
-    WritePlainText(os, MakePlainSummary(s, unit));
+    WritePlainText(os, summary);
     os << "\n";
   }
   os << h << "verdict: " << s.verdict;
   if (s.verdict_candidate >= 0) {
     const auto& c = s.candidates[s.verdict_candidate];
     os << (s.verdict == "unexplained" ? " (best tried: " + c.id() + ")" : "");
-    for (const auto& e : c.effects) {
-      os << "\n  " << EffectLabel(e) << ":";
-      for (const auto& name : EffectParameterNames(e.effect)) {
-        os << " " << ParameterName(unit, name) << "=" << SignificantDigits(e.params.at(name), 4);
-      }
+    for (std::size_t i = 0; i < c.effects.size() && i < summary.effects.size(); ++i) {
+      os << "\n  " << EffectLabel(c.effects[i]) << ": " << QuantitiesText(summary.effects[i]);
     }
   }
   os << "\n";
@@ -350,12 +349,12 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
   if (markdown) os << "\n";
   os << h << "gap: " << (s.significant ? "significant" : "none") << " (|z| > " << SignificantDigits(s.threshold, 4)
      << ", Bonferroni over " << s.total_points << " points)\n";
-  if (markdown) os << "\n| view | points | chi2 | in 95 % | max abs z |\n|---|---|---|---|---|\n";
+  if (markdown) os << "\n| view | points | chi2 | % inside 95 % | max abs z |\n|---|---|---|---|---|\n";
   for (const ViewResiduals& v : s.before.views) {
     const GapMetrics m = Metrics(v.z);
     if (markdown) {
       os << "| " << ViewId(v.view) << " | " << m.points << " | " << SignificantDigits(m.chi2, 4) << " | "
-         << SignificantDigits(m.fraction_in_95, 4) << " | " << SignificantDigits(m.max_abs_z, 4) << " |\n";
+         << SignificantDigits(100 * m.fraction_in_95, 4) << " | " << SignificantDigits(m.max_abs_z, 4) << " |\n";
     } else {
       os << "  " << ViewId(v.view) << ": chi2 " << SignificantDigits(m.chi2, 4) << " on " << m.points
          << " points, " << SignificantDigits(100 * m.fraction_in_95, 4) << " % inside 95 %, max |z| "
@@ -367,22 +366,34 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
        << SignificantDigits(r.x_max, 4) << (r.view == View::kPsd ? " Hz" : " s") << ", max |z| " << SignificantDigits(r.max_abs_z, 4)
        << RegionMeaning(r, unit) << "\n";
   }
-  if (markdown) os << "\n" << h << "candidates\n\n| effect | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes |\n|---|---|---|---|---|---|---|\n";
-  else if (!s.candidates.empty()) os << "candidates (score = OAVAR chi2 improvement - 2k):\n";
+  if (markdown && !s.candidates.empty()) {
+    os << "\n" << h << "candidates\n\nscore: chi2 improvement - 2k on the views scored (k the effect's parameters)\n\n"
+       << "| effect | views scored | score | OAVAR chi2 after | all chi2 after | max abs z after | held-out chi2 before -> after | closes | not the verdict because |\n"
+       << "|---|---|---|---|---|---|---|---|---|\n";
+  } else if (!s.candidates.empty()) {
+    os << "candidates (score: chi2 improvement - 2k on the views scored, k the effect's parameters):\n";
+  }
   for (const CandidateResult& c : s.candidates) {
     const std::string held = c.after.has_heldout ? SignificantDigits(c.heldout_before.chi2, 4) + " -> " +
                                                        SignificantDigits(c.after.heldout.chi2, 4) + " (" +
                                                        (c.heldout_half == 0 ? "first" : "second") + " half, " +
                                                        (c.heldout_in_gap_views ? "views with a gap" : "OAVAR") + ")"
                                                  : "-";
+    const double score = c.full_views ? c.full_score : c.score;
+    const std::string views = c.full_views ? "all" : "OAVAR only";
     if (markdown) {
-      os << "| " << c.id() << " | " << SignificantDigits(c.score, 4) << " | " << SignificantDigits(c.after.View(View::kOavar).chi2, 4)
-         << " | " << SignificantDigits(c.after.All().chi2, 4) << " | " << SignificantDigits(c.after.All().max_abs_z, 4) << " | " << held
-         << " | " << (c.closes_gap ? "yes" : "no") << " |\n";
+      os << "| " << c.id() << " | " << views << " | " << SignificantDigits(score, 4) << " | "
+         << SignificantDigits(c.after.View(View::kOavar).chi2, 4) << " | " << SignificantDigits(c.after.All().chi2, 4)
+         << " | " << SignificantDigits(c.after.All().max_abs_z, 4) << " | " << held << " | "
+         << (c.closes_gap ? "yes" : "no") << " | " << (s.verdict_candidate >= 0 && &c == &s.candidates[s.verdict_candidate] && s.verdict != "unexplained"
+                 ? "(the verdict)"
+                 : c.why_not_verdict)
+         << " |\n";
     } else {
-      os << "  " << c.id() << ": score " << SignificantDigits(c.score, 4) << ", max |z| after " << SignificantDigits(c.after.All().max_abs_z, 4)
-         << (c.full_views ? " (all views)" : " (OAVAR)") << ", held-out chi2 " << held
-         << (c.closes_gap ? ", closes the gap" : "") << "\n";
+      os << "  " << c.id() << ": score " << SignificantDigits(score, 4) << " (" << views << "), max |z| after "
+         << SignificantDigits(c.after.All().max_abs_z, 4) << ", held-out chi2 " << held
+         << (c.closes_gap ? ", closes the gap" : "")
+         << (c.why_not_verdict.empty() ? "" : "\n      not the verdict: " + c.why_not_verdict) << "\n";
     }
   }
   for (const auto& k : s.skipped) os << (markdown ? "- " : "  ") << "not tried: " << EffectId(k.effect) << " (" << k.reason << ")\n";
@@ -630,7 +641,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     if (!PlotBytes(panels, &png, html.path(), &bytes, &why)) return RuntimeFailure(why);
     std::ostringstream detail;
     WriteText(detail, s, false, unit, false);
-    if (!validation.is_null()) detail << "validation on " << o.validate_path << ": " << validation.dump() << "\n";
+    if (!validation.is_null()) WriteValidation(detail, validation, false);
     WriteDiagnoseHtml(html.stream(), title, {{"", MakePlainSummary(s, unit), detail.str()}}, bytes, ProvenancePairs(p));
   }
   for (AtomicFile* file : {&json, &report, &png, &html}) {

@@ -32,12 +32,13 @@ bool Fail(std::string* why, const std::string& message) {
   return false;
 }
 
-bool Plottable(double x, double y) {
-  return std::isfinite(x) && std::isfinite(y) && x > 0 && y > 0;
+// A point the plot's axes can show: finite, and positive on a log axis.
+bool Plottable(const AllanPlot& plot, double x, double y) {
+  return std::isfinite(x) && std::isfinite(y) && (x > 0 || !plot.log_x) && (y > 0 || !plot.log_y);
 }
 
 bool HasBars(const PlotSeries& s) {
-  return (s.style == PlotStyle::kPoints || s.style == PlotStyle::kBand) &&
+  return (s.style == PlotStyle::kPoints || s.style == PlotStyle::kBand || s.style == PlotStyle::kBandOutline) &&
          s.y_low.size() == s.x.size() && s.y_high.size() == s.x.size();
 }
 
@@ -73,9 +74,7 @@ std::string TerminalLines(int width_px, int height_px, const std::string& output
 // The commands that draw one diagram (after the terminal is set).
 std::string Body(const AllanPlot& plot) {
   // A linear y axis shows zero and negative values; a log one only positive ones.
-  const auto Plottable = [&](double x, double y) {
-    return plot.log_y ? allanlab::app::Plottable(x, y) : std::isfinite(x) && std::isfinite(y) && x > 0;
-  };
+  const auto Plottable = [&](double x, double y) { return allanlab::app::Plottable(plot, x, y); };
   std::vector<const PlotSeries*> kept;
   std::vector<std::vector<std::pair<double, double>>> points;
   std::vector<std::vector<std::pair<double, double>>> bars;  // (low, high) per kept point
@@ -85,11 +84,11 @@ std::string Body(const AllanPlot& plot) {
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     const PlotSeries& series = plot.series[s];
     std::vector<std::pair<double, double>> valid, valid_bars;
-    if (series.style == PlotStyle::kBand && !HasBars(series)) continue;
+    const bool band = series.style == PlotStyle::kBand || series.style == PlotStyle::kBandOutline;
+    if (band && !HasBars(series)) continue;
     for (std::size_t i = 0; i < std::min(series.x.size(), series.y.size()); ++i) {
       if (!Plottable(series.x[i], series.y[i])) continue;
-      if (series.style == PlotStyle::kBand &&
-          !(Plottable(series.x[i], series.y_low[i]) && Plottable(series.x[i], series.y_high[i]))) {
+      if (band && !(Plottable(series.x[i], series.y_low[i]) && Plottable(series.x[i], series.y_high[i]))) {
         continue;
       }
       valid.emplace_back(series.x[i], series.y[i]);
@@ -113,7 +112,7 @@ std::string Body(const AllanPlot& plot) {
     if (static_cast<int>(s) == plot.guide_series) guide_index = static_cast<int>(points.size()) - 1;
   }
   // Guides must not stretch the axes, so the ranges come from the data alone.
-  if (x_hi <= x_lo) x_hi = x_lo * 2;
+  if (x_hi <= x_lo) x_hi = plot.log_x ? x_lo * 2 : x_lo + 1;
   for (double y : plot.y_lines) {
     if (!plot.log_y && std::isfinite(y)) y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
   }
@@ -123,12 +122,14 @@ std::string Body(const AllanPlot& plot) {
   os << "set title " << GnuplotQuoted(plot.title) << "\n"
      << "set xlabel " << GnuplotQuoted(plot.x_label) << "\n"
      << "set ylabel " << GnuplotQuoted(plot.y_label) << "\n"
-     << (plot.log_y ? "set logscale xy\n" : "unset logscale y\nset logscale x\n")
+     << (plot.log_x ? "set logscale x\n" : "unset logscale x\n")
+     << (plot.log_y ? "set logscale y\n" : "unset logscale y\n")
      << "set format x '%g'\nset format y '%g'\n"
      << "set grid xtics ytics mxtics mytics lc rgb '#e8e8e8' lw 1\n"
      << "set key " << plot.key << "\n"
      << "set samples 200\n"
-     << "set xrange [" << ShortestDecimal(x_lo / 1.5) << ":" << ShortestDecimal(x_hi * 1.5) << "]\n";
+     << "set xrange [" << ShortestDecimal(plot.log_x ? x_lo / 1.5 : x_lo - 0.03 * (x_hi - x_lo)) << ":"
+     << ShortestDecimal(plot.log_x ? x_hi * 1.5 : x_hi + 0.03 * (x_hi - x_lo)) << "]\n";
   if (plot.log_y) {
     os << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
   } else {
@@ -145,13 +146,19 @@ std::string Body(const AllanPlot& plot) {
   std::vector<std::string> span_keys;
   for (std::size_t i = 0; i < plot.spans.size(); ++i) {
     const PlotSpan& span = plot.spans[i];
-    if (!(span.x_min > 0) || !(span.x_max >= span.x_min) || !std::isfinite(span.x_max)) continue;
-    // A one-point span gets a width of a factor 1.05 each way on the log axis.
-    const double lo = span.x_min == span.x_max ? span.x_min / 1.05 : span.x_min;
-    const double hi = span.x_min == span.x_max ? span.x_max * 1.05 : span.x_max;
+    if (!((span.x_min > 0 || !plot.log_x) && std::isfinite(span.x_min)) || !(span.x_max >= span.x_min) ||
+        !std::isfinite(span.x_max)) {
+      continue;
+    }
+    // A one-point span gets a width of a factor 1.05 each way on a log axis, 0.5 % of the range
+    // on a linear one.
+    const double half = 0.005 * (x_hi - x_lo);
+    const double lo = span.x_min == span.x_max ? (plot.log_x ? span.x_min / 1.05 : span.x_min - half) : span.x_min;
+    const double hi = span.x_min == span.x_max ? (plot.log_x ? span.x_max * 1.05 : span.x_max + half) : span.x_max;
     const double opacity = std::clamp(span.opacity, 0.0, 1.0);
     os << "set object " << i + 1 << " rect from " << ShortestDecimal(lo) << ", graph 0 to "
-       << ShortestDecimal(hi) << ", graph 1 behind fc rgb " << GnuplotQuoted(span.color)
+       << ShortestDecimal(hi) << ", graph " << ShortestDecimal(std::clamp(span.height, 0.0, 1.0))
+       << " behind fc rgb " << GnuplotQuoted(span.color)
        << " fs transparent solid " << ShortestDecimal(opacity) << " noborder\n";
     if (!span.title.empty() &&
         std::find(span_keys.begin(), span_keys.end(), span.title) == span_keys.end()) {
@@ -217,8 +224,15 @@ std::string Body(const AllanPlot& plot) {
       case PlotStyle::kBand:
         style = "using 1:3:4 with filledcurves fs transparent solid 0.25 noborder";
         break;
+      case PlotStyle::kBandOutline:
+        style = "using 1:3 with lines lw 1 dt 3";
+        break;
     }
     const std::string color = kept[s]->color.empty() ? Color(s) : kept[s]->color;
+    if (kept[s]->style == PlotStyle::kBandOutline) {  // the upper edge, keyed with the lower one
+      clauses.push_back("$s" + std::to_string(s) + " using 1:4 with lines lw 1 dt 3 lc rgb " + GnuplotQuoted(color) +
+                        " notitle");
+    }
     clauses.push_back("$s" + std::to_string(s) + " " + style + " lc rgb " + GnuplotQuoted(color) + " title " +
                       GnuplotQuoted(kept[s]->title));
   }
@@ -257,7 +271,7 @@ std::string Script(const std::vector<AllanPlot>& panels, int columns, const std:
 bool AnyPlottable(const AllanPlot& plot) {
   for (const PlotSeries& s : plot.series) {
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
-      if (plot.log_y ? Plottable(s.x[i], s.y[i]) : std::isfinite(s.x[i]) && s.x[i] > 0 && std::isfinite(s.y[i])) {
+      if (Plottable(plot, s.x[i], s.y[i])) {
         return true;
       }
     }

@@ -10,8 +10,9 @@
 namespace allanlab::app {
 
 // kBand: a translucent filled area between y_low and y_high (an envelope or confidence band);
-// y is its centre, used for the axis ranges only.
-enum class PlotStyle { kPoints, kLine, kDashedLine, kBand };
+// y is its centre, used for the axis ranges only. kBandOutline: the same band drawn as its two
+// edges (thin dotted lines), so that a filled band under it stays visible.
+enum class PlotStyle { kPoints, kLine, kDashedLine, kBand, kBandOutline };
 
 struct PlotSeries {
   std::string title;  // key entry
@@ -33,6 +34,8 @@ struct PlotSpan {
   std::string color = "#ff7f0e";    // gnuplot colour name or '#rrggbb'
   double opacity = 0.15;            // 0..1
   std::string title;                // key entry ("" : none); spans with the same title share it
+  double height = 1.0;              // from the bottom, as a fraction of the graph's height (a strip
+                                    // along the x axis that hides no data: 0.04)
 };
 
 struct AllanPlot {
@@ -50,6 +53,7 @@ struct AllanPlot {
   std::vector<double> slope_guides = {-1.0, -0.5, 0.0, 0.5, 1.0};
   int guide_series = 0;
   bool log_y = true;                     // false: a linear y axis (e.g. standardised residuals)
+  bool log_x = true;                     // false: a linear x axis (e.g. time in the record)
   std::string key = "top right opaque";  // gnuplot key placement ("outside right top", ...)
   std::vector<double> y_lines = {};      // faint horizontal reference lines (e.g. +-threshold)
   int width_px = 900;

@@ -21,7 +21,8 @@ std::string Coefficient(bool fitted, double value, double sigma) {
   return fitted ? PlainNumber(value) + " &plusmn; " + PlainNumber(sigma) : "not fitted";
 }
 
-void Section(std::ostream& os, const HtmlSection& s) {
+// The plain words and the coefficients side by side.
+void Summary(std::ostream& os, const HtmlSection& s) {
   if (!s.heading.empty()) os << "<h2>" << Escaped(s.heading) << "</h2>\n";
   os << "<h3>In plain words</h3>\n<ul class=\"plain\">\n";
   for (const std::string& line : PlainLines(s.plain)) os << "<li>" << Escaped(line) << "</li>\n";
@@ -34,8 +35,12 @@ void Section(std::ostream& os, const HtmlSection& s) {
     if (!s.plain.model_label.empty()) os << "<td>" << Coefficient(c.model_fitted, c.model, c.model_sigma) << "</td>";
     os << "</tr>\n";
   }
-  os << "</table>\n<details><summary>detail: every view, region and candidate</summary>\n<pre>"
-     << Escaped(s.detail) << "</pre>\n</details>\n";
+  os << "</table>\n";
+}
+
+void Detail(std::ostream& os, const HtmlSection& s) {
+  os << "<details><summary>detail" << (s.heading.empty() ? "" : " (" + Escaped(s.heading) + ")")
+     << ": every view, region and candidate</summary>\n<pre>" << Escaped(s.detail) << "</pre>\n</details>\n";
 }
 
 }  // namespace
@@ -76,8 +81,10 @@ void WriteDiagnoseHtml(std::ostream& os, const std::string& title, const std::ve
         "pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.85em; }\n"
         "img { max-width: 100%; border: 1px solid #ddd; }\n"
         "</style>\n</head>\n<body>\n<h1>" << Escaped(title) << "</h1>\n";
-  for (const HtmlSection& s : sections) Section(os, s);
+  for (const HtmlSection& s : sections) Summary(os, s);
   if (!png.empty()) os << "<h2>Plot</h2>\n<img alt=\"diagnosis plot\" src=\"data:image/png;base64," << Base64(png) << "\">\n";
+  os << "<h2>Detail</h2>\n";
+  for (const HtmlSection& s : sections) Detail(os, s);
   os << "<h2>Provenance</h2>\n<table>\n";
   for (const auto& [k, v] : provenance) os << "<tr><td>" << Escaped(k) << "</td><td>" << Escaped(v) << "</td></tr>\n";
   os << "</table>\n</body>\n</html>\n";

@@ -1,7 +1,8 @@
 #pragma once
 // `diagnose --html OUT.html`: one self-contained page (no external file, script or font): the
-// plain-words summary and the coefficients side by side (diagnose_summary.h), the detailed text
-// report, and the plot inline as a base64 PNG.
+// plain-words summary and the coefficients side by side (diagnose_summary.h) of each section, the
+// plot inline as a base64 PNG, then each section's detailed text report (folded) and the
+// provenance.
 #include <ostream>
 #include <string>
 #include <vector>

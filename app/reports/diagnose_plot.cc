@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <optional>
+#include <utility>
 
+#include "common/number_text.h"
 #include "experiments/diagnosis/envelope.h"
 
 namespace allanlab::app {
@@ -15,18 +17,35 @@ constexpr const char* kBaselineColor = "#1f77b4";
 constexpr const char* kModelColor = "#2ca02c";
 constexpr const char* kGapColor = "#d62728";
 constexpr const char* kKey = "below left horizontal";  // under the axes: never over a curve
+constexpr double kStrip = 0.035;  // gap marks: a strip along the x axis, under the data
 
-std::string Short(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
-}
+std::string Short(double v) { return SignificantDigits(v, 4); }
 
 const ViewResiduals* Find(const std::vector<ViewResiduals>& views, View v) {
   for (const ViewResiduals& r : views) {
     if (r.view == v) return &r;
   }
   return nullptr;
+}
+
+bool TauView(View v) { return v != View::kChangePoint && v != View::kTrend; }
+
+// The tau range of a region (the PSD's frequencies as tau = 1 / (2 f)).
+std::pair<double, double> TauRange(const GapRegion& r) {
+  if (r.view == View::kPsd) return {0.5 / r.x_max, 0.5 / r.x_min};
+  return {r.x_min, r.x_max};
+}
+
+// A light strip along the x axis over each region of `view` on its own axis (every tau view's
+// on the tau axis when `view` is empty): where the record departs, marked without covering a point.
+void MarkGaps(const DiagnosisSummary& s, std::optional<View> view, const std::string& title, AllanPlot* plot) {
+  for (const GapRegion& r : s.regions) {
+    if (view ? r.view != *view : !TauView(r.view)) continue;
+    const auto [lo, hi] = view ? std::pair(r.x_min, r.x_max) : TauRange(r);
+    PlotSpan span{lo, hi, kGapColor, 0.45, title};
+    span.height = kStrip;
+    plot->spans.push_back(span);
+  }
 }
 
 std::string ModelName(const DiagnosisSummary& s) {
@@ -51,6 +70,7 @@ AllanPlot AllanPanel(const DiagnosisSummary& s, const std::string& title, const 
                   PlotSeries* line) {
     const OavarTheory t = ExactOavar(model, s.curve.m, s.num_samples);
     PlotSeries b{name + ": 95 % band", PlotStyle::kBand, s.curve.tau_s, adev(t.mean)};
+    if (name == "baseline") b.style = PlotStyle::kBandOutline;  // the verdict's filled band shows under it
     for (std::size_t i = 0; i < t.mean.size(); ++i) {
       const bool ok = t.mean[i] > 0.0 && t.edf[i] > 0.0;
       const Band r = ok ? ChiSquareBand(t.mean[i], t.edf[i], 0.95) : Band{};
@@ -85,6 +105,7 @@ AllanPlot AllanPanel(const DiagnosisSummary& s, const std::string& title, const 
     }
     if (!gap.x.empty()) plot.series.push_back(gap);
   }
+  MarkGaps(s, std::nullopt, "tau where a view departs from the baseline", &plot);
   return plot;
 }
 
@@ -96,23 +117,22 @@ std::string ViewTitle(View v) {
     case View::kDynamic: return "Allan variance along the record";
     case View::kPsd: return "power spectral density";
     case View::kKurtosis: return "kurtosis of block-mean increments";
-    case View::kChangePoint: return "block means: largest step";
-    case View::kTrend: return "block means: exponential settling";
+    case View::kChangePoint:
+    case View::kTrend: return "block means";
   }
   return "?";
 }
 
 std::string AxisLabel(View v) {
   if (v == View::kPsd) return "frequency [Hz]";
-  if (v == View::kChangePoint || v == View::kTrend) return "block length [s]";
   return "tau [s]";
 }
 
 // One view: z of the record against the baseline and against the verdict model, with 0 and the
 // gap level +-threshold.
-AllanPlot ViewPanel(const DiagnosisSummary& s, View v, const std::string& where) {
+AllanPlot ViewPanel(const DiagnosisSummary& s, View v) {
   AllanPlot plot;
-  plot.title = std::string(ViewId(v)) + ": " + ViewTitle(v) + where;
+  plot.title = std::string(ViewId(v)) + ": " + ViewTitle(v);
   plot.x_label = AxisLabel(v);
   plot.y_label = "standardised residual z";
   plot.log_y = false;
@@ -121,6 +141,7 @@ AllanPlot ViewPanel(const DiagnosisSummary& s, View v, const std::string& where)
   plot.slope_guides.clear();
   plot.y_lines = {-s.threshold, 0.0, s.threshold};
   plot.height_px = 450;
+  MarkGaps(s, v, "gap: |z| > " + Short(s.threshold), &plot);
   if (const ViewResiduals* r = Find(s.before.views, v)) {
     PlotSeries b{"record vs baseline (gap: |z| > " + Short(s.threshold) + ", dashed)", PlotStyle::kPoints, r->x, r->z};
     b.color = kBaselineColor;
@@ -136,19 +157,85 @@ AllanPlot ViewPanel(const DiagnosisSummary& s, View v, const std::string& where)
   return plot;
 }
 
+// The block-mean views in the time domain: the record's block means over the record, the
+// baseline's level and the verdict model's (its step or warm-up drift placed in time), each level
+// set to the record's mean (the bias, which no view tests), and the located step or the settling
+// marked along the time axis.
+AllanPlot BlockMeansPanel(const DiagnosisSummary& s, const DiagnoseUnits& units) {
+  const BlockMeanSeries& b = s.block_means;
+  AllanPlot plot;
+  plot.x_label = "time in the record [s]";
+  plot.y_label = "block mean of the " + QuantityWord(units) + " [" + ReportRateUnit(units) + "]";
+  plot.log_x = plot.log_y = false;
+  plot.key = kKey;
+  plot.guide_series = -1;
+  plot.slope_guides.clear();
+  plot.height_px = 450;
+  const double unit = ReportRatePerSi(units);
+  auto mean = [](const std::vector<double>& v) {
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  };
+  const double level = mean(b.record);
+  auto leveled = [&](const std::vector<double>& path) {
+    std::vector<double> y;
+    const double offset = level - mean(path);
+    for (double p : path) y.push_back((p + offset) * unit);
+    return y;
+  };
+  PlotSeries record{"record: means of " + std::to_string(b.record.size()) + " blocks of " + Short(b.block_s) + " s",
+                    PlotStyle::kPoints, b.time_s, {}};
+  for (double r : b.record) record.y.push_back(r * unit);
+  record.color = "#000000";
+  PlotSeries baseline{"baseline", PlotStyle::kDashedLine, b.time_s, leveled(b.baseline_path)};
+  baseline.color = kBaselineColor;
+  plot.series = {record, baseline};
+  if (!b.verdict_path.empty()) {
+    PlotSeries model{ModelName(s), PlotStyle::kLine, b.time_s, leveled(b.verdict_path)};
+    model.color = kModelColor;
+    plot.series.push_back(model);
+  }
+  std::string where;
+  bool step = false, settling = false;  // one mark per view: its first region
+  for (const GapRegion& r : s.regions) {
+    if (r.view == View::kChangePoint && !step) {
+      step = true;
+      where += std::string(where.empty() ? "" : "; ") + "level " + (r.mean_z > 0 ? "rises" : "falls") + " at t = " +
+               Short(r.time_s) + " s";
+      PlotSpan span{r.time_s, r.time_s, kGapColor, 0.45, "located step"};
+      span.height = kStrip;
+      plot.spans.push_back(span);
+    } else if (r.view == View::kTrend && !settling) {
+      settling = true;
+      where += std::string(where.empty() ? "" : "; ") + "settles " + (r.mean_z > 0 ? "from above" : "from below") +
+               ", time constant " + Short(r.time_s) + " s";
+      PlotSpan span{0.0, std::min(r.time_s, b.time_s.empty() ? r.time_s : b.time_s.back()), kGapColor, 0.45,
+                    "settling: one time constant from the start"};
+      span.height = kStrip;
+      plot.spans.push_back(span);
+    }
+  }
+  plot.title = "block means over the record" + (where.empty() ? "" : ": " + where);
+  return plot;
+}
+
 }  // namespace
 
 std::vector<AllanPlot> DiagnosePanels(const DiagnosisSummary& s, const std::string& title,
                                       const DiagnoseUnits& units) {
   std::vector<AllanPlot> panels = {AllanPanel(s, title, units)};
   std::vector<View> shown;
+  bool block_means = false;
   for (const GapRegion& r : s.regions) {
     if (r.view == View::kOavar || std::find(shown.begin(), shown.end(), r.view) != shown.end()) continue;
     shown.push_back(r.view);
-    std::string where;
-    if (r.view == View::kChangePoint) where = " (step at t = " + Short(r.time_s) + " s)";
-    if (r.view == View::kTrend) where = " (time constant " + Short(r.time_s) + " s)";
-    panels.push_back(ViewPanel(s, r.view, where));
+    if (TauView(r.view)) {
+      panels.push_back(ViewPanel(s, r.view));
+    } else if (!block_means && !s.block_means.record.empty()) {
+      block_means = true;
+      panels.push_back(BlockMeansPanel(s, units));
+    }
   }
   return panels;
 }

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
+#include "common/number_text.h"
 #include "estimators/fit/noise_coefficient.h"
 
 namespace allanlab::app {
@@ -104,16 +104,52 @@ std::string Where(const GapRegion& r, const DiagnoseUnits& u) {
   return "?";
 }
 
+// The regions left, per view: its x range over all of them and the largest |z|.
+std::vector<std::string> Remains(const std::vector<GapRegion>& regions) {
+  std::vector<std::string> out;
+  std::vector<View> seen;
+  for (const GapRegion& first : regions) {
+    if (std::find(seen.begin(), seen.end(), first.view) != seen.end()) continue;
+    seen.push_back(first.view);
+    double lo = first.x_min, hi = first.x_max, z = 0.0;
+    int count = 0;
+    for (const GapRegion& r : regions) {
+      if (r.view != first.view) continue;
+      lo = std::min(lo, r.x_min), hi = std::max(hi, r.x_max), z = std::max(z, r.max_abs_z);
+      ++count;
+    }
+    const std::string range = first.view == View::kPsd
+                                  ? (lo == hi ? PlainNumber(lo) : PlainNumber(lo) + " .. " + PlainNumber(hi)) + " Hz"
+                                  : (first.view == View::kChangePoint || first.view == View::kTrend ? "blocks of " : "tau ") +
+                                        Tau(lo, hi);
+    out.push_back(std::string(ViewId(first.view)) + " at " + range + " (max |z| " + PlainNumber(z) +
+                  (count > 1 ? ", " + std::to_string(count) + " regions" : "") + ")");
+  }
+  return out;
+}
+
 std::string QuantityText(const PlainQuantity& q) {
   std::string t = q.name + " " + PlainNumber(q.value) + (q.unit.empty() ? "" : " " + q.unit);
   if (q.record_value) t += " (" + PlainNumber(*q.record_value) + " " + q.record_unit + ")";
+  if (!q.caveat.empty()) t += " [" + q.caveat + "]";
   return t;
 }
 
+// A correlation time near the sample period or a cutoff near the Nyquist frequency is where the
+// fit ran out of record, not a property measured (physically impossible values are refused as
+// candidates: experiments/diagnosis/physical_bounds.h).
+void AddCaveat(double sample_period_s, PlainQuantity* q) {
+  if (!(sample_period_s > 0.0)) return;
+  const double nyquist = 0.5 / sample_period_s;
+  if (q->unit == "s" && q->name != "time" && q->value < 2.0 * sample_period_s) {
+    q->caveat = "within 2x of the " + PlainNumber(sample_period_s) + " s sample period: the record cannot resolve it";
+  } else if (q->name == "cutoff" && q->value > 0.9 * nyquist) {
+    q->caveat = "at the " + PlainNumber(nyquist) + " Hz Nyquist frequency: the record cannot resolve it";
+  }
+}
+
 std::string EffectText(const PlainEffect& e) {
-  std::string t = e.description + " [" + e.id + "]";
-  for (std::size_t i = 0; i < e.quantities.size(); ++i) t += (i ? ", " : ": ") + QuantityText(e.quantities[i]);
-  return t;
+  return e.description + " [" + e.id + "]" + (e.quantities.empty() ? "" : ": " + QuantitiesText(e));
 }
 
 std::string ShrinkText(const PlainShrink& v) {
@@ -128,10 +164,12 @@ std::string CoefficientText(bool fitted, double value, double sigma) {
 
 }  // namespace
 
-std::string PlainNumber(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
+std::string PlainNumber(double v) { return SignificantDigits(v, 4); }
+
+std::string QuantitiesText(const PlainEffect& e) {
+  std::string t;
+  for (std::size_t i = 0; i < e.quantities.size(); ++i) t += (i ? ", " : "") + QuantityText(e.quantities[i]);
+  return t;
 }
 
 PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& units) {
@@ -150,6 +188,7 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
       if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
       for (const std::string& name : EffectParameterNames(e.effect)) {
         pe.quantities.push_back(Quantity(name, e.params.at(name), units));
+        AddCaveat(s.sample_period_s, &pe.quantities.back());
       }
       p.effects.push_back(std::move(pe));
     }
@@ -165,12 +204,25 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
     if (c->after.has_heldout) {
       p.shrink.push_back({"held-out", c->after.heldout.points, c->heldout_before.chi2, c->after.heldout.chi2});
     }
+    if (p.best_tried) p.best_tried_why = c->why_not_verdict;
+    p.remains = Remains(s.remaining);
+  }
+  for (std::size_t i = 0; i < s.candidates.size(); ++i) {
+    const CandidateResult& other = s.candidates[i];
+    if (static_cast<int>(i) == s.verdict_candidate || !other.closes_gap) continue;
+    p.also_closes.emplace_back(other.id(), other.why_not_verdict);
   }
   if (s.baseline_model.band_limit.enabled()) {
     const auto& b = s.baseline_model.band_limit;
-    p.baseline_note = std::string("the baseline includes a ") +
+    const double nyquist = s.sample_period_s > 0.0 ? 0.5 / s.sample_period_s : 0.0;
+    p.baseline_note = std::string("the baseline includes the output chain's band-limit that allanlab fit finds: a ") +
                       (b.kind == sim::LowPassKind::kFirstOrder ? "first-order" : "second-order Butterworth") +
-                      " low-pass, cutoff " + PlainNumber(b.cutoff_hz) + " Hz (held)";
+                      " low-pass at " + PlainNumber(b.cutoff_hz) + " Hz" +
+                      (b.sampling == sim::OutputSampling::kAverage ? ", averaged to the output rate" : "") + " (held)";
+    if (nyquist > 0.0 && b.cutoff_hz > 0.9 * nyquist) {
+      p.baseline_note += "; a cutoff at or above the " + PlainNumber(nyquist) +
+                         " Hz Nyquist frequency shapes only the shortest taus, not a finding";
+    }
   }
   for (estimators::Coefficient k : estimators::kAllCoefficients) {
     const auto& b = s.baseline.at(k);
@@ -203,6 +255,15 @@ std::vector<std::string> PlainLines(const PlainSummary& p) {
   for (std::size_t i = 0; i < p.effects.size(); ++i) {
     const std::string lead = i > 0 ? "together with " : (p.named ? "explained by " : "not explained; the best tried: ");
     lines.push_back(lead + EffectText(p.effects[i]));
+  }
+  if (!p.best_tried_why.empty()) lines.push_back("not named: it " + p.best_tried_why);
+  if (!p.remains.empty()) {
+    std::string t = "still departs " + p.model_label + ": ";
+    for (std::size_t i = 0; i < p.remains.size(); ++i) t += (i ? "; " : "") + p.remains[i];
+    lines.push_back(t);
+  }
+  for (const auto& [id, why] : p.also_closes) {
+    lines.push_back("not the verdict: " + id + (why.empty() ? "" : " " + why));
   }
   if (!p.baseline_note.empty()) lines.push_back(p.baseline_note);
   if (!p.shrink.empty()) {
@@ -256,17 +317,23 @@ Json PlainJson(const PlainSummary& p) {
     for (const PlainQuantity& x : e.quantities) {
       Json one{{"name", x.name}, {"value", x.value}, {"unit", x.unit}};
       if (x.record_value) one["record_value"] = *x.record_value, one["record_unit"] = x.record_unit;
+      if (!x.caveat.empty()) one["caveat"] = x.caveat;
       q.push_back(one);
     }
     effects.push_back({{"id", e.id}, {"description", e.description}, {"quantities", q}});
   }
   j["effects"] = effects;
   j["effects_are"] = p.named ? "verdict" : (p.best_tried ? "best_tried" : "none");
+  if (p.best_tried) j["best_tried_not_named_because"] = p.best_tried_why;
+  Json closes = Json::array();
+  for (const auto& [id, why] : p.also_closes) closes.push_back({{"effect", id}, {"not_the_verdict_because", why}});
+  j["also_closes"] = closes;
   Json shrink = Json::array();
   for (const PlainShrink& v : p.shrink) {
     shrink.push_back({{"view", v.view}, {"points", v.points}, {"chi2_before", v.chi2_before}, {"chi2_after", v.chi2_after}});
   }
   j["shrink"] = shrink;
+  j["remains"] = p.remains;
   Json coefficients = Json::array();
   for (const PlainCoefficient& c : p.coefficients) {
     Json one{{"id", c.id}, {"unit", c.unit},

@@ -9,6 +9,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -25,6 +26,9 @@ struct PlainQuantity {
   // The same rate in the record's unit when it is not the report's (nullopt otherwise).
   std::optional<double> record_value;
   std::string record_unit;
+  // Said beside the value when a fit sits at the record's resolution (a correlation time within
+  // a factor 2 of the sample period, a cutoff within 10 % of the Nyquist frequency).
+  std::string caveat;
 };
 
 struct PlainEffect {
@@ -53,6 +57,13 @@ struct PlainSummary {
   std::vector<PlainEffect> effects;
   std::vector<PlainShrink> shrink;  // the views that depart, then held-out (named or best tried)
   std::vector<PlainCoefficient> coefficients;
+  // What still departs with the verdict's (or best tried) model, one phrase per view.
+  std::vector<std::string> remains;
+  // Unexplained: why the best tried was not named (CandidateResult::why_not_verdict).
+  std::string best_tried_why;
+  // The other candidates that close the gap in the views they were scored on, and why each is
+  // not the verdict (so the verdict line and the candidates' table agree).
+  std::vector<std::pair<std::string, std::string>> also_closes;
   std::string model_label;          // "with bias_step" (empty: baseline only)
   std::string baseline_note;        // the baseline's band-limit, when it has one
   double threshold_z = 0.0;
@@ -70,7 +81,9 @@ void WritePlainText(std::ostream& os, const PlainSummary& p);
 void WritePlainMarkdown(std::ostream& os, const PlainSummary& p);
 // JSON `summary`: the same numbers, keyed (value, unit).
 nlohmann::ordered_json PlainJson(const PlainSummary& p);
-// Significant digits every form prints (the consistency test parses at this precision).
+// Significant digits every form prints (4; the consistency test parses at this precision).
 std::string PlainNumber(double v);
+// An effect's parameters in the report's units: "size 15 deg/h (0.004167 deg/s), time 2500 s".
+std::string QuantitiesText(const PlainEffect& e);
 
 }  // namespace allanlab::app

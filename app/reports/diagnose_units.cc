@@ -37,6 +37,9 @@ ReportedRate ReportRate(const DiagnoseUnits& u, double si) {
   } else {
     RateUnit unit;
     if (!ParseRateUnit(u.record_unit, &unit, &ignored)) return r;  // an angle record: deg/h only
+    // A gyro's report is in degrees: a record in rad/s gets its rates in deg/h alone, not beside
+    // the SI unit the report never uses.
+    if (unit == RateUnit::kRadPerSecond) return r;
     r.record_value = FromRadPerSecond(unit, si);
     r.record_unit = std::string(RateUnitName(unit));
   }

@@ -24,7 +24,8 @@ struct DiagnoseUnits {
 struct ReportedRate {
   double value = 0.0;
   std::string unit;  // "deg/h" or "mg"
-  // The same quantity in the record's unit, when that differs from the report's.
+  // The same quantity in the record's unit, when that differs from the report's (a gyro
+  // record's deg/s; not rad/s: a gyro's report is in degrees).
   std::optional<double> record_value;
   std::string record_unit;
 };

@@ -300,6 +300,26 @@ bool LocatedStep(const std::vector<ViewResiduals>& views, double threshold, doub
   return found;
 }
 
+std::vector<double> BlockMeans(std::span<const double> x, int blocks) {
+  const std::size_t m = x.size() / static_cast<std::size_t>(blocks);
+  std::vector<double> means(static_cast<std::size_t>(blocks), 0.0);
+  for (std::size_t b = 0; b < means.size(); ++b) {
+    double sum = 0.0;
+    for (std::size_t k = b * m; k < (b + 1) * m; ++k) sum += x[k];
+    means[b] = sum / static_cast<double>(m);
+  }
+  return means;
+}
+
+std::vector<double> DeterministicPath(const sim::SensorModel& model, std::int64_t n) {
+  sim::SensorModel events;
+  events.sample_rate_hz = model.sample_rate_hz;
+  for (const sim::NoiseTerm& t : model.terms) {
+    if (IsEvent(t)) events.terms.push_back(t);
+  }
+  return events.terms.empty() ? std::vector<double>() : events.Generate(0, 0, n);
+}
+
 std::vector<int> BlockMeanCounts(std::int64_t n) {
   std::vector<int> out;
   for (int b : {64, 32, 16}) {  // ascending block length, as every view's x
@@ -324,12 +344,7 @@ void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<con
   if (block_counts.empty()) return;
   const auto n = static_cast<std::int64_t>(rate.size());
   // The record less the model's deterministic path (its steps and warm-up drifts, placed in time).
-  sim::SensorModel events;
-  events.sample_rate_hz = model.sample_rate_hz;
-  for (const sim::NoiseTerm& t : model.terms) {
-    if (IsEvent(t)) events.terms.push_back(t);
-  }
-  const std::vector<double> path = events.terms.empty() ? std::vector<double>() : events.Generate(0, 0, n);
+  const std::vector<double> path = DeterministicPath(model, n);
   std::int64_t longest = 0;
   for (int b : block_counts) longest = std::max(longest, b * (n / b));
   const std::vector<double> r = RandomPartAutocovariance(model, longest + 1);

@@ -57,6 +57,14 @@ void BlockMeanResiduals(std::span<const double> rate_rad_per_s, double sample_pe
                         std::span<const int> block_counts, const sim::SensorModel& model,
                         double rate_random_walk_bound, ViewResiduals* change_point, ViewResiduals* trend);
 
+// Means of `blocks` equal blocks of floor(x.size() / blocks) samples (the rest left out).
+// Precondition: 1 <= blocks <= x.size().
+std::vector<double> BlockMeans(std::span<const double> x, int blocks);
+
+// The model's deterministic path (its bias steps and warm-up drifts, placed in time), sample by
+// sample over n samples; empty when it has none.
+std::vector<double> DeterministicPath(const sim::SensorModel& model, std::int64_t n);
+
 // The change-point view's most significant point beyond `threshold` in `views`: where it places
 // the step [s from the start] and its block length [s]; false (outputs untouched) when none.
 bool LocatedStep(const std::vector<ViewResiduals>& views, double threshold, double* time_s, double* block_s);

@@ -121,6 +121,27 @@ bool CommonChecks(const DiagnoseOptions& options, DiagnosisSummary* summary) {
   return true;
 }
 
+// The finest block-mean view's blocks (block_means.h), with the baseline's and the verdict's (or
+// best tried) model's deterministic paths over them.
+BlockMeanSeries RecordBlockMeans(std::span<const double> rate, double tau0, const DiagnosisSummary& s) {
+  BlockMeanSeries out;
+  const auto n = static_cast<std::int64_t>(rate.size());
+  const std::vector<int> counts = BlockMeanCounts(n);
+  if (counts.empty()) return out;
+  const int blocks = counts.front();
+  const std::int64_t m = n / blocks;
+  out.block_s = static_cast<double>(m) * tau0;
+  for (int b = 0; b < blocks; ++b) out.time_s.push_back((b + 0.5) * out.block_s);
+  out.record = BlockMeans(rate, blocks);
+  auto path = [&](const sim::SensorModel& model) {
+    const std::vector<double> p = DeterministicPath(model, n);
+    return p.empty() ? std::vector<double>(static_cast<std::size_t>(blocks), 0.0) : BlockMeans(p, blocks);
+  };
+  out.baseline_path = path(s.baseline_model);
+  if (s.verdict_candidate >= 0) out.verdict_path = path(s.candidates[s.verdict_candidate].model);
+  return out;
+}
+
 }  // namespace
 
 bool DiagnoseOptions::IsValid(std::string* why) const {
@@ -237,6 +258,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     s.before.has_heldout = true;
   }
   Finish(ctx, &s);
+  s.block_means = RecordBlockMeans(rate, tau0, s);
   s.ok = true;
   return true;
 }

@@ -111,6 +111,10 @@ struct CandidateResult {
     GapMetrics heldout_before, heldout_after;
   };
   std::vector<Step> steps;
+  // Why it is not the verdict, in words with its numbers (empty for the verdict; for
+  // "unexplained" every candidate says why it was not named): the first rule of the verdict
+  // (5. above) it fails, or the candidate that won and on what.
+  std::string why_not_verdict;
   std::string id() const;        // "gauss_markov" or "bias_step+outliers"
 };
 
@@ -122,6 +126,18 @@ struct SkippedEffect {
 struct AlsoConsistent {
   std::string effect;
   std::string separating_view;  // a view that could tell it from the verdict ("" when none known)
+};
+
+// The record's rate level over time, as the block-mean views see it (block_means.h), for a plot:
+// the means of `blocks` equal blocks of floor(N / blocks) samples, and each model's deterministic
+// path (its bias steps and warm-up drifts; zero without them) averaged over the same blocks. The
+// models' constant level (the bias, which no view tests) is left out of the paths.
+struct BlockMeanSeries {
+  double block_s = 0.0;
+  std::vector<double> time_s;         // block centres [s from the start]
+  std::vector<double> record;         // [rad/s]
+  std::vector<double> baseline_path;  // [rad/s]
+  std::vector<double> verdict_path;   // [rad/s]; empty without a verdict's (or best tried) model
 };
 
 struct DiagnosisSummary {
@@ -146,6 +162,7 @@ struct DiagnosisSummary {
   int verdict_candidate = -1;  // index into candidates (also for "unexplained": the best tried)
   std::vector<AlsoConsistent> also_consistent;
   std::vector<std::string> notes;  // fallbacks taken
+  BlockMeanSeries block_means;     // empty in curve mode
 };
 
 // A record of rate samples (rad/s) at period tau0. Returns summary->ok (false: bad options, a

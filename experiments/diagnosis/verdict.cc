@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <optional>
 
+#include "common/number_text.h"
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/diagnosis/block_means.h"
 #include "experiments/diagnosis/candidate_estimate.h"
@@ -365,6 +367,67 @@ void ListAlsoConsistent(const Context& ctx, DiagnosisSummary* s) {
   }
 }
 
+std::string Num(double v) { return SignificantDigits(v, 4); }
+
+// The assessed view with the largest |z| of `gap`, as "kurtosis |z| 4.888".
+std::string WorstView(const ModelGap& gap) {
+  const ViewResiduals* worst = nullptr;
+  double worst_z = -1.0;
+  for (const ViewResiduals& r : gap.views) {
+    const double z = Metrics(r.z).max_abs_z;
+    if (z > worst_z) worst = &r, worst_z = z;
+  }
+  return worst == nullptr ? "" : std::string(ViewId(worst->view)) + " |z| " + Num(worst_z);
+}
+
+// Why `c` is not the verdict: the first rule of Acceptable (and Pick, ResolveEquivalents) it
+// fails, with its numbers, in the order a reader checks them.
+std::string WhyNotVerdict(const Context& ctx, const DiagnosisSummary& s, const CandidateResult& c) {
+  const int k = ParameterCount(c.effects);
+  const std::string scored = c.full_views ? "on every view" : "on the Allan variance (oavar) only";
+  if (!c.full_views && ctx.have_record && ctx.options->trials >= 3) {
+    return "scored on the Allan variance (oavar) only: its score there (" + Num(c.score) +
+           ") ranked too low for the other views to be simulated" +
+           (c.closes_gap ? "" : "; it leaves " + WorstView(c.after) + " beyond " + Num(s.threshold));
+  }
+  if (!c.closes_gap) {
+    return "does not close the gap (scored " + scored + "): " + WorstView(c.after) + " beyond " + Num(s.threshold);
+  }
+  const double score = c.full_views ? c.full_score : c.score;
+  if (score <= 0.0) {
+    return "closes the gap, but its chi2 gain does not pay for its " + std::to_string(k) +
+           " parameter(s): penalised score " + Num(score) + " (scored " + scored + ")";
+  }
+  if (c.after.has_heldout && !(c.after.heldout.chi2 < c.heldout_before.chi2 + 2.0 * k)) {
+    return "closes the gap, but fitted on one half it does not improve the other: held-out chi2 " +
+           Num(c.heldout_before.chi2) + " -> " + Num(c.after.heldout.chi2);
+  }
+  if (s.verdict_candidate < 0 || !s.explains_all || s.verdict == "unexplained") return "";
+  const CandidateResult& v = s.candidates[s.verdict_candidate];
+  if (c.effects.size() == 1 && v.effects.size() == 1) {
+    for (const auto& eq : AllanEquivalents(v.effects[0].effect)) {
+      if (eq.other != c.effects[0].effect || eq.separating_view.empty()) continue;
+      const std::string view = eq.separating_view;
+      for (View w : kAllViews) {
+        if (ViewId(w) != view) continue;
+        const GapMetrics mine = c.after.View(w), theirs = v.after.View(w);
+        if (mine.points > 0 && theirs.points > 0 && theirs.chi2 < mine.chi2) {
+          return "closes the gap too, with the same Allan variance as " + v.id() + "; the " + view +
+                 " view tells them apart: chi2 " + Num(mine.chi2) + " against " + Num(theirs.chi2);
+        }
+      }
+    }
+  }
+  if (v.full_score - score > 2.0) {
+    return "closes the gap too, with a penalised score " + Num(v.full_score - score) + " below " + v.id() + "'s (" +
+           Num(score) + " against " + Num(v.full_score) + ")";
+  }
+  const double d = score - v.full_score;
+  return "closes the gap too, with a penalised score within 2 of " + v.id() + "'s (" + Num(std::abs(d)) +
+         (d > 0.0 ? " above" : " below") + "), which the record cannot tell apart; " + v.id() +
+         " shrinks the held-out chi2 more (" + Num(HeldoutShrink(v)) + "x against " + Num(HeldoutShrink(c)) + "x)";
+}
+
 }  // namespace
 
 void Finish(const Context& ctx, DiagnosisSummary* s) {
@@ -406,6 +469,10 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
       c.steps = {{c.effects[0].effect, c.heldout_before, c.after.heldout}};
     }
     s->remaining = FindGapRegions(c.after.views, s->threshold);
+  }
+  for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+    if (static_cast<int>(i) == s->verdict_candidate && s->verdict != "unexplained") continue;
+    s->candidates[i].why_not_verdict = WhyNotVerdict(ctx, *s, s->candidates[i]);
   }
 }
 

@@ -68,6 +68,38 @@ TEST_F(AllanPlotTest, PointsWithErrorBarsIncludingOneSidedOnes) {
   EXPECT_EQ(ReadAll(dir_ / "bars.png").substr(1, 3), "PNG");
 }
 
+// A time-domain panel: linear axes (negative rates, a time axis from 0), a band drawn as its
+// outline, and strips along the x axis (a one-point one too).
+TEST_F(AllanPlotTest, LinearAxesBandOutlinesAndStripsRender) {
+  std::string why;
+  if (!FindGnuplot(&why)) GTEST_SKIP() << why;
+  AllanPlot plot;
+  plot.title = "block means";
+  plot.log_x = plot.log_y = false;
+  plot.guide_series = -1;
+  PlotSeries means{"record", PlotStyle::kPoints, {}, {}};
+  PlotSeries band{"95 % band", PlotStyle::kBandOutline, {}, {}};
+  for (int k = 0; k < 64; ++k) {
+    const double t = 10.0 * k, level = k < 40 ? -3.0 : 12.0;
+    means.x.push_back(t);
+    means.y.push_back(level + std::sin(k));
+    band.x.push_back(t);
+    band.y.push_back(level);
+    band.y_low.push_back(level - 2.0);
+    band.y_high.push_back(level + 2.0);
+  }
+  plot.series = {band, means};
+  PlotSpan step{400.0, 400.0, "#d62728", 0.45, "located step"};
+  step.height = 0.035;
+  PlotSpan settling{0.0, 120.0, "#d62728", 0.45, "settling"};
+  settling.height = 0.035;
+  plot.spans = {step, settling};
+  ASSERT_TRUE(WriteAllanPlotPng(plot, (dir_ / "linear.png").string(), &why)) << why;
+  const std::string png = ReadAll(dir_ / "linear.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
 TEST_F(AllanPlotTest, MissingGnuplotFailsClearlyAndKeepsTheOldFile) {
   { std::ofstream(dir_ / "plot.png") << "old"; }
   const std::string saved_path = std::getenv("PATH") ? std::getenv("PATH") : "";

@@ -1,6 +1,8 @@
 // `allanlab diagnose`: stdout, the Markdown report, the JSON and the HTML page say the same thing
-// in the same units (the plain-words summary first), the HTML page is self-contained and renders
-// in a real browser (headless Chromium, when installed), and --jobs does not change the result.
+// in the same units (the plain-words summary first: the effect, where it is and its size in the
+// sensor's units), the HTML page is self-contained and renders in a real browser (headless
+// Chromium, when installed), and --jobs does not change the result. The records come from the
+// independent generator (independent/generate.h), not from the code the candidates are fitted with.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +15,9 @@
 #include <sstream>
 #include <string>
 
-#include "sim/sensor_model.h"
+#include "independent/generate.h"
+#include "independent/recipe.h"
+#include "common/number_text.h"
 #include "tests/support/command_test.h"
 
 namespace allanlab::app {
@@ -25,18 +29,35 @@ using Json = nlohmann::json;
 class DiagnoseReportTest : public testing_support::CommandTest {
  protected:
   DiagnoseReportTest() : CommandTest("allanlab_diagnose_report", "diagnose") {}
-  // White rate noise (1e-4 rad/s per sample at 100 Hz) with a step of 6e-5 rad/s at 60 % of a
-  // 16384-sample record: ~20 sigma in 1024-sample block means against a white-noise baseline.
+  // White rate noise (1e-4 rad/s per sample at 100 Hz) with a step of kStep at kStepTime (60 %
+  // of a 16384-sample record): ~20 sigma in 1024-sample block means against a white-noise
+  // baseline. Written in deg/s.
+  static constexpr double kStep = 6e-5;  // rad/s: 12.38 deg/h
+  static constexpr double kStepTime = 98.3;  // s
   void WriteStepRecord() {
-    sim::SensorModel model;
-    model.sample_rate_hz = 100.0;
-    sim::WhiteRateNoise white;
-    white.arw_rad_per_sqrt_s = 1e-5;
-    model.terms = {white};
-    const std::vector<double> rate = model.Generate(3, 0, 16384);
+    independent::Recipe recipe;
+    recipe.rate_hz = 100.0;
+    recipe.noise.arw_rad_per_sqrt_s = 1e-5;
+    recipe.bias_step = independent::BiasStep{kStep, kStepTime};
+    const std::vector<double> rate = independent::Generate(recipe, 16384, 3, 0);
     std::ofstream out(dir_ / "rec.csv");
     out << "rate_deg_per_s\n";
-    for (std::size_t k = 0; k < rate.size(); ++k) out << (rate[k] + (k >= 9830 ? 6e-5 : 0.0)) * 180.0 / M_PI << "\n";
+    for (double r : rate) out << ShortestDecimal(r * 180.0 / M_PI) << "\n";
+  }
+  // The step record diagnosed against white noise (--model N): stdout, Markdown and JSON.
+  struct Report {
+    Json json;
+    std::string out, md;
+  };
+  void DiagnoseStepRecord(Report* r) {
+    WriteStepRecord();
+    ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N --trials 5 --json " + Path("d.json") + " --report " +
+                  Path("d.md")),
+              0)
+        << Read("err.txt");
+    r->json = Json::parse(Read("d.json"));
+    r->out = Read("out.txt");
+    r->md = Read("d.md");
   }
 };
 
@@ -64,14 +85,103 @@ void ExpectPrinted(double printed, double exact, const std::string& what) {
   EXPECT_NEAR(printed, exact, 6e-4 * std::abs(exact) + 1e-12) << what;
 }
 
+// The first lines say what a sensor engineer asks: which effect (in words and by id), where (the
+// step's time in the record, from the change-point view), how large in deg/h and in the record's
+// deg/s, and no SI rad/s anywhere in a report given in deg/h. The step's size is the difference
+// of the two sides' means: sd 1e-4 sqrt(1/9830 + 1/6554) = 1.6e-6 rad/s (0.33 deg/h), 5 sd
+// allowed; its time within one 64-block length (2.56 s).
+TEST_F(DiagnoseReportTest, AnIndependentRecordsReportNamesTheEffectWhereAndHowLargeInDegPerHour) {
+  Report r;
+  ASSERT_NO_FATAL_FAILURE(DiagnoseStepRecord(&r));
+  const Json& j = r.json;
+  const std::string &out = r.out, &md = r.md;
+  ASSERT_EQ(j["verdict"]["effect"], "bias_step") << out;
+  constexpr double kDegPerHour = M_PI / 180.0 / 3600.0, kSizeSd = 1.6e-6 / kDegPerHour;
+  std::smatch m;
+  for (const std::string& text : {out, md}) {
+    const std::string where = LineWith(text, "departs: the rate level");
+    ASSERT_TRUE(std::regex_search(where, m, std::regex(R"(the rate level rises at t = ([0-9.e+]+) s from the start)")))
+        << text;
+    EXPECT_NEAR(std::stod(m[1]), kStepTime, 2.56) << where;
+    const std::string which = LineWith(text, "explained by ");
+    ASSERT_TRUE(std::regex_search(
+        which, m, std::regex(R"(a bias step \[bias_step\]: size ([-0-9.e+]+) deg/h \(([-0-9.e+]+) deg/s\), time ([0-9.e+]+) s)")))
+        << which;
+    EXPECT_NEAR(std::stod(m[1]), kStep / kDegPerHour, 5 * kSizeSd) << which;
+    ExpectPrinted(std::stod(m[2]) * 3600.0, std::stod(m[1]), "deg/s against deg/h: " + which);
+    EXPECT_NEAR(std::stod(m[3]), kStepTime, 2.56) << which;
+    EXPECT_EQ(text.find("rad"), std::string::npos) << text;
+    EXPECT_NE(LineWith(text, "gap chi2 before -> after with bias_step: ").find(" change_point "), std::string::npos)
+        << text;
+  }
+  // The same numbers in the JSON summary, keyed with their units.
+  const Json& q = j["summary"]["effects"][0]["quantities"];
+  ASSERT_EQ(q.size(), 2u) << q;
+  EXPECT_EQ(q[0]["name"], "size");
+  EXPECT_EQ(q[0]["unit"], "deg/h");
+  EXPECT_EQ(q[0]["record_unit"], "deg/s");
+  EXPECT_EQ(q[1]["name"], "time");
+  EXPECT_EQ(q[1]["unit"], "s");
+  EXPECT_NE(out.find("size " + SignificantDigits(q[0]["value"].get<double>(), 4) + " deg/h"), std::string::npos);
+  EXPECT_NE(md.find("time " + SignificantDigits(q[1]["value"].get<double>(), 4) + " s"), std::string::npos);
+}
+
+// One number format: the share of points inside the 95 % band is a percentage in the three forms.
+TEST_F(DiagnoseReportTest, TheShareInside95PercentIsAPercentageEverywhere) {
+  Report r;
+  ASSERT_NO_FATAL_FAILURE(DiagnoseStepRecord(&r));
+  const Json& j = r.json;
+  const std::string &out = r.out, &md = r.md;
+  const Json& cp = j["gap"]["views"]["change_point"];
+  ASSERT_FALSE(cp.contains("fraction_in_95")) << cp;
+  const double percent = cp["percent_in_95"];
+  EXPECT_GE(percent, 0.0);
+  EXPECT_LE(percent, 100.0);
+  const std::string printed = SignificantDigits(percent, 4);
+  EXPECT_NE(LineWith(out, "change_point: chi2").find(", " + printed + " % inside 95 %"), std::string::npos) << out;
+  EXPECT_NE(md.find("| change_point | " + std::to_string(cp["points"].get<int>()) + " | " +
+                    SignificantDigits(cp["chi2"].get<double>(), 4) + " | " + printed + " |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("% inside 95 %"), std::string::npos);
+}
+
+// Every candidate that is not the verdict says why, the same words in the three forms; one that
+// closes the gap is listed beside the verdict.
+TEST_F(DiagnoseReportTest, EveryOtherCandidateSaysWhyItIsNotTheVerdict) {
+  Report r;
+  ASSERT_NO_FATAL_FAILURE(DiagnoseStepRecord(&r));
+  const Json& j = r.json;
+  const std::string &out = r.out, &md = r.md;
+  const std::string verdict = j["verdict"]["effect"];
+  ASSERT_GE(j["candidates"].size(), 2u);
+  std::size_t closing_others = 0;
+  for (const Json& c : j["candidates"]) {
+    if (c["effect"] == verdict) {
+      EXPECT_FALSE(c.contains("not_the_verdict_because")) << c.dump();
+      continue;
+    }
+    ASSERT_TRUE(c.contains("not_the_verdict_because")) << c["effect"];
+    const std::string why = c["not_the_verdict_because"];
+    EXPECT_FALSE(why.empty());
+    EXPECT_NE(out.find("not the verdict: " + why), std::string::npos) << why << "\n" << out;
+    EXPECT_NE(md.find("| " + why + " |"), std::string::npos) << why;
+    if (c["closes_gap"].get<bool>()) {
+      ++closing_others;
+      bool listed = false;
+      for (const Json& a : j["summary"]["also_closes"]) listed |= a["effect"] == c["effect"] && a["not_the_verdict_because"] == why;
+      EXPECT_TRUE(listed) << c["effect"];
+      EXPECT_NE(LineWith(out, "not the verdict: " + c["effect"].get<std::string>()).find(why), std::string::npos) << out;
+    }
+  }
+  EXPECT_EQ(j["summary"]["also_closes"].size(), closing_others);
+}
+
 TEST_F(DiagnoseReportTest, StdoutMarkdownAndJsonAgreeInTheSameUnits) {
-  WriteStepRecord();
-  ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N --trials 5 --json " + Path("d.json") + " --report " +
-                Path("d.md")),
-            0)
-      << Read("err.txt");
-  const Json j = Json::parse(Read("d.json"));
-  const std::string out = Read("out.txt"), md = Read("d.md");
+  Report r;
+  ASSERT_NO_FATAL_FAILURE(DiagnoseStepRecord(&r));
+  const Json& j = r.json;
+  const std::string &out = r.out, &md = r.md;
   ASSERT_TRUE(j["gap"]["significant"].get<bool>());
   const Json& summary = j["summary"];
   // The plain words come first on stdout and in the report.

@@ -7,9 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 #include "experiments/diagnosis/block_means.h"
+#include "experiments/diagnosis/diagnose.h"
+#include "independent/recipe.h"
+#include "tests/support/diagnosis_record.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -58,6 +62,60 @@ TEST(BlockMeans, RampAddsAConstant) {
   const double block_s = 10.0;
   for (std::size_t k = 0; k < plain.size(); ++k) {
     EXPECT_NEAR(with_ramp[k] - plain[k], 1e-14 * block_s * block_s, 1e-9 * 1e-14 * block_s * block_s);
+  }
+}
+
+// Means of blocks of 0, 1, 2, ...: block b of m samples averages b m + (m - 1) / 2; the last
+// n mod blocks samples are left out.
+TEST(BlockMeans, MeansOfEqualBlocksLeaveTheRemainderOut) {
+  std::vector<double> x(103);
+  std::iota(x.begin(), x.end(), 0.0);
+  const std::vector<double> means = BlockMeans(x, 10);
+  ASSERT_EQ(means.size(), 10u);
+  for (int b = 0; b < 10; ++b) EXPECT_DOUBLE_EQ(means[b], b * 10 + 4.5) << b;
+}
+
+TEST(BlockMeans, DeterministicPathIsTheStepAloneAndEmptyWithoutEvents) {
+  sim::SensorModel model;
+  model.sample_rate_hz = 10.0;
+  model.terms = {sim::WhiteRateNoise{}};
+  EXPECT_TRUE(DeterministicPath(model, 100).empty());
+  model.terms.push_back(sim::BiasStep{2e-4, 4.0});
+  const std::vector<double> path = DeterministicPath(model, 100);
+  ASSERT_EQ(path.size(), 100u);
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(path[k], k >= 40 ? 2e-4 : 0.0) << k;
+}
+
+// The series a plot of the block-mean views draws, on an independent record with a step of
+// 6e-5 rad/s at 98.3 s (16384 samples at 100 Hz): 64 blocks of 256 samples, the record's means as
+// BlockMeans gives them, no path for the white-noise baseline, and the verdict's path a step of
+// its fitted size at its fitted time.
+TEST(BlockMeans, TheDiagnosisKeepsTheRecordsBlockMeansAndTheVerdictsPath) {
+  independent::Recipe recipe;
+  recipe.rate_hz = 100.0;
+  recipe.noise.arw_rad_per_sqrt_s = 1e-5;
+  recipe.bias_step = independent::BiasStep{6e-5, 98.3};
+  const std::vector<double> record = independent::Generate(recipe, 16384, 3, 0);
+  DiagnosisSummary s;
+  ASSERT_TRUE(DiagnoseRecord(testing::TestDiagnoseOptions({estimators::Coefficient::kN}), record, 0.01, &s))
+      << s.message;
+  ASSERT_EQ(s.verdict, "bias_step") << testing::DescribeVerdict(s);
+  const BlockMeanSeries& b = s.block_means;
+  ASSERT_EQ(b.record.size(), 64u);
+  EXPECT_DOUBLE_EQ(b.block_s, 2.56);
+  EXPECT_DOUBLE_EQ(b.time_s.front(), 1.28);
+  EXPECT_EQ(b.record, BlockMeans(record, 64));
+  EXPECT_EQ(b.baseline_path, std::vector<double>(64, 0.0));
+  ASSERT_EQ(b.verdict_path.size(), 64u);
+  const EffectInstance& step = s.candidates[s.verdict_candidate].effects[0];
+  const double size = step.params.at("size_rad_per_s"), at = step.params.at("time_s");
+  for (std::size_t i = 0; i < 64; ++i) {
+    const double start = static_cast<double>(i) * b.block_s, end = start + b.block_s;
+    if (end <= at) {
+      EXPECT_EQ(b.verdict_path[i], 0.0) << i;
+    } else if (start >= at + 0.01) {
+      EXPECT_NEAR(b.verdict_path[i], size, 1e-12 * std::abs(size)) << i;
+    }
   }
 }
 
