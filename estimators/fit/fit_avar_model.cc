@@ -560,6 +560,7 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
         }
       }
       linear->problem.target = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), static_cast<Eigen::Index>(taus));
+      linear->problem.whitening = whitening;
       const AvarCovarianceModel* covariance = &cache->Covariance();
       linear->problem.whitening_at = [covariance, asked = p.asked, scale = linear->scale](
                                          const Eigen::VectorXd& x_scaled, Eigen::MatrixXd* w) {

@@ -1,6 +1,7 @@
 #include "estimators/fit/linear_profile.h"
 
 #include "estimators/fit/bounded_threshold.h"
+#include "estimators/fit/profile_calibration.h"
 
 #include <algorithm>
 #include <bit>
@@ -110,7 +111,11 @@ SubsetChoice SelectSubsetByAic(const LinearProblem& p) {
   best.competitive = {best.mask};
   for (unsigned mask = 0; mask < (1u << n); ++mask) {
     const bool superset = (mask & best.mask) == best.mask;
-    if (!superset && scores[mask] <= best.score + kCompetitiveAic) best.competitive.push_back(mask);
+    const bool one_more = superset && std::popcount(mask) == std::popcount(best.mask) + 1;
+    if ((!superset && scores[mask] <= best.score + kCompetitiveAic) ||
+        (one_more && scores[mask] <= best.score + kSupportedTermAic)) {
+      best.competitive.push_back(mask);
+    }
   }
   return best;
 }
@@ -119,7 +124,7 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, 
   return ProfileInterval(p, free_mask, j, [delta](double) { return delta; });
 }
 
-ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level) {
+double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j) {
   std::vector<Eigen::Index> cols;
   Eigen::Index at = 0;
   for (Eigen::Index k = 0; k < p.a.cols(); ++k) {
@@ -130,39 +135,57 @@ ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, 
   Eigen::MatrixXd sub(p.a.rows(), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t c = 0; c < cols.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = p.a.col(cols[c]);
   const Eigen::MatrixXd cov = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse();
-  const double sigma = std::sqrt(std::max(cov(at, at), 0.0));
+  return std::sqrt(std::max(cov(at, at), 0.0));
+}
+
+ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level) {
+  const double sigma = ProfileStandardError(p, free_mask, j);
   return ProfileInterval(p, free_mask, j, [level, sigma](double t) {
     return BoundedLikelihoodRatioThreshold(level, sigma > 0.0 ? std::max(t, 0.0) / sigma : 1e300);
   });
 }
 
-ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
-                             const std::function<double(double t)>& delta) {
-  const Eigen::VectorXd x_hat = SolveSubset(p, free_mask);
-  const double chi2_min = p.Chi2(x_hat);
-  const double t_hat = x_hat(j);
-  auto held = [&](double t) { return p.Chi2(SolveMasked(p, free_mask, j, t)) - chi2_min; };
-  // Delta(t) <= delta inside the range (header).
-  auto statistic = [&](double t) {
-    if (!p.whitening_at) return held(t);
+Eigen::VectorXd SolveHeld(const LinearProblem& p, unsigned free_mask, int j, double t) {
+  return SolveMasked(p, free_mask, j, t);
+}
+
+double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, double t) {
+  if (p.whitening_at) {
     Eigen::MatrixXd w;
-    if (!p.whitening_at(SolveMasked(p, free_mask, j, t), &w)) return held(t);
-    LinearProblem q;
-    q.a = w * p.design;
-    q.y = w * p.target;
-    return q.Chi2(SolveMasked(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
-  };
+    if (p.whitening_at(SolveMasked(p, free_mask, j, t), &w)) {
+      LinearProblem q;
+      q.a = w * p.design;
+      q.y = w * p.target;
+      return q.Chi2(SolveMasked(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
+    }
+  }
+  return p.Chi2(SolveMasked(p, free_mask, j, t)) - p.Chi2(SolveSubset(p, free_mask));
+}
+
+double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
+                  const std::function<double(double t)>& delta, bool upper) {
+  const double t_hat = SolveSubset(p, free_mask)(j);
+  // Delta(t) <= delta inside the range (header).
+  auto inside = [&](double t) { return ProfileStatistic(p, free_mask, j, t) <= delta(t); };
   const double tolerance = p.whitening_at ? 1e-6 : 1e-9;
-  // The estimate is inside by construction: each end is bracketed from it outwards (with W0 held
+  if (!upper) {
+    if (t_hat <= 0.0 || inside(0.0)) return 0.0;
+    double lo = 0.0, hi = t_hat;
+    for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (inside(mid) ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+  // The estimate is inside by construction: the end is bracketed from it outwards (with W0 held
   // the statistic is convex in t, so the end is its one root).
   const double column = p.a.col(j).norm();
   double step = column > 0.0 ? std::sqrt(delta(t_hat)) / column : 1.0;  // the end with the others fixed
   step = std::max(step, 1e-6 * t_hat);
-  ProfileRange r;
   double lo = t_hat, hi = t_hat + step;
   bool bracketed = false;
   for (int i = 0; i < 80; ++i) {
-    if (statistic(hi) > delta(hi)) {
+    if (!inside(hi)) {
       bracketed = true;
       break;
     }
@@ -170,26 +193,19 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
     step *= 2.0;
     hi = t_hat + step;
   }
-  if (!bracketed) {
-    r.upper = std::numeric_limits<double>::infinity();  // not bounded up to 2^80 first steps
-  } else {
-    for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (statistic(mid) <= delta(mid) ? lo : hi) = mid;
-    }
-    r.upper = 0.5 * (lo + hi);
-  }
-  if (t_hat <= 0.0 || statistic(0.0) <= delta(0.0)) {
-    r.lower = 0.0;
-    return r;
-  }
-  lo = 0.0;
-  hi = t_hat;
+  if (!bracketed) return std::numeric_limits<double>::infinity();  // not bounded up to 2^80 first steps
   for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (statistic(mid) <= delta(mid) ? hi : lo) = mid;
+    (inside(mid) ? lo : hi) = mid;
   }
-  r.lower = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
+                             const std::function<double(double t)>& delta) {
+  ProfileRange r;
+  r.upper = ProfileEnd(p, free_mask, j, delta, true);
+  r.lower = ProfileEnd(p, free_mask, j, delta, false);
   return r;
 }
 
@@ -209,8 +225,9 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
     if (std::find(masks.begin(), masks.end(), m | (1u << j)) == masks.end()) masks.push_back(m | (1u << j));
   }
   for (unsigned mask : masks) {
-    hull(&r68, BoundedProfileInterval(p, mask, j, kProfileLevel68));
-    hull(&r95, BoundedProfileInterval(p, mask, j, kProfileLevel95));
+    const auto range = p.whitening_at ? CalibratedProfileInterval : BoundedProfileInterval;
+    hull(&r68, range(p, mask, j, kProfileLevel68));
+    hull(&r95, range(p, mask, j, kProfileLevel95));
     if (!e->fitted) upper = std::max(upper, ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);
   }
   e->has_intervals = true;
