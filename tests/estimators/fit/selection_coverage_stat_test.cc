@@ -5,7 +5,9 @@
 // takes a spurious Q, N traded against it sits low), the hull over the competitive subsets
 // (linear_profile.h) covers within 3 points of nominal, the fit's target (at 8000 draws: chosen
 // subset 64.4 % and 93.3 %, hull 68.3 % and 94.0 %; the binomial sd at 4000 draws is 0.74 and 0.34
-// points, so the band is 4 and 9 sd wide and a method 1 point further off fails).
+// points, so the band is 4 and 9 sd wide and a method 1 point further off fails). With the
+// one-term superset the data support at one sigma also in the hull, 4000 draws: hull 2808 (70.2 %)
+// and 3768 (94.2 %).
 #include <gtest/gtest.h>
 
 #include <algorithm>
