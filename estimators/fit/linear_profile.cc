@@ -163,11 +163,11 @@ double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, doubl
 }
 
 double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
-                  const std::function<double(double t)>& delta, bool upper) {
+                  const std::function<double(double t)>& delta, bool upper, double relative_tolerance) {
   const double t_hat = SolveSubset(p, free_mask)(j);
   // Delta(t) <= delta inside the range (header).
   auto inside = [&](double t) { return ProfileStatistic(p, free_mask, j, t) <= delta(t); };
-  const double tolerance = p.whitening_at ? 1e-6 : 1e-9;
+  const double tolerance = relative_tolerance > 0.0 ? relative_tolerance : p.whitening_at ? 1e-6 : 1e-9;
   if (!upper) {
     if (t_hat <= 0.0 || inside(0.0)) return 0.0;
     double lo = 0.0, hi = t_hat;
@@ -225,9 +225,9 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
     if (std::find(masks.begin(), masks.end(), m | (1u << j)) == masks.end()) masks.push_back(m | (1u << j));
   }
   for (unsigned mask : masks) {
-    const auto range = p.whitening_at ? CalibratedProfileInterval : BoundedProfileInterval;
-    hull(&r68, range(p, mask, j, kProfileLevel68));
-    hull(&r95, range(p, mask, j, kProfileLevel95));
+    const ProfileRanges ranges = CalibratedProfileIntervals(p, mask, j);
+    hull(&r68, ranges.at68);
+    hull(&r95, ranges.at95);
     if (!e->fitted) upper = std::max(upper, ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);
   }
   e->has_intervals = true;

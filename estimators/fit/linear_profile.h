@@ -108,9 +108,10 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
 Eigen::VectorXd SolveHeld(const LinearProblem& p, unsigned free_mask, int j, double t);
 // Delta(t), the statistic ProfileInterval compares with the critical value (above).
 double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, double t);
-// One end of the range (upper: from the estimate outwards; lower: 0 when 0 is accepted).
+// One end of the range (upper: from the estimate outwards; lower: 0 when 0 is accepted), bisected
+// to `relative_tolerance` of the end (0: 1e-6 with p.whitening_at set, else 1e-9).
 double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
-                  const std::function<double(double t)>& delta, bool upper);
+                  const std::function<double(double t)>& delta, bool upper, double relative_tolerance = 0.0);
 // The `level` interval with the bounded critical value (header): t is accepted when Delta(t) <=
 // BoundedLikelihoodRatioThreshold(level, t / sigma_j), sigma_j the standard error of x_j among
 // the free terms (from A, unconstrained).
@@ -119,7 +120,7 @@ ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, 
 double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j);
 
 // The estimate's profile ranges in SI (c_j^2 = scale x_j): its 68.3 % and 95 % intervals
-// (BoundedProfileInterval; with p.whitening_at set, CalibratedProfileInterval of
+// (BoundedProfileInterval; with p.whitening_at set, CalibratedProfileIntervals of
 // profile_calibration.h) and, when it is not fitted, its 95 % upper limit, each the hull of the
 // ranges profiled in every subset of `free_masks` (column j added to those without it, whose
 // intervals then start at 0). One mask: the ranges of that model. The competitive subsets of the

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <boost/random/normal_distribution.hpp>
@@ -14,10 +16,23 @@ namespace allanlab::estimators {
 namespace {
 
 constexpr std::uint64_t kCalibrationSeed = 0x70726f66696c65ULL;
+constexpr double kSearchTolerance = 1e-4;  // the ends' bisection under an interpolated ratio, relative
 
-double GaussianThreshold(const LinearProblem& p, unsigned free_mask, int j, double t, double level) {
-  const double sigma = ProfileStandardError(p, free_mask, j);
-  return BoundedLikelihoodRatioThreshold(level, sigma > 0.0 ? std::max(t, 0.0) / sigma : 1e300);
+// min |y_r - A x|^2 over x >= 0 for each column y_r of `y`, A the columns `cols` of `a`: the
+// unconstrained solution of one QR when it is feasible (most replicates), else NNLS.
+Eigen::VectorXd MinChi2(const Eigen::MatrixXd& a, const std::vector<Eigen::Index>& cols,
+                        const Eigen::MatrixXd& y) {
+  if (cols.empty()) return y.colwise().squaredNorm().transpose();
+  Eigen::MatrixXd sub(a.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = a.col(cols[c]);
+  const Eigen::MatrixXd x = sub.colPivHouseholderQr().solve(y);
+  Eigen::VectorXd chi2(y.cols());
+  for (Eigen::Index r = 0; r < y.cols(); ++r) {
+    const Eigen::VectorXd xr = x.col(r).minCoeff() >= 0.0 ? Eigen::VectorXd(x.col(r))
+                                                           : NonNegativeLeastSquares(sub, y.col(r));
+    chi2(r) = (y.col(r) - sub * xr).squaredNorm();
+  }
+  return chi2;
 }
 
 }  // namespace
@@ -51,102 +66,126 @@ double EstimateSkewness(const LinearProblem& p, unsigned free_mask, int j) {
   return k2 > 0.0 ? k3 / std::pow(k2, 1.5) : 0.0;
 }
 
-double CalibratedCriticalValue(const LinearProblem& p, unsigned free_mask, int j, double t, double level) {
+CalibrationRatio CalibrationRatioAt(const LinearProblem& p, unsigned free_mask, int j, double t) {
+  CalibrationRatio out;
   const Eigen::VectorXd held = SolveHeld(p, free_mask, j, t);
   Eigen::MatrixXd w;
-  if (!p.whitening_at || !p.whitening_at(held, &w)) return GaussianThreshold(p, free_mask, j, t, level);
+  if (!p.whitening_at || !p.whitening_at(held, &w)) return out;
   const Eigen::Index n = w.rows();
+  const Eigen::MatrixXd a = w * p.design;
   // M M' = Omega_t for M = W^-1 (W' W = Omega_t^-1).
   const Eigen::MatrixXd m = w.fullPivLu().solve(Eigen::MatrixXd::Identity(n, n));
   const Eigen::VectorXd sd = m.rowwise().norm();
   const Eigen::VectorXd mean = p.design * held;
-  LinearProblem q;
-  q.a = w * p.design;
   sim::Engine engine = sim::MakeEngine(kCalibrationSeed, 0, 0);
   boost::random::normal_distribution<double> normal;
-  // Per replicate, the statistic with chi-square marginals and with Gaussian ones (the same
-  // deviates): the ratio of their quantiles is the skew's effect alone (header).
-  std::vector<double> skewed(kCalibrationReplicates), gaussian(kCalibrationReplicates);
-  Eigen::VectorXd z(n), curve(n);
-  auto statistic = [&](const Eigen::VectorXd& y) {
-    q.y = w * y;
-    return q.Chi2(SolveHeld(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
-  };
-  for (int r = 0; r < kCalibrationReplicates; ++r) {
-    for (Eigen::Index i = 0; i < n; ++i) z(i) = normal(engine);
-    const Eigen::VectorXd g = m * z;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (!(mean(i) > 0.0) || !(sd(i) > 0.0)) {
-        curve(i) = mean(i) + g(i);
-        continue;
-      }
-      // E chi2_nu / nu with nu = 2 E^2 / Omega_ii: Wilson-Hilferty, (1 - a^2 + a u)^3 with
-      // a^2 = 2 / (9 nu) and u = g / sd the standardised deviate.
-      const double a2 = sd(i) * sd(i) / (9.0 * mean(i) * mean(i));
-      const double base = std::max(0.0, 1.0 - a2 + std::sqrt(a2) * g(i) / sd(i));
-      curve(i) = mean(i) * base * base * base;
-    }
-    skewed[static_cast<std::size_t>(r)] = statistic(curve);
-    gaussian[static_cast<std::size_t>(r)] = statistic(mean + g);
+  // Per replicate, the curve with chi-square marginals and with Gaussian ones (the same
+  // deviates): the ratio of their statistics' quantiles is the skew's effect alone (header).
+  Eigen::MatrixXd z(n, kCalibrationReplicates);
+  for (Eigen::Index r = 0; r < z.cols(); ++r) {
+    for (Eigen::Index i = 0; i < n; ++i) z(i, r) = normal(engine);
   }
-  auto quantile = [level](std::vector<double>& v) {
+  const Eigen::MatrixXd g = m * z;
+  Eigen::MatrixXd skewed_curves = g.colwise() + mean, gaussian_curves = skewed_curves;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(mean(i) > 0.0) || !(sd(i) > 0.0)) continue;
+    // E chi2_nu / nu with nu = 2 E^2 / Omega_ii: Wilson-Hilferty, (1 - a^2 + a u)^3 with
+    // a^2 = 2 / (9 nu) and u = g / sd the standardised deviate.
+    const double a2 = sd(i) * sd(i) / (9.0 * mean(i) * mean(i));
+    for (Eigen::Index r = 0; r < z.cols(); ++r) {
+      const double base = std::max(0.0, 1.0 - a2 + std::sqrt(a2) * g(i, r) / sd(i));
+      skewed_curves(i, r) = mean(i) * base * base * base;
+    }
+  }
+  std::vector<Eigen::Index> free_cols, held_cols;
+  for (Eigen::Index k = 0; k < p.a.cols(); ++k) {
+    if (!((free_mask >> k) & 1u)) continue;
+    free_cols.push_back(k);
+    if (k != j) held_cols.push_back(k);
+  }
+  auto statistics = [&](const Eigen::MatrixXd& curves) {
+    const Eigen::MatrixXd y = w * curves;
+    const Eigen::MatrixXd y_held = y.colwise() - t * a.col(j);
+    const Eigen::VectorXd d = MinChi2(a, held_cols, y_held) - MinChi2(a, free_cols, y);
+    return std::vector<double>(d.data(), d.data() + d.size());
+  };
+  std::vector<double> skewed = statistics(skewed_curves), gaussian = statistics(gaussian_curves);
+  auto quantile = [](std::vector<double>& v, double level) {
     const auto k = static_cast<std::size_t>(std::ceil(level * kCalibrationReplicates)) - 1;
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
     return std::max(v[k], 0.0);
   };
-  const double reference = quantile(gaussian);
-  const double threshold = GaussianThreshold(p, free_mask, j, t, level);
-  return reference > 0.0 ? threshold * quantile(skewed) / reference : threshold;
+  auto ratio = [&](double level) {
+    const double reference = quantile(gaussian, level);
+    return reference > 0.0 ? quantile(skewed, level) / reference : 1.0;
+  };
+  out.at68 = ratio(kProfileLevel68);
+  out.at95 = ratio(kProfileLevel95);
+  return out;
 }
 
-ProfileRange CalibratedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level) {
-  if (std::abs(EstimateSkewness(p, free_mask, j)) < kGaussianSkewness) {
-    return BoundedProfileInterval(p, free_mask, j, level);
+ProfileRanges CalibratedProfileIntervals(const LinearProblem& p, unsigned free_mask, int j) {
+  const double sigma = ProfileStandardError(p, free_mask, j);
+  if (!p.whitening_at || !(sigma > 0.0) || !std::isfinite(sigma) ||
+      std::abs(EstimateSkewness(p, free_mask, j)) < kGaussianSkewness) {
+    return {BoundedProfileInterval(p, free_mask, j, kProfileLevel68),
+            BoundedProfileInterval(p, free_mask, j, kProfileLevel95)};
   }
-  auto inside = [&](double t) {
-    return ProfileStatistic(p, free_mask, j, t) <= CalibratedCriticalValue(p, free_mask, j, t, level);
+  const ProfileRange gaussian68 = BoundedProfileInterval(p, free_mask, j, kProfileLevel68);
+  if (gaussian68.lower > 0.0) {
+    // Off the boundary the ratio is 1 within the replicates' noise (header).
+    return {gaussian68, BoundedProfileInterval(p, free_mask, j, kProfileLevel95)};
+  }
+  const double t_hat = std::max(SolveSubset(p, free_mask)(j), 0.0);
+  auto bounded = [sigma](double level, double t) {
+    return BoundedLikelihoodRatioThreshold(level, std::max(t, 0.0) / sigma);
   };
-  auto gaussian = [&](double t) { return GaussianThreshold(p, free_mask, j, t, level); };
-  const double t_hat = SolveSubset(p, free_mask)(j);
-  constexpr double kTolerance = 1e-2;
-  ProfileRange r;
-  // Upper end: from the Gaussian one, widened until outside, then bisected against the estimate
-  // (or the last accepted value).
-  double lo = t_hat, hi = ProfileEnd(p, free_mask, j, gaussian, true);
-  if (!std::isfinite(hi)) {
-    r.upper = hi;
-  } else {
-    hi = std::max(hi, t_hat);
-    if (hi <= 0.0) hi = 1.0 / std::max(p.a.col(j).squaredNorm(), 1e-300);
-    int widen = 0;
-    for (; widen < 60 && inside(hi); ++widen) {
-      lo = hi;
-      hi *= 2.0;
+  // The calibrated points, in t, shared by the two levels and both ends.
+  std::vector<std::pair<double, CalibrationRatio>> points;
+  auto ratio_at = [&](double level, double t) {
+    auto read = [level](const CalibrationRatio& r) { return level == kProfileLevel68 ? r.at68 : r.at95; };
+    if (points.empty()) return 1.0;
+    if (t <= points.front().first) return read(points.front().second);
+    for (std::size_t k = 1; k < points.size(); ++k) {
+      if (t > points[k].first) continue;
+      const double u = (t - points[k - 1].first) / (points[k].first - points[k - 1].first);
+      return read(points[k - 1].second) + u * (read(points[k].second) - read(points[k - 1].second));
     }
-    if (widen == 60) {
-      r.upper = std::numeric_limits<double>::infinity();
-    } else {
-      for (int i = 0; i < 60 && hi - lo > kTolerance * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (inside(mid) ? lo : hi) = mid;
-      }
-      r.upper = 0.5 * (lo + hi);
+    return read(points.back().second);
+  };
+  // One end: searched with the ratio interpolated between the points calibrated so far (none:
+  // the Gaussian end), then calibrated there, until a calibrated point lies within kEndTolerance
+  // of the end found (header).
+  auto calibrate = [&](double t) {
+    const CalibrationRatio c = CalibrationRatioAt(p, free_mask, j, t);
+    points.insert(std::upper_bound(points.begin(), points.end(), t,
+                                   [](double v, const auto& k) { return v < k.first; }),
+                  {t, c});
+  };
+  auto end = [&](double level, bool upper) {
+    // The lower end is 0 when the test at 0 accepts it: the ratio there is the smallest (K's
+    // statistic at 0 is mostly 0 when its estimates are skewed), so it is calibrated first.
+    if (!upper && t_hat > 0.0 && (points.empty() || points.front().first > 0.0)) calibrate(0.0);
+    double e = 0.0;
+    for (int round = 0; round <= kMaxCalibrations; ++round) {
+      e = ProfileEnd(p, free_mask, j, [&](double t) { return ratio_at(level, t) * bounded(level, t); },
+                     upper, kSearchTolerance);
+      if (!std::isfinite(e) || (!upper && e <= 0.0) || round == kMaxCalibrations) break;
+      const bool near = std::any_of(points.begin(), points.end(), [e](const auto& k) {
+        return std::abs(k.first - e) <= kEndTolerance * std::max(e, k.first);
+      });
+      if (near) break;
+      calibrate(e);
     }
-  }
-  // Lower end: 0 when 0 is accepted; else bisected between 0 and the estimate (the estimate held
-  // inside as with the Gaussian threshold).
-  if (inside(0.0)) {
-    r.lower = 0.0;
+    return e;
+  };
+  auto range = [&](double level) {
+    ProfileRange r;
+    r.upper = end(level, true);
+    r.lower = end(level, false);
     return r;
-  }
-  lo = 0.0;
-  hi = t_hat > 0.0 ? t_hat : std::min(r.upper, ProfileEnd(p, free_mask, j, gaussian, true));
-  for (int i = 0; i < 60 && hi - lo > kTolerance * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (inside(mid) ? hi : lo) = mid;
-  }
-  r.lower = 0.5 * (lo + hi);
-  return r;
+  };
+  return {range(kProfileLevel68), range(kProfileLevel95)};
 }
 
 }  // namespace allanlab::estimators
