@@ -1,0 +1,39 @@
+// The units a diagnosis is reported in (app/reports/diagnose_units.h): a gyro's rates in deg/h,
+// beside the record's deg/s but never beside rad/s (a gyro's report is in degrees); an
+// accelerometer's in mg beside the record's g. Conversions checked against constants written
+// here: 1 rad/s = 180/pi deg/s = 648000/pi deg/h; 1 g = 9.80665 m/s^2.
+#include "app/reports/diagnose_units.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace allanlab::app {
+namespace {
+
+TEST(DiagnoseUnits, AGyroRateIsInDegPerHourBesideDegPerSecondNotRadPerSecond) {
+  const double si = 1e-4;  // rad/s
+  const ReportedRate deg_s = ReportRate({ImuSensor::kGyro, "deg/s"}, si);
+  EXPECT_EQ(deg_s.unit, "deg/h");
+  EXPECT_NEAR(deg_s.value, si * 648000.0 / M_PI, 1e-12);
+  ASSERT_TRUE(deg_s.record_value.has_value());
+  EXPECT_EQ(deg_s.record_unit, "deg/s");
+  EXPECT_NEAR(*deg_s.record_value, si * 180.0 / M_PI, 1e-15);
+  const ReportedRate rad_s = ReportRate({ImuSensor::kGyro, "rad/s"}, si);
+  EXPECT_EQ(rad_s.unit, "deg/h");
+  EXPECT_NEAR(rad_s.value, si * 648000.0 / M_PI, 1e-12);
+  EXPECT_FALSE(rad_s.record_value.has_value()) << rad_s.record_unit;
+  EXPECT_FALSE(ReportRate({ImuSensor::kGyro, "deg/h"}, si).record_value.has_value());  // the report's own
+}
+
+TEST(DiagnoseUnits, AnAccelerometerIsInMilliGBesideTheRecordsG) {
+  const ReportedRate r = ReportRate({ImuSensor::kAccelerometer, "g"}, 0.0980665);
+  EXPECT_EQ(r.unit, "mg");
+  EXPECT_NEAR(r.value, 10.0, 1e-12);
+  ASSERT_TRUE(r.record_value.has_value());
+  EXPECT_EQ(r.record_unit, "g");
+  EXPECT_NEAR(*r.record_value, 0.01, 1e-15);
+}
+
+}  // namespace
+}  // namespace allanlab::app
