@@ -58,6 +58,20 @@ class RawFile {
     }
     return true;
   }
+  // Reads straight into `out` when nothing is buffered (no copy through the buffer); false on a
+  // read error. *got == 0 at the end of the input.
+  bool ReadInto(std::span<char> out, std::size_t* got, std::string* why) {
+    *got = 0;
+    if (begin_ < end_ || eof_) return true;
+    while (true) {
+      const ssize_t n = ::read(fd_, out.data(), out.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) return Fail(why, "cannot read " + path_ + ": " + std::strerror(errno));
+      eof_ = n == 0;
+      *got = static_cast<std::size_t>(n);
+      return true;
+    }
+  }
   const unsigned char* data() const {
     return reinterpret_cast<const unsigned char*>(buffer_.data()) + begin_;
   }
@@ -79,6 +93,9 @@ class PlainSource : public ByteSource {
   explicit PlainSource(std::unique_ptr<RawFile> file) : file_(std::move(file)) {}
   bool Read(std::span<char> out, std::size_t* got, std::string* why) override {
     *got = 0;
+    // A large request with nothing buffered (every read after the format check's first bytes):
+    // straight from the file into `out`.
+    if (file_->size() == 0 && out.size() >= kInputChunk) return file_->ReadInto(out, got, why);
     if (!file_->Fill(why)) return false;
     const std::size_t n = std::min(out.size(), file_->size());
     std::memcpy(out.data(), file_->data(), n);

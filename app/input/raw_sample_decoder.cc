@@ -96,6 +96,21 @@ bool RawSampleDecoder::Feed(std::span<const char> bytes) {
   return FlushBlock();
 }
 
+bool RawSampleDecoder::FeedStorage(std::span<const double> values) {
+  if (!block_sink_ || type_ != RawSampleType::kFloat64 || carried_ != 0 ||
+      std::endian::native != std::endian::little) {
+    return Feed({reinterpret_cast<const char*>(values.data()), values.size_bytes()});
+  }
+  if (!FlushBlock()) return false;
+  while (!values.empty()) {
+    const std::size_t take = std::min(values.size(), block_.size());
+    index_ += static_cast<std::int64_t>(take);
+    if (!block_sink_(values.first(take), index_ - static_cast<std::int64_t>(take))) return false;
+    values = values.subspan(take);
+  }
+  return true;
+}
+
 bool RawSampleDecoder::Finish(std::string* why) const {
   if (carried_ == 0) return true;
   if (why) {

@@ -23,6 +23,10 @@ class RawSampleDecoder {
   RawSampleDecoder(RawSampleType type, BlockSink sink, std::size_t block_values);
   // Returns false when the sink stopped.
   bool Feed(std::span<const char> bytes);
+  // The same for bytes that are the storage of `values` (so read as doubles without a copy): in
+  // block mode, for float64 on a little-endian host with no partial sample carried over, the
+  // values go to the sink as they lie; otherwise as Feed(their bytes).
+  bool FeedStorage(std::span<const double> values);
   // Fails when the byte count is not a multiple of the sample size (a truncated file).
   bool Finish(std::string* why) const;
   std::int64_t values() const { return index_; }

@@ -442,13 +442,19 @@ class Reader {
         },
         kBlockValues);
     info_->column = type == RawSampleType::kFloat32 ? "float32 samples" : "float64 samples";
-    std::vector<char> chunk(kChunkBytes);
+    // Storage of doubles, so that whole float64 samples read into it are passed on as they lie.
+    std::vector<double> chunk(kChunkBytes / sizeof(double));
+    const std::span<char> bytes(reinterpret_cast<char*>(chunk.data()), kChunkBytes);
     std::string why;
     while (true) {
       std::size_t got = 0;
-      if (!source->Read(chunk, &got, &why)) return Runtime(error, why);
+      if (!source->Read(bytes, &got, &why)) return Runtime(error, why);
       if (got == 0) break;
-      decoder.Feed({chunk.data(), got});
+      if (got % sizeof(double) == 0) {
+        decoder.FeedStorage({chunk.data(), got / sizeof(double)});
+      } else {
+        decoder.Feed(bytes.first(got));
+      }
     }
     if (!decoder.Finish(&why)) return Runtime(error, In() + why);
     if (nonfinite_.count() > 0) {

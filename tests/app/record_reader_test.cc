@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <limits>
 #include <vector>
 
 #include "app/input/byte_source.h"
@@ -301,6 +302,40 @@ TEST_F(RecordReaderTest, TruncatedCompressedFilesFail) {
               std::string::npos)
         << r.error.message;
   }
+}
+
+// A raw float64 record of many read chunks: read straight into the chunk's doubles, the values
+// are the file's to the bit; a non-finite sample deep inside is named; a partial last sample fails.
+TEST_F(RecordReaderTest, LongRawFloat64RecordsReadWholeChunks) {
+  std::vector<double> expected;
+  std::string f64;
+  for (int k = 0; k < 100003; ++k) {
+    const double v = std::sin(0.001 * k) + 1e-9 * k;
+    expected.push_back(v);
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    for (int i = 0; i < 8; ++i) f64 += static_cast<char>((bits >> (8 * i)) & 0xff);
+  }
+  RecordReaderOptions o = Options(Write("long.f64", f64));
+  o.format = RecordFormat::kFloat64;
+  o.rate_hz = 100;
+  Result r = Read(o);
+  ASSERT_TRUE(r.ok) << r.error.message;
+  EXPECT_EQ(r.values, expected);
+  EXPECT_EQ(r.info.samples, 100003);
+
+  std::string with_nan = f64;
+  const auto nan_bits = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::quiet_NaN());
+  for (int i = 0; i < 8; ++i) with_nan[8 * 70001 + i] = static_cast<char>((nan_bits >> (8 * i)) & 0xff);
+  o.path = Write("nan.f64", with_nan);
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_NE(r.error.message.find("70001"), std::string::npos) << r.error.message;
+
+  o.path = Write("cut.f64", f64 + std::string(3, '\0'));
+  r = Read(o);
+  EXPECT_EQ(r.error.exit_code, kExitRuntimeError);
+  EXPECT_EQ(r.error.message, o.path + ": the data ends 3 byte(s) into a 8-byte sample: truncated "
+                                      "file, or not float64 data");
 }
 
 TEST_F(RecordReaderTest, RawWithoutRateOrWithAPartialSampleFails) {
