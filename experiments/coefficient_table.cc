@@ -19,11 +19,6 @@ namespace {
 using estimators::Coefficient;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string LevelName(double level) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "in_ci%g", level * 100.0);
-  return buffer;
-}
 
 }  // namespace
 
@@ -99,7 +94,7 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
         r.sigma_ratio_se = std::abs(r.sigma_ratio) *
                            std::hypot(mean_sigma_se / r.mean_sigma, sd_se / r.empirical_sd);
         for (double level : spec.confidence_levels) {
-          const ColumnStats* s = ps.Find(LevelName(level) + suffix);
+          const ColumnStats* s = ps.Find(CoverageColumnName(level) + suffix);
           r.coverage.push_back(s && s->count > 0 ? s->mean : kNaN);
           r.coverage_se.push_back(s && s->count > 0 ? CoverageStandardError(level, s->count) : kNaN);
           const RateInterval wilson = s && s->count > 0 ? WilsonInterval(s->mean, s->count) : RateInterval{kNaN, kNaN};

@@ -24,11 +24,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int Index(Coefficient c) { return static_cast<int>(c); }
 
-std::string LevelName(double level) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "in_ci%g", level * 100.0);
-  return buffer;
-}
 
 // "default": what `allanlab fit` does by default on the point's curve (GLS, Q,N,B,K,R with the
 // subset choice, profile-likelihood intervals), scored by its intervals rather than by sigma.
@@ -102,7 +97,7 @@ PointPlan MakePlan(const SweepSpec& spec, const SweepPoint& point) {
       plan.columns.push_back("missing" + suffix);
       if (fit) {
         plan.columns.push_back("rel_sigma" + suffix);
-        for (double level : spec.confidence_levels) plan.columns.push_back(LevelName(level) + suffix);
+        for (double level : spec.confidence_levels) plan.columns.push_back(CoverageColumnName(level) + suffix);
       }
       if (!fit && c == Coefficient::kB && plan.slope_read_target) {
         plan.columns.push_back("rel_err_read" + suffix);
@@ -368,6 +363,12 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
   }
   if (row.size() != plan.columns.size()) throw std::logic_error("coefficient trial: row size");
   return row;
+}
+
+std::string CoverageColumnName(double level) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "in_ci%g", level * 100.0);
+  return buffer;
 }
 
 }  // namespace allanlab::experiments

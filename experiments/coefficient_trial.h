@@ -95,6 +95,9 @@ FitAveragingWindow FitWindowOf(const SweepSpec& spec, const SweepPoint& point);
 inline constexpr const char* kFitMethodNames[] = {"slope", "wls", "log_wls", "gls"};  // "default" on request
 // Methods of a spec (all four when it lists none) and the coefficients compared at a point.
 std::vector<std::string> MethodsOf(const SweepSpec& spec);
+
+// The coverage column's stem for a confidence level: 0.683 -> "in_ci68.3", 0.95 -> "in_ci95".
+std::string CoverageColumnName(double level);
 std::vector<estimators::Coefficient> ComparedCoefficients(const SweepSpec& spec,
                                                           const SweepPoint& point);
 
