@@ -124,16 +124,22 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j, 
   return ProfileInterval(p, free_mask, j, [delta](double) { return delta; });
 }
 
-double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j) {
+Eigen::MatrixXd FreeColumns(const LinearProblem& p, unsigned free_mask, int j, Eigen::Index* at_j) {
   std::vector<Eigen::Index> cols;
-  Eigen::Index at = 0;
+  *at_j = 0;
   for (Eigen::Index k = 0; k < p.a.cols(); ++k) {
     if (!((free_mask >> k) & 1u)) continue;
-    if (k == j) at = static_cast<Eigen::Index>(cols.size());
+    if (k == j) *at_j = static_cast<Eigen::Index>(cols.size());
     cols.push_back(k);
   }
   Eigen::MatrixXd sub(p.a.rows(), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t c = 0; c < cols.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = p.a.col(cols[c]);
+  return sub;
+}
+
+double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j) {
+  Eigen::Index at = 0;
+  const Eigen::MatrixXd sub = FreeColumns(p, free_mask, j, &at);
   const Eigen::MatrixXd cov = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse();
   return std::sqrt(std::max(cov(at, at), 0.0));
 }

@@ -118,6 +118,9 @@ double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
 ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level);
 // sigma_j above: the standard error of x_j with the terms of free_mask free (unconstrained).
 double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j);
+// The whitened design's columns of the free terms (free_mask), in order, and *at_j the position of
+// term j among them.
+Eigen::MatrixXd FreeColumns(const LinearProblem& p, unsigned free_mask, int j, Eigen::Index* at_j);
 
 // The estimate's profile ranges in SI (c_j^2 = scale x_j): its 68.3 % and 95 % intervals
 // (BoundedProfileInterval; with p.whitening_at set, CalibratedProfileIntervals of

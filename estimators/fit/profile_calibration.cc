@@ -39,15 +39,8 @@ Eigen::VectorXd MinChi2(const Eigen::MatrixXd& a, const std::vector<Eigen::Index
 
 double EstimateSkewness(const LinearProblem& p, unsigned free_mask, int j) {
   if (p.whitening.size() == 0) return 0.0;
-  std::vector<Eigen::Index> cols;
   Eigen::Index at = 0;
-  for (Eigen::Index k = 0; k < p.a.cols(); ++k) {
-    if (!((free_mask >> k) & 1u)) continue;
-    if (k == j) at = static_cast<Eigen::Index>(cols.size());
-    cols.push_back(k);
-  }
-  Eigen::MatrixXd sub(p.a.rows(), static_cast<Eigen::Index>(cols.size()));
-  for (std::size_t c = 0; c < cols.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = p.a.col(cols[c]);
+  const Eigen::MatrixXd sub = FreeColumns(p, free_mask, j, &at);
   // x_hat_j = w' curve, w' the j-th row of (A'A)^-1 A' W0.
   const Eigen::MatrixXd gain = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse() *
                                sub.transpose() * p.whitening;
