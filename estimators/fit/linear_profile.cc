@@ -162,6 +162,12 @@ double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, doubl
       LinearProblem q;
       q.a = w * p.design;
       q.y = w * p.target;
+      if (p.free_directions.cols() > 0) {
+        const Eigen::MatrixXd f = w * p.free_directions;
+        const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(f);
+        q.a -= f * cod.solve(q.a);
+        q.y -= f * cod.solve(q.y);
+      }
       return q.Chi2(SolveMasked(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
     }
   }
@@ -174,20 +180,31 @@ double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
   // Delta(t) <= delta inside the range (header).
   auto inside = [&](double t) { return ProfileStatistic(p, free_mask, j, t) <= delta(t); };
   const double tolerance = relative_tolerance > 0.0 ? relative_tolerance : p.whitening_at ? 1e-6 : 1e-9;
+  // The estimate is inside by construction: each end is bracketed from it outwards (with W0 held
+  // the statistic is convex in t, so the end is its one root; with whitening_at it need not be,
+  // and a held value beyond a rejected one is not reached: header).
+  const double column = p.a.col(j).norm();
+  double step = column > 0.0 ? std::sqrt(delta(t_hat)) / column : 1.0;  // the end with the others fixed
+  step = std::max(step, 1e-6 * t_hat);
   if (!upper) {
-    if (t_hat <= 0.0 || inside(0.0)) return 0.0;
-    double lo = 0.0, hi = t_hat;
+    if (t_hat <= 0.0) return 0.0;
+    double lo = 0.0, hi = t_hat;  // lo rejected, hi accepted
+    for (;;) {
+      const double t = std::max(t_hat - step, 0.0);
+      if (!inside(t)) {
+        lo = t;
+        break;
+      }
+      if (t <= 0.0) return 0.0;
+      hi = t;
+      step *= 2.0;
+    }
     for (int i = 0; i < 60 && hi - lo > tolerance * hi; ++i) {
       const double mid = 0.5 * (lo + hi);
       (inside(mid) ? hi : lo) = mid;
     }
     return 0.5 * (lo + hi);
   }
-  // The estimate is inside by construction: the end is bracketed from it outwards (with W0 held
-  // the statistic is convex in t, so the end is its one root).
-  const double column = p.a.col(j).norm();
-  double step = column > 0.0 ? std::sqrt(delta(t_hat)) / column : 1.0;  // the end with the others fixed
-  step = std::max(step, 1e-6 * t_hat);
   double lo = t_hat, hi = t_hat + step;
   bool bracketed = false;
   for (int i = 0; i < 80; ++i) {

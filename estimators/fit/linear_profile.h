@@ -48,6 +48,10 @@ struct LinearProblem {
   Eigen::MatrixXd design;
   Eigen::VectorXd target;
   Eigen::MatrixXd whitening;  // W0: a = W0 design, y = W0 target
+  // Optional, with whitening_at: unwhitened directions of parameters free to first order (the
+  // curve's derivatives in a band-limit's cutoff, ...), projected out of the problem whitened at
+  // each held value as a and y were projected out under W0.
+  Eigen::MatrixXd free_directions;
 };
 
 // min |A x - y|^2 over x >= 0 (Lawson-Hanson active set on column-normalised A: exact for these
@@ -108,7 +112,8 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
 Eigen::VectorXd SolveHeld(const LinearProblem& p, unsigned free_mask, int j, double t);
 // Delta(t), the statistic ProfileInterval compares with the critical value (above).
 double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, double t);
-// One end of the range (upper: from the estimate outwards; lower: 0 when 0 is accepted), bisected
+// One end of the range, the first crossing from the estimate outwards (lower: 0 when no held value
+// from the estimate down to 0 is rejected), bisected
 // to `relative_tolerance` of the end (0: 1e-6 with p.whitening_at set, else 1e-9).
 double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
                   const std::function<double(double t)>& delta, bool upper, double relative_tolerance = 0.0);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -178,6 +179,43 @@ bool Whiten(const Eigen::MatrixXd& omega, Eigen::MatrixXd* w) {
     }
   }
   return false;
+}
+
+// The GLS weight for the linear terms x (scaled, >= 0) with e the model's expectation and lin
+// the linear terms' unfiltered one: Omega = D R D with R the correlation of the linear terms' exact
+// covariance and D = e times its relative standard deviation (parametric_fit.h); the curve's
+// EDFs (sqrt_half_nu) where no linear term but R is above 0 or lin is 0.
+bool GlsWhitening(const AvarCovarianceModel& covariance, const std::vector<int>& linear,
+                  const std::vector<double>& scale, const Eigen::VectorXd& x, const Eigen::VectorXd& e,
+                  const Eigen::VectorXd& lin, const Eigen::VectorXd& sqrt_half_nu, Eigen::MatrixXd* w) {
+  const Eigen::Index n = e.size();
+  Eigen::VectorXd sd(n);
+  for (Eigen::Index k = 0; k < n; ++k) sd(k) = std::max(e(k), 1e-300) / sqrt_half_nu(k);
+  Eigen::MatrixXd r = Eigen::MatrixXd::Identity(n, n);
+  std::array<double, kTerms> theta_si{};
+  bool any = false;
+  for (std::size_t j = 0; j < linear.size(); ++j) {
+    theta_si[linear[j]] = std::max(x(static_cast<Eigen::Index>(j)), 0.0) * scale[j];
+    any = any || (theta_si[linear[j]] > 0.0 && linear[j] != static_cast<int>(Coefficient::kR));
+  }
+  if (any) {
+    const Eigen::MatrixXd omega = covariance.Covariance(theta_si);
+    const Eigen::VectorXd d = omega.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    r = d.asDiagonal() * omega * d.asDiagonal();
+    // Standard deviations: the expectation times the exact relative standard deviation of the
+    // linear terms' estimates. The curve's own EDFs (`avar`'s) are optimistic at the longest
+    // taus: with them a 1 h tg100 record gave K = 3.0 +- 0.66 deg/h/sqrt(h) (true 0), with these
+    // 3.1 +- 1.4, as FitAvarModel's exact Omega does. The same relative standard deviation is
+    // used where an additive term (GM, H, outliers) carries part of the curve, whose estimate
+    // variance the model does not know: the alternative, the curve's own EDFs, measures chi2 in
+    // another metric, so an extended model could not be compared with its nested IEEE fit
+    // (ADIS16405 Gyro_X: IEEE+BW chi2 97 on 50 dof, the same with a GM term 132 on 48 with the GM
+    // amplitude at zero).
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (lin(k) > 0.0) sd(k) = std::max(e(k), 1e-300) * std::sqrt(omega(k, k)) / lin(k);
+    }
+  }
+  return Whiten(sd.asDiagonal() * r * sd.asDiagonal(), w);
 }
 
 struct Stage {
@@ -483,45 +521,19 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   ModelAvarResiduals::Domain domain = ModelAvarResiduals::Domain::kLog;
 
   // 3. Final stage with weights fixed at the pilot.
+  std::shared_ptr<const AvarCovarianceModel> covariance;  // GLS
   if (options.method != FitMethod::kLogWls) {
     Eigen::MatrixXd s;
     Eigen::VectorXd e;
     pieces.Evaluate(u.empty() ? nullptr : u.data(), &s, &e);
     for (std::size_t j = 0; j < linear.size(); ++j) e += s.col(static_cast<Eigen::Index>(j)) * theta[j];
-    Eigen::VectorXd sd(n);
-    for (Eigen::Index k = 0; k < n; ++k) sd(k) = std::max(e(k), 1e-300) / sqrt_half_nu(k);
+    const Eigen::Map<const Eigen::VectorXd> x(theta.data(), static_cast<Eigen::Index>(theta.size()));
     if (options.method == FitMethod::kWls) {
-      w = sd.cwiseInverse().asDiagonal().toDenseMatrix();
+      w = (e.cwiseMax(1e-300).cwiseQuotient(sqrt_half_nu)).cwiseInverse().asDiagonal().toDenseMatrix();
     } else {
-      Eigen::MatrixXd r = Eigen::MatrixXd::Identity(n, n);
-      std::array<double, kTerms> pilot{};
-      bool any = false;
-      for (std::size_t j = 0; j < linear.size(); ++j) {
-        pilot[linear[j]] = theta[j] * scale[j];
-        any = any || (pilot[linear[j]] > 0.0 && linear[j] != static_cast<int>(Coefficient::kR));
-      }
-      if (any) {
-        const Eigen::MatrixXd omega =
-            options.covariance ? options.covariance->Covariance(pilot)
-                               : AvarCovarianceModel(curve, options.terms).Covariance(pilot);
-        const Eigen::VectorXd d = omega.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-        r = d.asDiagonal() * omega * d.asDiagonal();
-        // Standard deviations: the pilot's expectation times the exact relative standard
-        // deviation of its linear terms' estimates. The curve's own EDFs (`avar`'s) are
-        // optimistic at the longest taus: with them a 1 h tg100 record gave K = 3.0 +- 0.66
-        // deg/h/sqrt(h) (true 0), with these 3.1 +- 1.4, as FitAvarModel's exact Omega does.
-        // The same relative standard deviation is used where an additive term (GM, H, outliers)
-        // carries part of the curve, whose estimate variance the model does not know: the
-        // alternative, the curve's own EDFs, measures chi2 in another metric, so an extended model
-        // could not be compared with its nested IEEE fit (ADIS16405 Gyro_X: IEEE+BW chi2 97 on 50
-        // dof, the same with a GM term 132 on 48 with the GM amplitude at zero).
-        const Eigen::VectorXd lin =
-            pieces.Unfiltered() * Eigen::Map<const Eigen::VectorXd>(theta.data(), static_cast<Eigen::Index>(theta.size()));
-        for (Eigen::Index k = 0; k < n; ++k) {
-          if (lin(k) > 0.0) sd(k) = std::max(e(k), 1e-300) * std::sqrt(omega(k, k)) / lin(k);
-        }
-      }
-      if (!Whiten(sd.asDiagonal() * r * sd.asDiagonal(), &w)) {
+      covariance = options.covariance ? options.covariance
+                                      : std::make_shared<const AvarCovarianceModel>(curve, options.terms);
+      if (!GlsWhitening(*covariance, linear, scale, x, e, pieces.Unfiltered() * x, sqrt_half_nu, &w)) {
         base.message = "fit: the pilot covariance is not positive definite";
         return false;
       }
@@ -580,6 +592,33 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   lp.a = -jl.leftCols(static_cast<Eigen::Index>(linear.size()));
   lp.y = res + lp.a * Eigen::Map<const Eigen::VectorXd>(theta.data(), static_cast<Eigen::Index>(theta.size()));
   ProjectOutFreeParameters(ju, u, u_lo, u_hi, &lp);
+  if (covariance && !linear.empty()) {
+    // GLS: each held value is tested under its own model's covariance, as FitAvarModel's profile
+    // does (linear_profile.h), with the parametric parameters held at their fit and, to first
+    // order, free (projected out at each held value as above). Holding the pilot's weight along
+    // the profile tested a larger B against the small long-tau variances of a model with a
+    // smaller one: under a fitted band-limit B's upper ends fell short (docs/theory.md §4.7).
+    Eigen::MatrixXd shapes;
+    Eigen::VectorXd extra;
+    pieces.Evaluate(u.empty() ? nullptr : u.data(), &shapes, &extra);
+    lp.design = shapes;
+    lp.target = a - extra;
+    std::vector<Eigen::Index> free;
+    for (std::size_t g = 0; g < u.size(); ++g) {
+      if (u[g] > u_lo[g] + 1e-6 && u[g] < u_hi[g] - 1e-6) free.push_back(static_cast<Eigen::Index>(g));
+    }
+    if (!free.empty()) {
+      Eigen::MatrixXd jf(n, static_cast<Eigen::Index>(free.size()));
+      for (std::size_t c = 0; c < free.size(); ++c) jf.col(static_cast<Eigen::Index>(c)) = ju.col(free[c]);
+      lp.free_directions = w.colPivHouseholderQr().solve(jf);  // ju = -W dE/du
+    }
+    lp.whitening_at = [covariance, shapes, extra, unfiltered = Eigen::MatrixXd(pieces.Unfiltered()), linear,
+                       scale, sqrt_half_nu](const Eigen::VectorXd& x, Eigen::MatrixXd* wx) {
+      const Eigen::VectorXd held = x.cwiseMax(0.0);
+      return GlsWhitening(*covariance, linear, scale, held, shapes * held + extra, unfiltered * held,
+                          sqrt_half_nu, wx);
+    };
+  }
   for (std::size_t q = 0; q < linear.size(); ++q) {
     CoefficientEstimate& ce = base.coefficients[linear[q]];
     const double theta_si = theta[q] * scale[q];
@@ -594,7 +633,6 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
       ce.value_si = std::sqrt(theta_si);
       ce.sigma_si = sigma_theta / (2.0 * ce.value_si);
     }
-    SetProfileRanges(lp, {(1u << linear.size()) - 1u}, static_cast<int>(q), scale[q], &ce);
   }
   for (std::size_t t = 0; t < active.size(); ++t) {
     ParametricEstimate& pe = summary->extra[active_index[t]];
@@ -618,6 +656,13 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   base.converged = stage.converged;
   if (base.dof > 0) {
     base.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(base.dof), base.chi2));
+  }
+  // On a poor fit the misfit, not the noise, sets chi2 under every covariance: the minimum under
+  // each held value's covariance moves with it, and the held-value test collapsed N's interval
+  // to its value (ADIS16405 Gyro_Z, chi2 4.3e5 on 50 dof). The profile then keeps the pilot's.
+  if (IsPoorFit(base)) lp.whitening_at = nullptr;
+  for (std::size_t q = 0; q < linear.size(); ++q) {
+    SetProfileRanges(lp, {(1u << linear.size()) - 1u}, static_cast<int>(q), scale[q], &base.coefficients[linear[q]]);
   }
   base.ok = summary->ok = true;
   std::ostringstream os;

@@ -17,12 +17,11 @@
 #include <cstdio>
 #include <numbers>
 
-#include <boost/math/distributions/binomial.hpp>
-
 #include "estimators/fit/fit_model.h"
 #include "independent/generate.h"
 #include "independent/recipe.h"
 
+#include "tests/support/coverage_band.h"
 #include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
@@ -64,9 +63,7 @@ TEST(BandLimitProfile, QuantizationRangeHoldsZeroOnABandLimitedRecordWithoutIt) 
                   q.interval95_si[1]);
     }
   }
-  const boost::math::binomial b(kRecords, 0.95);
-  int lo = 0;
-  while (lo < kRecords && boost::math::cdf(b, lo) <= 1e-3) ++lo;
+  const int lo = testing_support::CoverageBand(kRecords, 0.95, 1e-3, true).lo;
   std::printf("Q's 95 %% range holds 0 in %d of %d records (band >= %d); band-limit found in %d\n", holds,
               kRecords, lo, band_limited);
   EXPECT_GE(band_limited, kRecords / 2) << "the records are not band-limited enough to test this";

@@ -29,13 +29,12 @@
 #include <string>
 #include <vector>
 
-#include <boost/math/distributions/binomial.hpp>
-
 #include "estimators/avar.h"
 #include "estimators/fit/fit_model.h"
 #include "independent/generate.h"
 #include "independent/recipe.h"
 
+#include "tests/support/coverage_band.h"
 #include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
@@ -46,13 +45,7 @@ constexpr double kFalseFail = 1e-3;  // per check
 
 // Expects `hits` of `trials` inside the acceptance band of Binomial(trials, nominal).
 void ExpectCoverage(const std::string& what, int hits, int trials, double nominal, bool lower_only) {
-  const boost::math::binomial b(trials, nominal);
-  const double tail = lower_only ? kFalseFail : kFalseFail / 2.0;
-  // The smallest count with P(X < lo) <= tail, the largest with P(X > hi) <= tail.
-  int lo = 0;
-  while (lo < trials && boost::math::cdf(b, lo) <= tail) ++lo;
-  int hi = trials;
-  while (!lower_only && hi > 0 && boost::math::cdf(boost::math::complement(b, hi - 1)) <= tail) --hi;
+  const auto [lo, hi] = testing_support::CoverageBand(trials, nominal, kFalseFail, lower_only);
   std::printf("%s: %d of %d (band %d..%d)\n", what.c_str(), hits, trials, lo, hi);
   EXPECT_GE(hits, lo) << what << ": " << hits << " of " << trials << " (nominal " << nominal << ")";
   EXPECT_LE(hits, hi) << what << ": " << hits << " of " << trials << " (nominal " << nominal << ")";
