@@ -30,8 +30,18 @@ double AvarFromAutocovariance(std::int64_t m, std::span<const double> autocovari
 
 double FiniteRecordAvar(std::span<const double> cumulative_p, double innovation_var,
                         std::int64_t m, std::int64_t offset, const RecordShape& shape) {
+  return ScaledFiniteRecordAvar(FiniteRecordAvarSum(cumulative_p, m, offset, shape), innovation_var);
+}
+
+double ScaledFiniteRecordAvar(const FiniteRecordSum& sum, double innovation_var) {
+  if (sum.count == 0) return 0.0;
+  return static_cast<double>(0.5L * innovation_var * sum.total / sum.count);
+}
+
+FiniteRecordSum FiniteRecordAvarSum(std::span<const double> cumulative_p, std::int64_t m, std::int64_t offset,
+                                    const RecordShape& shape) {
   const AllanStarts starts = AllanDifferenceStarts(m, shape);
-  if (starts.count == 0) return 0.0;
+  if (starts.count == 0) return {};
   const std::int64_t last_start = (starts.count - 1) * starts.stride;
   const std::int64_t first_end = offset + 2 * m - 1;
   const std::int64_t e_max = first_end + last_start;
@@ -80,7 +90,7 @@ double FiniteRecordAvar(std::span<const double> cumulative_p, double innovation_
     }
     total += static_cast<long double>((lanes[0] + lanes[1]) + (lanes[2] + lanes[3]));
   }
-  return static_cast<double>(0.5L * innovation_var * total / starts.count);
+  return {total, starts.count};
 }
 
 bool IsValidAveragingFactor(std::int64_t m, const RecordShape& shape, std::string* why) {

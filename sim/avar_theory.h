@@ -42,6 +42,15 @@ double AvarFromAutocovariance(std::int64_t m, std::span<const double> autocovari
 // up to offset + N - 1.
 double FiniteRecordAvar(std::span<const double> cumulative_p, double innovation_var,
                         std::int64_t m, std::int64_t offset, const RecordShape& shape);
+// FiniteRecordAvar before its scale: the sum over the Allan differences, which does not depend on
+// the innovation variance, so one sum serves every variance (the same bits as FiniteRecordAvar).
+struct FiniteRecordSum {
+  long double total = 0.0L;
+  std::int64_t count = 0;  // Allan differences averaged (0: m too large for the record)
+};
+FiniteRecordSum FiniteRecordAvarSum(std::span<const double> cumulative_p, std::int64_t m, std::int64_t offset,
+                                    const RecordShape& shape);
+double ScaledFiniteRecordAvar(const FiniteRecordSum& sum, double innovation_var);
 
 // Checks 1 <= m and 2m <= N; writes the reason otherwise.
 bool IsValidAveragingFactor(std::int64_t m, const RecordShape& shape, std::string* why);

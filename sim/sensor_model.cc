@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 
 #include <boost/random/uniform_real_distribution.hpp>
@@ -36,6 +39,62 @@ std::vector<double> UnfilteredFlickerAvar(const FlickerNoise& t, std::span<const
   const std::vector<double> cumulative = CumulativeSum(KasdinCoefficients(shape.num_samples));
   for (std::int64_t m : ms) out.push_back(FiniteRecordAvar(cumulative, b2, m, 0, shape));
   return out;
+}
+
+// The band-limited Kasdin flicker's exact E[AVAR(m)] is B^2 times a sum that depends only on the
+// chain, the record's shape and m (FiniteRecordAvarSum). Its set-up is O(N len(q)) and each m O(N),
+// and refits and exact views ask for it at the same few shapes with many B, from several threads:
+// the sums are kept per (chain, shape) and scaled, the same bits as computing them anew.
+class FlickerChainSums {
+ public:
+  std::vector<double> Avar(const BandLimitChain& chain, double sample_period_s, std::span<const std::int64_t> ms,
+                           const RecordShape& shape, double b2) {
+    const Key key{static_cast<int>(chain.limit().kind), chain.limit().cutoff_hz, chain.limit().oversampling,
+                  static_cast<int>(chain.limit().sampling), sample_period_s, shape.num_samples,
+                  static_cast<int>(shape.estimator)};
+    std::vector<std::int64_t> missing;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      const auto it = sums_.find(key);
+      for (std::int64_t m : ms) {
+        if (it == sums_.end() || !it->second.contains(m)) missing.push_back(m);
+      }
+    }
+    std::map<std::int64_t, FiniteRecordSum> computed;
+    if (!missing.empty()) {
+      // p = q * h: the Kasdin filter (zero state before the first output sample) followed by the
+      // held-path filter.
+      const std::vector<double> h = KasdinCoefficients(shape.num_samples);
+      const auto& q = chain.held_response();
+      std::vector<double> p(h.size(), 0.0);
+      for (std::size_t i = 0; i < h.size(); ++i) {
+        for (std::size_t j = 0; j < q.size() && j <= i; ++j) p[i] += q[j] * h[i - j];
+      }
+      const std::vector<double> cumulative = CumulativeSum(p);
+      for (std::int64_t m : missing) computed[m] = FiniteRecordAvarSum(cumulative, m, 0, shape);
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!computed.empty()) {
+      if (sums_.size() >= kMaxShapes && !sums_.contains(key)) sums_.clear();
+      sums_[key].insert(computed.begin(), computed.end());
+    }
+    const auto& by_m = sums_.at(key);
+    std::vector<double> out;
+    out.reserve(ms.size());
+    for (std::int64_t m : ms) out.push_back(ScaledFiniteRecordAvar(by_m.at(m), b2));
+    return out;
+  }
+
+ private:
+  static constexpr std::size_t kMaxShapes = 64;
+  using Key = std::tuple<int, double, int, int, double, std::int64_t, int>;
+  std::mutex mutex_;
+  std::map<Key, std::map<std::int64_t, FiniteRecordSum>> sums_;
+};
+
+FlickerChainSums& SharedFlickerChainSums() {
+  static FlickerChainSums sums;
+  return sums;
 }
 
 // Expected AVAR of one term after the band-limit chain (docs/theory.md §2.9, generalised), at every
@@ -86,19 +145,8 @@ struct ChainTheory {
     if (flicker == FlickerBandLimit::kStationaryChange) {
       return OwnPlusChange(NoiseTerm{t}, UnfilteredFlickerAvar(t, ms, shape));
     }
-    // p = q * h: the Kasdin filter (zero state before the first output sample) followed by the
-    // held-path filter.
-    const std::int64_t offset = 0;
-    const std::vector<double> h = KasdinCoefficients(shape.num_samples);
-    const auto& q = chain.held_response();
-    std::vector<double> p(h.size(), 0.0);
-    for (std::size_t i = 0; i < h.size(); ++i) {
-      for (std::size_t j = 0; j < q.size() && j <= i; ++j) p[i] += q[j] * h[i - j];
-    }
-    const std::vector<double> cumulative = CumulativeSum(p);
     const double b2 = t.bias_instability_rad_per_s * t.bias_instability_rad_per_s;
-    return ForEachM(
-        [&](std::int64_t m) { return FiniteRecordAvar(cumulative, b2, m, offset, shape); });
+    return SharedFlickerChainSums().Avar(chain, tau0_s, ms, shape, b2);
   }
   std::vector<double> operator()(const ExponentialDrift& t) const {
     return ForEachM(
