@@ -27,9 +27,11 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
   const OavarTheory theory = wanted.test(static_cast<int>(View::kOavar))
                                  ? ExactOavar(model, layout.oavar_m, layout.num_samples)
                                  : OavarTheory{};
+  // The simulated records give the Monte Carlo views only: OAVAR's distribution is exact.
   ViewEnvelope envelope;
-  const bool have_envelope = monte_carlo && trials >= 3 && (wanted & MonteCarloViews()).any() &&
-                             SimulateEnvelope(model, layout, trials, seed, &envelope, note, wanted);
+  const ViewSet simulated = wanted & MonteCarloViews();
+  const bool have_envelope = monte_carlo && trials >= 3 && simulated.any() &&
+                             SimulateEnvelope(model, layout, trials, seed, &envelope, note, simulated);
   std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr, wanted);
   const bool block_means = wanted.test(static_cast<int>(View::kChangePoint)) || wanted.test(static_cast<int>(View::kTrend));
   if (block_means && !layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
