@@ -70,8 +70,9 @@ struct DiagnoseOptions {
   double partial_shrink = 5.0;  // held-out and per-view chi2 shrink that names a partial verdict
   std::vector<Effect> effects = {std::begin(kAllEffects), std::end(kAllEffects)};
   // Told as the diagnosis advances: the stage ("baseline", "views", "candidates", "Monte Carlo
-  // views", "pairs"), and how many of its steps are done of `total` (0: one step). Called from the
-  // calling thread only; empty: silent. Changes nothing in the result.
+  // views", "sets of 2", "sets of 2: Monte Carlo views", ...), and how many of its steps are done
+  // of `total` (0: one step). Called from the calling thread only; empty: silent. Changes nothing
+  // in the result.
   std::function<void(std::string_view stage, int done, int total)> progress;
   bool IsValid(std::string* why) const;
 };

@@ -91,6 +91,7 @@ void AssessMonteCarlo(const Context& ctx, DiagnosisSummary* s) {
     ReportProgress(ctx, "Monte Carlo views", static_cast<int>(j), static_cast<int>(chosen.size()));
     FullAssess(ctx, *s, &s->candidates[chosen[j]], 1000 + chosen[j]);
   }
+  if (!chosen.empty()) ReportProgress(ctx, "Monte Carlo views", static_cast<int>(chosen.size()), static_cast<int>(chosen.size()));
   for (CandidateResult& c : s->candidates) {
     if (!c.full_views) c.full_score = c.score;
     c.closes_gap = ClosesGap(c.after, s->threshold);
@@ -275,11 +276,15 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
     // Independent refits, in parallel; kept in pool order, so the outcome is the same for any
     // thread count.
     std::vector<std::optional<CandidateResult>> tried(sets.size());
-    ReportProgress(ctx, "sets", 0, static_cast<int>(sets.size()));
+    const std::string stage = "sets of " + std::to_string(current.effects.size() + 1);
+    const int set_count = static_cast<int>(sets.size());
+    std::atomic<int> done{0};
+    ReportProgress(ctx, stage, 0, set_count);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t i = 0; i < sets.size(); ++i) {
       std::string why;
       tried[i] = TryCandidate(ctx, *s, sets[i], &why);
+      ReportProgress(ctx, stage, done.fetch_add(1) + 1, set_count);
     }
     std::vector<CandidateResult> trials;
     for (auto& c : tried) {
@@ -292,6 +297,7 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
     bool kept = false;
     for (std::size_t t = 0; t < trials.size() && !kept; ++t) {
       CandidateResult& next = trials[t];
+      ReportProgress(ctx, stage + ": Monte Carlo views", static_cast<int>(t), static_cast<int>(trials.size()));
       FullAssess(ctx, *s, &next, 2000 + 10 * round + t);
       next.closes_gap = ClosesGap(next.after, s->threshold);
       const GapMetrics before =
