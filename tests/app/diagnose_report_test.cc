@@ -19,6 +19,7 @@
 #include "independent/recipe.h"
 #include "common/number_text.h"
 #include "tests/support/command_test.h"
+#include "tests/support/png_pixels.h"
 
 namespace allanlab::app {
 namespace {
@@ -306,8 +307,14 @@ TEST_F(DiagnoseReportTest, HtmlIsSelfContainedAndRendersInABrowser) {
       << "' 2>&1";
   ASSERT_EQ(std::system(cmd.str().c_str()), 0) << Read("chromium.txt");
   ASSERT_TRUE(fs::exists(shot)) << Read("chromium.txt");
-  // A blank page compresses to a few kB; text, tables and the plot give far more.
-  EXPECT_GT(fs::file_size(shot), 60000u);
+  // Not blank, by its pixels: the text, tables and plot cover a good part of the page in many
+  // colours (the plot's curves and bands, anti-aliased text); a blank page is one colour.
+  testing_support::PngPixels pixels;
+  std::string why;
+  ASSERT_TRUE(testing_support::ReadPngPixels(shot, &pixels, &why)) << why;
+  EXPECT_EQ(pixels.width, 1200);
+  EXPECT_GT(testing_support::ShareOffBackground(pixels), 0.02);
+  EXPECT_GT(testing_support::DistinctColours(pixels), 50u);
   if (const char* keep = std::getenv("ALLANLAB_KEEP_SCREENSHOT")) fs::copy_file(shot, keep, fs::copy_options::overwrite_existing);
 }
 
