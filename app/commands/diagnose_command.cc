@@ -132,6 +132,14 @@ Json ParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits&
   return j;
 }
 
+// The same parameters in the report's units, as `summary.effects` gives the verdict's (one entry
+// per effect).
+Json ReportedParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits& units, double sample_period_s) {
+  Json j = Json::array();
+  for (const auto& e : effects) j.push_back(PlainEffectJson(MakePlainEffect(e, units, sample_period_s)));
+  return j;
+}
+
 Json CoefficientsJson(const estimators::FitSummary& fit, const DiagnoseUnits& units) {
   Json j = Json::object();
   for (Coefficient c : estimators::kAllCoefficients) {
@@ -220,8 +228,10 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   if (s.before.has_heldout) j["gap"]["heldout"] = MetricsJson(s.before.heldout);
   Json verdict{{"effect", s.verdict}};
   verdict["params"] = Json::object();
+  verdict["params_reported"] = Json::array();
   if (s.verdict_candidate >= 0 && s.verdict != "unexplained") {
     verdict["params"] = ParamsJson(s.candidates[s.verdict_candidate].effects, unit);
+    verdict["params_reported"] = ReportedParamsJson(s.candidates[s.verdict_candidate].effects, unit, s.sample_period_s);
   }
   Json also = Json::array(), separating = Json::object();
   for (const auto& a : s.also_consistent) {
@@ -248,7 +258,9 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   j["verdict"] = verdict;
   Json candidates = Json::array();
   for (const CandidateResult& c : s.candidates) {
-    Json cj{{"effect", c.id()}, {"params", ParamsJson(c.effects, unit)}};
+    Json cj{{"effect", c.id()},
+            {"params", ParamsJson(c.effects, unit)},
+            {"params_reported", ReportedParamsJson(c.effects, unit, s.sample_period_s)}};
     cj["gap_before"] = GapJson(s.before);
     cj["gap_after"] = GapJson(c.after);
     cj["heldout_gap_before"] = c.after.has_heldout ? MetricsJson(c.heldout_before) : Json(nullptr);

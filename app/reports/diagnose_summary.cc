@@ -172,6 +172,27 @@ std::string QuantitiesText(const PlainEffect& e) {
   return t;
 }
 
+PlainEffect MakePlainEffect(const EffectInstance& e, const DiagnoseUnits& units, double sample_period_s) {
+  PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect, units), {}};
+  if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
+  for (const std::string& name : EffectParameterNames(e.effect)) {
+    pe.quantities.push_back(Quantity(name, e.params.at(name), units));
+    AddCaveat(sample_period_s, &pe.quantities.back());
+  }
+  return pe;
+}
+
+Json PlainEffectJson(const PlainEffect& e) {
+  Json q = Json::array();
+  for (const PlainQuantity& x : e.quantities) {
+    Json one{{"name", x.name}, {"value", x.value}, {"unit", x.unit}};
+    if (x.record_value) one["record_value"] = *x.record_value, one["record_unit"] = x.record_unit;
+    if (!x.caveat.empty()) one["caveat"] = x.caveat;
+    q.push_back(one);
+  }
+  return {{"id", e.id}, {"description", e.description}, {"quantities", q}};
+}
+
 PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& units) {
   PlainSummary p;
   p.verdict = s.verdict;
@@ -183,15 +204,7 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
   p.best_tried = c != nullptr && s.verdict == "unexplained";
   if (c != nullptr) {
     p.model_label = "with " + c->id();
-    for (const EffectInstance& e : c->effects) {
-      PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect, units), {}};
-      if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
-      for (const std::string& name : EffectParameterNames(e.effect)) {
-        pe.quantities.push_back(Quantity(name, e.params.at(name), units));
-        AddCaveat(s.sample_period_s, &pe.quantities.back());
-      }
-      p.effects.push_back(std::move(pe));
-    }
+    for (const EffectInstance& e : c->effects) p.effects.push_back(MakePlainEffect(e, units, s.sample_period_s));
     std::vector<View> departing;
     for (const GapRegion& r : s.regions) {
       if (std::find(departing.begin(), departing.end(), r.view) == departing.end()) departing.push_back(r.view);
@@ -312,16 +325,7 @@ Json PlainJson(const PlainSummary& p) {
   j["lines"] = PlainLines(p);
   j["where"] = p.where;
   Json effects = Json::array();
-  for (const PlainEffect& e : p.effects) {
-    Json q = Json::array();
-    for (const PlainQuantity& x : e.quantities) {
-      Json one{{"name", x.name}, {"value", x.value}, {"unit", x.unit}};
-      if (x.record_value) one["record_value"] = *x.record_value, one["record_unit"] = x.record_unit;
-      if (!x.caveat.empty()) one["caveat"] = x.caveat;
-      q.push_back(one);
-    }
-    effects.push_back({{"id", e.id}, {"description", e.description}, {"quantities", q}});
-  }
+  for (const PlainEffect& e : p.effects) effects.push_back(PlainEffectJson(e));
   j["effects"] = effects;
   j["effects_are"] = p.named ? "verdict" : (p.best_tried ? "best_tried" : "none");
   if (p.best_tried) j["best_tried_not_named_because"] = p.best_tried_why;

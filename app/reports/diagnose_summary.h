@@ -70,6 +70,12 @@ struct PlainSummary {
   int points = 0;
 };
 
+// One effect's parameters in the report's units, with their caveats (as `effects` holds them).
+PlainEffect MakePlainEffect(const experiments::EffectInstance& e, const DiagnoseUnits& units, double sample_period_s);
+// {"id", "description", "quantities": [{"name", "value", "unit", "record_value", "record_unit",
+// "caveat"}]}: an effect as JSON `summary.effects` and each candidate's `params_reported` give it.
+nlohmann::ordered_json PlainEffectJson(const PlainEffect& e);
+
 // `units`: the column's sensor and the unit it was read in (app/reports/diagnose_units.h).
 PlainSummary MakePlainSummary(const experiments::DiagnosisSummary& s, const DiagnoseUnits& units);
 

@@ -5,6 +5,7 @@
 // independent generator (independent/generate.h), not from the code the candidates are fitted with.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -250,6 +251,17 @@ TEST_F(DiagnoseReportTest, StdoutMarkdownAndJsonAgreeInTheSameUnits) {
     } else if (q["unit"] == "s") {
       EXPECT_EQ(q["value"].get<double>(), params[key + "_s"].get<double>());
     }
+  }
+  // Each candidate's parameters also in the report's units, as the summary gives the verdict's:
+  // the same entries for the verdict, and no candidate's in rad.
+  EXPECT_EQ(candidate["params_reported"], summary["effects"]);
+  if (j["verdict"]["effect"] != "unexplained") {
+    EXPECT_EQ(j["verdict"]["params_reported"], summary["effects"]);
+  }
+  for (const Json& c : j["candidates"]) {
+    const std::string id = c["effect"];
+    EXPECT_EQ(c["params_reported"].size(), static_cast<std::size_t>(std::count(id.begin(), id.end(), '+') + 1)) << id;
+    EXPECT_EQ(c["params_reported"].dump().find("rad"), std::string::npos) << c["params_reported"].dump();
   }
   // Coefficients side by side: the baseline's as the detail JSON gives them, in the same unit.
   for (const Json& c : summary["coefficients"]) {
