@@ -159,8 +159,9 @@ AllanPlot ViewPanel(const DiagnosisSummary& s, View v) {
 
 // The block-mean views in the time domain: the record's block means over the record, the
 // baseline's level and the verdict model's (its step or warm-up drift placed in time), each level
-// set to the record's mean (the bias, which no view tests), and the located step or the settling
-// marked along the time axis.
+// set to the record's mean (the bias, which no view tests) with its pointwise 95 % band (a block
+// mean's spread about the mean of all blocks under that model), and the located step or the
+// settling marked along the time axis.
 AllanPlot BlockMeansPanel(const DiagnosisSummary& s, const DiagnoseUnits& units) {
   const BlockMeanSeries& b = s.block_means;
   AllanPlot plot;
@@ -184,13 +185,32 @@ AllanPlot BlockMeansPanel(const DiagnosisSummary& s, const DiagnoseUnits& units)
     for (double p : path) y.push_back((p + offset) * unit);
     return y;
   };
+  // Each model's pointwise 95 % band of a block mean about the record's mean level.
+  auto band = [&](const std::vector<double>& centre, const std::vector<double>& sd, const std::string& name,
+                  PlotStyle style, const char* color) {
+    PlotSeries out{name + ": 95 % band", style, b.time_s, centre};
+    for (std::size_t i = 0; i < centre.size() && i < sd.size(); ++i) {
+      out.y_low.push_back(centre[i] - 1.96 * sd[i] * unit);
+      out.y_high.push_back(centre[i] + 1.96 * sd[i] * unit);
+    }
+    out.color = color;
+    return out;
+  };
   PlotSeries record{"record: means of " + std::to_string(b.record.size()) + " blocks of " + Short(b.block_s) + " s",
                     PlotStyle::kPoints, b.time_s, {}};
   for (double r : b.record) record.y.push_back(r * unit);
   record.color = "#000000";
   PlotSeries baseline{"baseline", PlotStyle::kDashedLine, b.time_s, leveled(b.baseline_path)};
   baseline.color = kBaselineColor;
-  plot.series = {record, baseline};
+  // The verdict's filled band under the baseline's outline, then the record and the levels.
+  if (!b.verdict_path.empty() && b.verdict_sd.size() == b.verdict_path.size()) {
+    plot.series.push_back(band(leveled(b.verdict_path), b.verdict_sd, ModelName(s), PlotStyle::kBand, kModelColor));
+  }
+  if (b.baseline_sd.size() == b.baseline_path.size()) {
+    plot.series.push_back(band(baseline.y, b.baseline_sd, "baseline", PlotStyle::kBandOutline, kBaselineColor));
+  }
+  plot.series.push_back(record);
+  plot.series.push_back(baseline);
   if (!b.verdict_path.empty()) {
     PlotSeries model{ModelName(s), PlotStyle::kLine, b.time_s, leveled(b.verdict_path)};
     model.color = kModelColor;

@@ -71,15 +71,21 @@ std::vector<long double> SumVariance(const std::vector<double>& r, const std::ve
   return s;
 }
 
-std::vector<double> CovarianceFromAutocovariance(const std::vector<double>& r, std::int64_t m, int blocks,
-                                                 double ramp2_tau2) {
+// D(k) = Var(u_{b+k} - u_b) of block means of m samples, k = 0 .. blocks - 1 (eq. 6.7.2), from
+// the generalised autocovariance r (at least blocks m + 1 lags).
+std::vector<long double> StructureFunction(const std::vector<double>& r, std::int64_t m, int blocks) {
   std::vector<std::int64_t> ns;
   for (int j = 0; j <= blocks; ++j) ns.push_back(j * m);
   const std::vector<long double> s = SumVariance(r, ns);  // s[j] = S(j m)
-  // D(k) = Var(u_{b+k} - u_b), eq. 6.7.2.
   std::vector<long double> d(static_cast<std::size_t>(blocks), 0.0L);
   const auto m2 = static_cast<long double>(m) * static_cast<long double>(m);
   for (int k = 1; k < blocks; ++k) d[k] = (2.0L * s[1] + 2.0L * s[k] - s[k + 1] - s[k - 1]) / m2;
+  return d;
+}
+
+std::vector<double> CovarianceFromAutocovariance(const std::vector<double>& r, std::int64_t m, int blocks,
+                                                 double ramp2_tau2) {
+  const std::vector<long double> d = StructureFunction(r, m, blocks);
   std::vector<double> c(static_cast<std::size_t>(blocks - 1));
   for (int k = 0; k + 1 < blocks; ++k) {
     c[k] = static_cast<double>(-d[k] + 0.5L * d[k + 1] + 0.5L * d[std::abs(k - 1)]) + ramp2_tau2;
@@ -332,6 +338,27 @@ std::vector<double> BlockDifferenceCovariance(const sim::SensorModel& model, std
   const std::vector<double> r = RandomPartAutocovariance(model, blocks * m + 1);
   const double block_s = static_cast<double>(m) * model.sample_period_s();
   return CovarianceFromAutocovariance(r, m, blocks, RampSquared(model) * block_s * block_s);
+}
+
+std::vector<double> BlockMeanDeviationSd(const sim::SensorModel& model, std::int64_t m, int blocks) {
+  const std::vector<double> r = RandomPartAutocovariance(model, blocks * m + 1);
+  std::vector<long double> d = StructureFunction(r, m, blocks);
+  // A ramp of unknown sign, a random slope R: D(k) += R^2 (k m tau0)^2.
+  const long double block_s = static_cast<long double>(m) * model.sample_period_s();
+  const long double r2 = RampSquared(model);
+  for (int k = 1; k < blocks; ++k) d[k] += r2 * (k * block_s) * (k * block_s);
+  // Var(u_b - mean_j u_j) = (1/B) sum_j D(|b - j|) - (1/(2 B^2)) sum_i sum_j D(|i - j|).
+  const auto b_count = static_cast<long double>(blocks);
+  long double all = 0.0L;
+  for (int k = 1; k < blocks; ++k) all += 2.0L * (b_count - k) * d[k];
+  std::vector<double> sd(static_cast<std::size_t>(blocks));
+  for (int b = 0; b < blocks; ++b) {
+    long double row = 0.0L;
+    for (int j = 0; j < blocks; ++j) row += d[static_cast<std::size_t>(std::abs(b - j))];
+    const long double var = row / b_count - all / (2.0L * b_count * b_count);
+    sd[b] = var > 0.0L ? static_cast<double>(std::sqrt(var)) : 0.0;
+  }
+  return sd;
 }
 
 void BlockMeanResiduals(std::span<const double> rate, double tau0, std::span<const int> block_counts,

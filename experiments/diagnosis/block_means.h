@@ -45,6 +45,14 @@ std::vector<int> BlockMeanCounts(std::int64_t n);
 // Precondition: model.IsValid(), m >= 1, blocks >= 3.
 std::vector<double> BlockDifferenceCovariance(const sim::SensorModel& model, std::int64_t m, int blocks);
 
+// The standard deviation of each block mean about the mean of all `blocks` block means of m
+// samples, under the model's random part as the block-mean views see it (docs/theory.md §6.7: its
+// structure function D, a ramp as a random slope; deterministic terms and harmonics left out):
+// Var(u_b - mean u) = (1/B) sum_j D(|b - j|) - (1/(2 B^2)) sum_{i,j} D(|i - j|), exact for Gaussian
+// noise with stationary increments; larger at the ends when the noise wanders (K, R, flicker).
+// [rad/s]. Precondition: model.IsValid(), m >= 1, blocks >= 2.
+std::vector<double> BlockMeanDeviationSd(const sim::SensorModel& model, std::int64_t m, int blocks);
+
 // The record against the model in both block-mean views: x the block length [s], observed the
 // fitted size (a step [rad/s], a settling's amplitude [rad/s]), expected its standard deviation
 // under the model, z as above, time_s where the step is [s from the start] (change_point) or the

@@ -140,7 +140,11 @@ BlockMeanSeries RecordBlockMeans(std::span<const double> rate, double tau0, cons
     return p.empty() ? std::vector<double>(static_cast<std::size_t>(blocks), 0.0) : BlockMeans(p, blocks);
   };
   out.baseline_path = path(s.baseline_model);
-  if (s.verdict_candidate >= 0) out.verdict_path = path(s.candidates[s.verdict_candidate].model);
+  out.baseline_sd = BlockMeanDeviationSd(s.baseline_model, m, blocks);
+  if (s.verdict_candidate >= 0) {
+    out.verdict_path = path(s.candidates[s.verdict_candidate].model);
+    out.verdict_sd = BlockMeanDeviationSd(s.candidates[s.verdict_candidate].model, m, blocks);
+  }
   return out;
 }
 

@@ -139,6 +139,10 @@ struct BlockMeanSeries {
   std::vector<double> record;         // [rad/s]
   std::vector<double> baseline_path;  // [rad/s]
   std::vector<double> verdict_path;   // [rad/s]; empty without a verdict's (or best tried) model
+  // Each model's standard deviation of a block mean about the mean of all blocks (so a 95 % band
+  // is the path, set to the record's mean, +- 1.96 of it: BlockMeanDeviationSd, block_means.h).
+  std::vector<double> baseline_sd;  // [rad/s]
+  std::vector<double> verdict_sd;   // [rad/s]; empty without a verdict's (or best tried) model
 };
 
 struct DiagnosisSummary {

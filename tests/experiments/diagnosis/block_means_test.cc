@@ -47,6 +47,43 @@ TEST(BlockMeans, RandomWalkDifferences) {
   for (std::size_t k = 2; k < c.size(); ++k) EXPECT_NEAR(c[k], 0.0, 1e-6 * k2t) << k;
 }
 
+// A block mean's spread about the mean of all B blocks (the block-mean panel's band):
+//   white: block means independent, Var(u_b - mean u) = (s^2 / m) (1 - 1/B);
+//   continuous random walk: D(k) = K^2 T (k - 1/3) for k >= 1, so with
+//     Var(u_b - mean u) = (1/B) sum_j D(|b - j|) - (1/(2 B^2)) sum_{i,j} D(|i - j|),
+//     sum_{j != b} |b - j| = b (b + 1) / 2 + (B - 1 - b) (B - b) / 2 and sum_{i != j} |i - j| = (B^3 - B) / 3:
+//     largest at the ends, where the walk strays furthest from its mean.
+TEST(BlockMeans, DeviationFromTheMeanOfAllBlocks) {
+  sim::SensorModel white_model;
+  white_model.sample_rate_hz = 100.0;
+  sim::WhiteRateNoise white;
+  white.arw_rad_per_sqrt_s = 1e-3;
+  white_model.terms = {white};
+  const std::int64_t m = 500;
+  const double s2 = 1e-6 * white_model.sample_rate_hz;
+  const std::vector<double> sd_white = BlockMeanDeviationSd(white_model, m, 16);
+  ASSERT_EQ(sd_white.size(), 16u);
+  for (double sd : sd_white) EXPECT_NEAR(sd * sd, s2 / m * (1.0 - 1.0 / 16.0), 1e-9 * s2 / m);
+
+  sim::SensorModel walk_model;
+  walk_model.sample_rate_hz = 100.0;
+  sim::RandomWalkRate walk;
+  walk.rrw_rad_per_s_per_sqrt_s = 1e-5;
+  walk_model.terms = {walk};
+  const int blocks = 32;
+  const std::int64_t mw = 2000;
+  const double k2t = 1e-10 * static_cast<double>(mw) / walk_model.sample_rate_hz;
+  const std::vector<double> sd_walk = BlockMeanDeviationSd(walk_model, mw, blocks);
+  const double big_b = blocks;
+  const double all = k2t * ((big_b * big_b * big_b - big_b) / 3.0 - big_b * (big_b - 1.0) / 3.0);
+  for (int b : {0, 5, 16, blocks - 1}) {
+    const double row = k2t * (b * (b + 1) / 2.0 + (blocks - 1.0 - b) * (blocks - b) / 2.0 - (blocks - 1.0) / 3.0);
+    const double expected = row / big_b - all / (2.0 * big_b * big_b);
+    EXPECT_NEAR(sd_walk[b] * sd_walk[b], expected, 2e-3 * expected) << b;
+  }
+  EXPECT_GT(sd_walk.front(), 1.5 * sd_walk[blocks / 2]);
+}
+
 // A rate ramp of unknown sign is a random slope of variance R^2: every difference shares it.
 TEST(BlockMeans, RampAddsAConstant) {
   sim::SensorModel model;
