@@ -48,7 +48,7 @@ void RunCurve(benchmark::State& state, Statistic statistic, TauGridOptions grid,
   AvarOptions options;
   options.statistic = statistic;
   options.taus = grid;
-  options.sample_period_s = 0.005;
+  options.sample_clock = SampleClock::FromPeriodS(0.005);
   AllanFamilyWorkspace workspace;
   AvarSummary summary;
   // Warm: the work space has its pages before the clock starts, as in a long Monte Carlo loop.

@@ -41,14 +41,14 @@ std::vector<double> Trial(const experiments::SweepPoint& point, std::uint64_t se
       point.model.Generate(seed, static_cast<std::uint64_t>(trial), point.num_samples);
   estimators::AvarOptions options;
   options.statistic = estimators::Statistic::kAllanOverlapping;
-  options.sample_period_s = 1.0 / point.sample_rate_hz;
+  options.sample_clock = point.model.sample_clock;
   options.confidence_method = estimators::ConfidenceMethod::kNone;
   estimators::AvarSummary summary;
   if (!estimators::ComputeStatisticValues(options, rate, &summary, &w->allan)) {
     throw std::runtime_error(summary.message);
   }
   estimators::AvarCurve curve;
-  curve.sample_period_s = options.sample_period_s;
+  curve.sample_clock = options.sample_clock;
   curve.num_samples = point.num_samples;
   for (const estimators::AvarPoint& p : summary.points) {
     curve.m.push_back(p.m);
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   }
   const experiments::SweepPoint& point = spec.points[0];
   std::printf("MG-25 preset, %lld samples (1 h at %g Hz), OAVAR octave + GLS (Q,N,B,K,R), %d trials\n",
-              static_cast<long long>(point.num_samples), point.sample_rate_hz, trials);
+              static_cast<long long>(point.num_samples), point.model.sample_clock.rate_hz(), trials);
 
   // Bare loop, one thread, after one untimed trial (page faults of the first buffers, Ceres set-up).
   Workspace w;

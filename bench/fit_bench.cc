@@ -17,12 +17,12 @@ namespace {
 AvarCurve MakeCurve() {
   const std::int64_t n = std::int64_t{1} << 20;
   sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
   model.terms = {TermFor(Coefficient::kN, FromDatasheetUnit(Coefficient::kN, 0.115)),
                  TermFor(Coefficient::kB, FromDatasheetUnit(Coefficient::kB, 6.0)),
                  TermFor(Coefficient::kK, FromDatasheetUnit(Coefficient::kK, 41.0))};
   AvarCurve c;
-  c.sample_period_s = 0.01;
+  c.sample_clock = SampleClock::FromPeriodS(0.01);
   c.num_samples = n;
   const double step = std::pow(static_cast<double>(n / 8), 1.0 / 59.0);  // 60 log-spaced taus
   for (double x = 1; c.m.size() < 60; x *= step) {
@@ -30,7 +30,7 @@ AvarCurve MakeCurve() {
                                           c.m.empty() ? 1 : c.m.back() + 1);
     c.m.push_back(m);
   }
-  for (std::int64_t m : c.m) c.tau_s.push_back(m * c.sample_period_s);
+  for (std::int64_t m : c.m) c.tau_s.push_back(m * c.sample_clock.period_s());
   c.avar = AllanVariance(model.Generate(1, 0, n), c.m, sim::AvarEstimatorKind::kOverlapping);
   return c;
 }
@@ -65,14 +65,14 @@ BENCHMARK(BM_CovarianceModel)->Unit(benchmark::kMillisecond);
 // without flicker (B needs the record-length variogram table).
 void BM_CovarianceModel1e7(benchmark::State& state) {
   AvarCurve c;
-  c.sample_period_s = 0.005;
+  c.sample_clock = SampleClock::FromPeriodS(0.005);
   c.num_samples = 10000000;
   for (double x = 1; x <= c.num_samples / 8; x *= std::pow(10.0, 0.1)) {
     const auto m = static_cast<std::int64_t>(std::llround(x));
     if (c.m.empty() || m > c.m.back()) c.m.push_back(m);
   }
   for (std::int64_t m : c.m) {
-    c.tau_s.push_back(m * c.sample_period_s);
+    c.tau_s.push_back(m * c.sample_clock.period_s());
     c.avar.push_back(1.0);
   }
   std::vector<Coefficient> terms(std::begin(kAllCoefficients), std::end(kAllCoefficients));

@@ -22,7 +22,7 @@ std::string DropReason(const AvarOptions& options, std::int64_t m, std::int64_t 
   const std::string name(StatisticId(s));
   if (m < 1) {
     return "tau rounds to m = 0: below half the sample period " +
-           SignificantDigits(options.sample_period_s, 9) + " s";
+           SignificantDigits(options.sample_clock.period_s(), 9) + " s";
   }
   const std::int64_t max_m = MaxAveragingFactor(s, n);
   if (m > max_m) {
@@ -134,7 +134,7 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
     return false;
   }
   const Statistic s = options.statistic;
-  const double tau0 = options.sample_period_s;
+  const double tau0 = options.sample_clock.period_s();
   // Generated grids stop at the statistic's largest m; explicit taus all come back, so that
   // the ones beyond it are reported rather than silently skipped.
   const std::int64_t limit = options.taus.kind == TauGridKind::kExplicit

@@ -84,7 +84,7 @@ double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarP
       return SimpleEdf(n_rate / point->m);
     case ConfidenceMethod::kGreenhallRiley:
       return StatisticEdf(options.statistic, point->alpha, point->m, n_rate,
-                          options.sample_period_s);
+                          options.sample_clock.period_s());
     case ConfidenceMethod::kAuto:
       if (RecordEdfAvailable(options.statistic, point->m, n_rate)) {
         const double edf = RecordEdf(options.statistic, phase, point->m);
@@ -101,14 +101,14 @@ double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarP
         }
         if (!(oavar > 0.0)) {
           oavar = StatisticEdf(Statistic::kAllanOverlapping, point->alpha, point->m, n_rate,
-                               options.sample_period_s);
+                               options.sample_clock.period_s());
         }
         return BoundTotalVarianceEdf(
-            StatisticEdf(Statistic::kTotal, point->alpha, point->m, n_rate, options.sample_period_s),
+            StatisticEdf(Statistic::kTotal, point->alpha, point->m, n_rate, options.sample_clock.period_s()),
             oavar, point->m, n_rate);
       }
       return StatisticEdf(options.statistic, point->alpha, point->m, n_rate,
-                          options.sample_period_s);
+                          options.sample_clock.period_s());
   }
   return 0.0;
 }
@@ -163,7 +163,7 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
   std::vector<double> differenced;
   std::span<const double> rate = data;
   if (options.input == InputKind::kAngle) {
-    differenced = AngleToRate(data, options.sample_period_s);
+    differenced = AngleToRate(data, options.sample_clock.period_s());
     rate = differenced;
   }
   AllanFamilyWorkspace workspace;
@@ -178,7 +178,7 @@ bool ComputeAvarOnStorage(const AvarOptions& options, std::span<double> storage,
     // rate_k = (angle_{k+1} - angle_k) / tau0 into the slot of angle_{k+1}, from the top down, so
     // that each angle is read before its slot is written; the first angle's slot becomes the
     // integrated record's spare.
-    const double tau0 = options.sample_period_s;
+    const double tau0 = options.sample_clock.period_s();
     for (std::size_t k = storage.size(); k-- > 2;) storage[k] = (storage[k] - storage[k - 1]) / tau0;
     phase = storage.subspan(1);
   }

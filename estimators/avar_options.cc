@@ -16,8 +16,8 @@ bool AvarOptions::IsValid(std::string* why) const {
     *why = "tau grid: " + *why;
     return false;
   }
-  if (!std::isfinite(sample_period_s) || sample_period_s <= 0.0) {
-    *why = "sample period must be finite and > 0 s, got " + SignificantDigits(sample_period_s, 9);
+  if (!sample_clock.IsValid()) {
+    *why = "sample period must be finite and > 0 s, got " + SignificantDigits(sample_clock.period_s(), 9);
     return false;
   }
   if (input != InputKind::kRate && input != InputKind::kAngle) {

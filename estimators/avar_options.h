@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "common/sample_clock.h"
 #include "estimators/statistic.h"
 #include "estimators/tau_grid.h"
 
@@ -36,7 +37,7 @@ inline constexpr std::int64_t kSteadyIdentificationAverages = 128;
 struct AvarOptions {
   Statistic statistic = Statistic::kAllanOverlapping;
   TauGridOptions taus;
-  double sample_period_s = 1.0;  // tau0 [s], > 0
+  SampleClock sample_clock;      // tau0 (default 1 s), valid
   InputKind input = InputKind::kRate;
   ConfidenceMethod confidence_method = ConfidenceMethod::kGreenhallRiley;
   double confidence = 0.683;     // two-sided level of the interval, in (0, 1)

@@ -39,7 +39,7 @@ std::vector<std::int64_t> AveragingFactors(const SweepSpec& spec, const SweepPoi
   if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) throw std::invalid_argument(why);
   std::vector<std::int64_t> ms;
   for (std::int64_t m :
-       estimators::CandidateAveragingFactors(grid, 1.0 / point.sample_rate_hz, point.num_samples / 4)) {
+       estimators::CandidateAveragingFactors(grid, point.model.sample_clock.period_s(), point.num_samples / 4)) {
     if (m >= 1) ms.push_back(m);
   }
   return ms;
@@ -88,11 +88,11 @@ std::vector<double> AvarBiasDriver::Run(const SweepSpec& spec, const SweepPoint&
       PointSeed(spec.seed, point.index), static_cast<std::uint64_t>(trial), point.num_samples);
   std::vector<double> values;
   values.reserve(statistics.size() * w->ms.size());
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   for (std::size_t si = 0; si < statistics.size(); ++si) {
     estimators::AvarOptions options;
     options.statistic = statistics[si];
-    options.sample_period_s = tau0;
+    options.sample_clock = point.model.sample_clock;
     options.taus.kind = estimators::TauGridKind::kExplicit;
     for (std::int64_t m : w->ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
     options.confidence_method = estimators::ConfidenceMethod::kNone;

@@ -66,7 +66,7 @@ class Workspace : public TrialWorkspace {
 // describes, and there are no output quantizers.
 bool GaussianOnly(const SweepPoint& point) {
   if (point.model.angle_quantizer || point.model.rate_quantizer) return false;
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   const sim::RecordShape shape{std::max<std::int64_t>(point.num_samples, 2),
                                sim::AvarEstimatorKind::kOverlapping};
   for (const sim::NoiseTerm& term : point.model.terms) {
@@ -125,7 +125,7 @@ std::vector<std::int64_t> ErrorBarAveragingFactors(const SweepSpec& spec,
   if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) {
     throw std::invalid_argument("taus: " + why);
   }
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   std::vector<std::int64_t> ms;
   for (std::int64_t m : estimators::CandidateAveragingFactors(grid, tau0, point.num_samples / 4)) {
     if (m >= 1) ms.push_back(m);
@@ -135,7 +135,7 @@ std::vector<std::int64_t> ErrorBarAveragingFactors(const SweepSpec& spec,
 }
 
 std::string NoiseLabel(const SweepPoint& point) {
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   const sim::RecordShape shape{std::max<std::int64_t>(point.num_samples, 2),
                                sim::AvarEstimatorKind::kOverlapping};
   std::vector<std::string> ids;
@@ -212,7 +212,7 @@ std::vector<double> AvarErrorBarsDriver::Run(const SweepSpec& spec, const SweepP
 
   const std::vector<double> rate = point.model.Generate(
       PointSeed(spec.seed, point.index), static_cast<std::uint64_t>(trial), point.num_samples);
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
 
   std::vector<double> row;
   const auto& statistics = ErrorBarStatistics();
@@ -220,7 +220,7 @@ std::vector<double> AvarErrorBarsDriver::Run(const SweepSpec& spec, const SweepP
     const Statistic s = statistics[si];
     estimators::AvarOptions options;
     options.statistic = s;
-    options.sample_period_s = tau0;
+    options.sample_clock = point.model.sample_clock;
     options.taus.kind = estimators::TauGridKind::kExplicit;
     for (std::int64_t m : ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
     options.confidence_method = estimators::ConfidenceMethod::kGreenhallRiley;

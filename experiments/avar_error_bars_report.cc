@@ -64,7 +64,7 @@ std::vector<Row> BuildRows(const SweepSpec& spec, const std::vector<PointStats>&
         row.estimator = est;
         row.exact = HasExactTheory(s);
         row.m = m;
-        row.tau_s = static_cast<double>(m) / point.sample_rate_hz;
+        row.tau_s = static_cast<double>(m) / point.model.sample_clock.rate_hz();
         const ColumnStats* ratio = ps.Find(Col("ratio", est, m));
         if (ratio && ratio->count > 1) {
           row.trials = ratio->count;
@@ -337,7 +337,7 @@ bool AvarErrorBarsExperiment::WriteReport(const SweepSpec& spec, const RunSummar
   for (const SweepPoint& point : spec.points) {
     extra.emplace_back("point " + std::to_string(point.index),
                        NoiseLabel(point) + ", " + std::to_string(point.num_samples) +
-                           " samples at " + SignificantDigits(point.sample_rate_hz, 6) + " Hz");
+                           " samples at " + SignificantDigits(point.model.sample_clock.rate_hz(), 6) + " Hz");
   }
   const std::string base = context.output_dir + "/" + spec.name;
   const std::string csv = Csv(spec, rows, ProvenanceBlock(spec, context, extra, "# "));

@@ -62,7 +62,7 @@ bool CoefficientRecoveryExperiment::WriteReport(const SweepSpec& spec, const Run
   for (const CoefficientRow& r : rows) {
     const auto c = r.coefficient;
     csv << CsvField(r.sensor) << "," << DurationText(r.duration_s) << "," << Cell(r.duration_s) << ","
-        << Cell(r.sample_rate_hz) << "," << r.samples << "," << r.method << ","
+        << Cell(r.sample_clock.rate_hz()) << "," << r.samples << "," << r.method << ","
         << estimators::CoefficientId(c) << "," << Cell(estimators::ToDatasheetUnit(c, r.truth_si)) << ","
         << CsvField(std::string(estimators::DatasheetUnit(c))) << "," << r.n << ","
         << Cell(r.failure_rate) << "," << Cell(r.bias) << "," << Cell(r.bias_se) << ","

@@ -58,9 +58,9 @@ std::vector<CoefficientRow> CoefficientRows(const SweepSpec& spec,
         CoefficientRow r;
         r.point = ps.point;
         r.sensor = point.model.name;
-        r.sample_rate_hz = point.sample_rate_hz;
+        r.sample_clock = point.model.sample_clock;
         r.samples = point.num_samples;
-        r.duration_s = static_cast<double>(point.num_samples) / point.sample_rate_hz;
+        r.duration_s = static_cast<double>(point.num_samples) / point.model.sample_clock.rate_hz();
         r.method = method;
         r.coefficient = c;
         r.truth_si = truth.at(c);
@@ -137,9 +137,9 @@ std::vector<std::pair<std::string, std::string>> CoefficientTrialChoices(const S
     } catch (const std::invalid_argument&) {
       continue;
     }
-    const double tau0 = 1.0 / p.sample_rate_hz;
+    const double tau0 = p.model.sample_clock.period_s();
     taus << (taus.tellp() > 0 ? "; " : "") << p.model.name << " " << DurationText(p.num_samples * tau0)
-         << " at " << Cell(p.sample_rate_hz) << " Hz: " << Cell(window.min_m * tau0, 3) << " .. "
+         << " at " << Cell(p.model.sample_clock.rate_hz()) << " Hz: " << Cell(window.min_m * tau0, 3) << " .. "
          << Cell(window.max_m * tau0, 3) << " s";
   }
   std::ostringstream rule;

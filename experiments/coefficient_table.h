@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/sample_clock.h"
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/aggregate.h"
 #include "experiments/runner.h"
@@ -18,7 +19,7 @@ struct CoefficientRow {
   int point = 0;
   std::string sensor;        // model name
   double duration_s = 0.0;   // record length T
-  double sample_rate_hz = 0.0;
+  SampleClock sample_clock;
   std::int64_t samples = 0;
   std::string method;        // slope, wls, log_wls, gls
   estimators::Coefficient coefficient = estimators::Coefficient::kN;

@@ -218,18 +218,17 @@ double SlopeMethodBTarget(const TrueCoefficients& truth) {
   return std::sqrt(b * b + k * truth.at(Coefficient::kN) * truth.at(Coefficient::kK));
 }
 
-std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sample_rate_hz,
-                                        std::int64_t num_samples,
+std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, std::int64_t num_samples,
                                         const std::vector<std::int64_t>& candidates) {
   if (!model.band_limit.enabled() || candidates.empty()) return 1;
   sim::SensorModel white;
-  white.sample_rate_hz = sample_rate_hz;
+  white.sample_clock = model.sample_clock;
   white.band_limit = model.band_limit;
   sim::WhiteRateNoise unit;
   unit.arw_rad_per_sqrt_s = 1.0;
   white.terms.push_back(unit);
   const sim::RecordShape shape{num_samples, sim::AvarEstimatorKind::kOverlapping};
-  const double tau0 = 1.0 / sample_rate_hz;
+  const double tau0 = model.sample_clock.period_s();
   for (std::int64_t m : candidates) {
     if (m < 1) continue;
     const double deficit = 1.0 - white.ExpectedAvar(m, shape) / unit.ExpectedAvar(m, tau0, shape);
@@ -246,11 +245,11 @@ FitAveragingWindow FitWindowOf(const SweepSpec& spec, const SweepPoint& point) {
   if (!estimators::TauGridOptions::Parse(spec.taus, &grid, &why)) {
     throw std::invalid_argument("taus: " + why);
   }
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   const std::vector<std::int64_t> candidates =
       estimators::CandidateAveragingFactors(grid, tau0, point.num_samples / 2);
   FitAveragingWindow window;
-  window.min_m = SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, candidates);
+  window.min_m = SmallestFitAveragingFactor(point.model, point.num_samples, candidates);
   window.max_m = candidates.empty() ? 0 : candidates.back();
   if (!(spec.fit_tau_max_s > 0.0)) return window;
   // A fixed window: the candidates inside [tau_min, tau_max] (a relative 1e-9 for rounding).
@@ -305,7 +304,7 @@ std::vector<double> CoefficientTrialDriver::Run(const SweepSpec& spec, const Swe
   estimators::AvarOptions options;
   options.statistic = estimators::Statistic::kAllanOverlapping;
   options.taus = plan.grid;
-  options.sample_period_s = 1.0 / point.sample_rate_hz;
+  options.sample_clock = point.model.sample_clock;
   estimators::AvarSummary avar;
   if (!estimators::ComputeAvar(options, record, &avar)) {
     throw std::runtime_error("avar: " + avar.message);

@@ -77,9 +77,8 @@ double SlopeMethodBTarget(const TrueCoefficients& truth);
 
 // Smallest averaging factor among `candidates` (ascending) whose white-noise AVAR deficit under
 // the model's band-limit is at most min(kMaxBandLimitDeficit, kMaxBandLimitDeficitInSd
-// sqrt(4m / 3 num_samples)); 1 without a band-limit.
-std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, double sample_rate_hz,
-                                        std::int64_t num_samples,
+// sqrt(4m / 3 num_samples)) on the model's sample clock; 1 without a band-limit.
+std::int64_t SmallestFitAveragingFactor(const sim::SensorModel& model, std::int64_t num_samples,
                                         const std::vector<std::int64_t>& candidates);
 
 // The averaging factors the fits of a point use: [min_m, max_m] (max_m: the grid's last one

@@ -70,7 +70,6 @@ std::unique_ptr<TrialWorkspace> DefaultIntervalsDriver::MakeWorkspace() const {
 std::vector<double> DefaultIntervalsDriver::Run(const SweepSpec& spec, const SweepPoint& point,
                                                 std::int64_t trial, TrialWorkspace*) const {
   const std::vector<std::int64_t> ms = DefaultIntervalFactors(point.num_samples);
-  const double tau0 = 1.0 / point.sample_rate_hz;
   std::vector<double> row;
   for (PlainNoise noise : PlainNoises()) {
     const std::vector<double> record = GeneratePlain(
@@ -78,7 +77,7 @@ std::vector<double> DefaultIntervalsDriver::Run(const SweepSpec& spec, const Swe
     std::vector<estimators::AvarSummary> summaries;
     for (const Method& method : kMethods) {
       estimators::AvarOptions options;  // `allanlab avar`'s defaults: octave OAVAR
-      options.sample_period_s = tau0;
+      options.sample_clock = point.model.sample_clock;
       options.confidence_method = method.method;
       estimators::AvarSummary summary;
       if (!estimators::ComputeAvar(options, record, &summary)) {
@@ -142,7 +141,7 @@ std::vector<Cell> BuildCells(const SweepSpec& spec, const SweepPoint& point, con
       c.noise = id;
       c.label = PlainNoiseLabel(noise);
       c.m = m;
-      c.tau_s = static_cast<double>(m) / point.sample_rate_hz;
+      c.tau_s = static_cast<double>(m) / point.model.sample_clock.rate_hz();
       c.clusters = point.num_samples / m;
       if (const ColumnStats* r = ps.Find(Key("ratio", "", id, m)); r && r->count > 1) {
         c.trials = r->count;
@@ -257,7 +256,7 @@ bool DefaultIntervalsExperiment::WriteReport(const SweepSpec& spec, const RunSum
         not_met[k] += c.verdict[k] == "not met";
       }
     }
-    md << "## " << point.num_samples << " samples at " << SignificantDigits(point.sample_rate_hz, 4)
+    md << "## " << point.num_samples << " samples at " << SignificantDigits(point.model.sample_clock.rate_hz(), 4)
        << " Hz, " << (cells.empty() ? 0 : cells.front().trials) << " trials per cell\n\n"
        << "Cells (noise x tau) within nominal +- 2 points at both levels: --ci auto " << met[0]
        << " met, " << not_met[0] << " not met, " << cells.size() - met[0] - not_met[0]

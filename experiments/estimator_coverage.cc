@@ -126,7 +126,7 @@ std::vector<double> EstimatorCoverageDriver::Run(const SweepSpec& spec, const Sw
   auto* ws = dynamic_cast<Workspace*>(workspace);
   Workspace local;
   if (!ws) ws = &local;
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   const std::int64_t n = point.num_samples;
   if (ws->point != point.index) {
     ws->expected.clear();
@@ -147,7 +147,7 @@ std::vector<double> EstimatorCoverageDriver::Run(const SweepSpec& spec, const Sw
       const std::vector<std::int64_t> ms = EstimatorCoverageFactors(s, n);
       estimators::AvarOptions options;  // `allanlab avar --estimator <s>`'s defaults
       options.statistic = s;
-      options.sample_period_s = tau0;
+      options.sample_clock = point.model.sample_clock;
       options.taus.kind = estimators::TauGridKind::kExplicit;
       for (std::int64_t m : ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
       options.confidence_method = estimators::ConfidenceMethod::kAuto;

@@ -23,7 +23,7 @@ std::string Slope(double value) {
 // The fitted tau window of a point, as text ("0.64 .. 80 s").
 std::string WindowText(const SweepSpec& spec, const SweepPoint& p) {
   const FitAveragingWindow w = FitWindowOf(spec, p);
-  const double tau0 = 1.0 / p.sample_rate_hz;
+  const double tau0 = p.model.sample_clock.period_s();
   return Cell(w.min_m * tau0, 3) + " .. " + Cell(w.max_m * tau0, 3) + " s";
 }
 

@@ -114,17 +114,16 @@ class Workspace : public TrialWorkspace {
 // unbiased (coefficient_trial.h): N and B against the truth, with their interval coverage.
 void AppendFitColumns(const SweepPoint& point, const std::vector<double>& rate,
                       const SeedPaperTruth& truth, double injected, std::vector<double>* row) {
-  const double tau0 = 1.0 / point.sample_rate_hz;
   estimators::AvarOptions options;
   options.statistic = estimators::Statistic::kAllanOverlapping;
-  options.sample_period_s = tau0;
+  options.sample_clock = point.model.sample_clock;
   options.taus.kind = estimators::TauGridKind::kOctave;
   estimators::AvarSummary summary;
   if (!estimators::ComputeAvar(options, rate, &summary)) throw std::runtime_error(summary.message);
   std::vector<std::int64_t> ms;
   for (const estimators::AvarPoint& p : summary.points) ms.push_back(p.m);
   const std::int64_t min_m =
-      SmallestFitAveragingFactor(point.model, point.sample_rate_hz, point.num_samples, ms);
+      SmallestFitAveragingFactor(point.model, point.num_samples, ms);
   const estimators::AvarCurve curve = estimators::CurveFromSummary(summary, min_m);
   estimators::ModelFitOptions fit;
   estimators::ModelFitSummary m;
@@ -181,11 +180,11 @@ std::vector<std::int64_t> SeedPaperAveragingFactors(const SweepSpec& spec,
     throw std::invalid_argument("taus: " + why);
   }
   std::set<std::int64_t> ms;
-  for (std::int64_t m : estimators::CandidateAveragingFactors(grid, 1.0 / point.sample_rate_hz,
+  for (std::int64_t m : estimators::CandidateAveragingFactors(grid, point.model.sample_clock.period_s(),
                                                               point.num_samples / 2)) {
     if (m >= 1) ms.insert(m);
   }
-  const auto one_second = static_cast<std::int64_t>(std::llround(point.sample_rate_hz));
+  const auto one_second = static_cast<std::int64_t>(std::llround(point.model.sample_clock.rate_hz()));
   if (one_second >= 1 && one_second <= point.num_samples / 2) ms.insert(one_second);
   if (ms.size() < 3) throw std::invalid_argument("fewer than 3 averaging factors");
   return {ms.begin(), ms.end()};
@@ -221,13 +220,13 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
     cache.truth = TruthOf(point.model);
   }
   const SeedPaperTruth& truth = cache.truth;
-  const double tau0 = 1.0 / point.sample_rate_hz;
+  const double tau0 = point.model.sample_clock.period_s();
   const std::vector<double> rate = point.model.Generate(
       PointSeed(spec.seed, point.index), static_cast<std::uint64_t>(trial), point.num_samples);
 
   estimators::AvarOptions options;
   options.statistic = estimators::Statistic::kAllanOverlapping;
-  options.sample_period_s = tau0;
+  options.sample_clock = point.model.sample_clock;
   options.taus.kind = estimators::TauGridKind::kExplicit;
   for (std::int64_t m : cache.ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
   options.confidence_method = estimators::ConfidenceMethod::kGreenhallRiley;
@@ -243,7 +242,7 @@ std::vector<double> SeedPaperDriver::Run(const SweepSpec& spec, const SweepPoint
     return truth_value > 0.0 && std::isfinite(v) ? v / truth_value : kNaN;
   };
   double sigma_1s = kNaN, sigma_min = kNaN, tau_min = kNaN;
-  const auto one_second = static_cast<std::int64_t>(std::llround(point.sample_rate_hz));
+  const auto one_second = static_cast<std::int64_t>(std::llround(point.model.sample_clock.rate_hz()));
   for (std::size_t i = 0; i < curve.size(); ++i) {
     const double adev = std::sqrt(curve.avar[i]) * kRadPerSToDegPerH;
     if (curve.m[i] == one_second) sigma_1s = adev;

@@ -248,7 +248,7 @@ std::string AllanFigure(const SweepSpec& spec, const std::vector<PointStats>& st
       name << "ratio/overlapping/m=" << ms[i];
       const ColumnStats* c = ps.Find(name.str());
       if (!c || c->count == 0) continue;
-      const double tau = static_cast<double>(ms[i]) / point.sample_rate_hz;
+      const double tau = static_cast<double>(ms[i]) / point.model.sample_clock.rate_hz();
       out << SignificantDigits(tau, 8) << ' ' << SignificantDigits(std::sqrt(e[i]) * kRadPerSToDegPerH, 8)
           << ' ' << SignificantDigits(std::sqrt(e[i] * c->mean) * kRadPerSToDegPerH, 8) << ' '
           << SignificantDigits(std::sqrt(e[i] * c->mean * c->mean / (c->mean + c->std)) * kRadPerSToDegPerH, 8)
@@ -333,7 +333,7 @@ bool SeedPaperExperiment::WriteReport(const SweepSpec& spec, const RunSummary& r
   for (const SweepPoint& point : spec.points) {
     extra.emplace_back("point " + std::to_string(point.index),
                        point.model.name + ", " + std::to_string(point.num_samples) +
-                           " samples at " + SignificantDigits(point.sample_rate_hz, 6) + " Hz");
+                           " samples at " + SignificantDigits(point.model.sample_clock.rate_hz(), 6) + " Hz");
   }
   const std::string base = context.output_dir + "/" + spec.name;
   const std::string csv = Csv(rows, ProvenanceBlock(spec, context, extra, "# "));

@@ -348,9 +348,9 @@ void ReadRecord(const YAML::Node& record, const std::string& where, SweepPoint* 
       Fail(where + "record.duration", why);
     }
     if (!(duration_s > 0.0)) Fail(where + "record.duration", "must be > 0");
-    const double n = std::round(duration_s * point->sample_rate_hz);
+    const double n = std::round(duration_s * point->model.sample_clock.rate_hz());
     if (n > static_cast<double>(kMaxSamples)) {
-      Fail(where + "record.duration", text + " at " + SignificantDigits(point->sample_rate_hz, 15) +
+      Fail(where + "record.duration", text + " at " + SignificantDigits(point->model.sample_clock.rate_hz(), 15) +
                                          " Hz is more samples than one record can hold");
     }
     point->num_samples = static_cast<std::int64_t>(n);
@@ -621,7 +621,6 @@ void Parse(const YAML::Node& root, const std::string& origin, SweepSpec* spec) {
     if (!sim::LoadSensorModelYaml(sensor_text, where + sensor_origin, &point.model, &why)) {
       throw SpecError{why};
     }
-    point.sample_rate_hz = point.model.sample_rate_hz;
     ReadRecord(record_node, where, &point);
     canonical << "point " << p << ": samples " << point.num_samples << "; sensor " << sensor_text
               << '\n';

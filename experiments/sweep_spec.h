@@ -56,8 +56,7 @@ struct SweepCoordinate {
 struct SweepPoint {
   int index = 0;                           // 0-based, in the spec's expansion order
   std::vector<SweepCoordinate> coordinates;  // empty when nothing is swept
-  sim::SensorModel model;
-  double sample_rate_hz = 0.0;
+  sim::SensorModel model;                  // its sample_clock is the record's
   std::int64_t num_samples = 0;
 };
 

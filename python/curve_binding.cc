@@ -147,7 +147,7 @@ std::string Diagnose(const Array& values, double rate_hz, const std::string& uni
   bool ok = false;
   {
     py::gil_scoped_release release;
-    ok = experiments::DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s);
+    ok = experiments::DiagnoseRecord(d, rate, info.sample_clock, &s);
   }
   if (!ok) Raise(app::kExitRuntimeError, o.record.path + ": " + s.message);
   const app::DiagnoseUnits unit = accelerometer

@@ -48,7 +48,7 @@ py::tuple Simulate(const std::string& preset, const std::string& sensor, double 
   o.trial = trial;
   const sim::SensorModel model = Model(o);
   std::int64_t n = 0;
-  if (auto failure = app::SimulateSampleCount(o, model.sample_rate_hz, &n)) Raise(failure->code, failure->message);
+  if (auto failure = app::SimulateSampleCount(o, model.sample_clock.rate_hz(), &n)) Raise(failure->code, failure->message);
   std::vector<double> rate;
   {
     py::gil_scoped_release release;
@@ -56,7 +56,7 @@ py::tuple Simulate(const std::string& preset, const std::string& sensor, double 
   }
   py::dict info;
   info["sensor_name"] = model.name;
-  info["sample_rate_hz"] = model.sample_rate_hz;
+  info["sample_rate_hz"] = model.sample_clock.rate_hz();
   info["expected_is_exact"] = model.ExpectedAvarIsExact();
   return py::make_tuple(ToArray(std::move(rate)), info);
 }

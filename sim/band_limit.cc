@@ -143,8 +143,8 @@ Biquad DesignLowPass(LowPassKind kind, double cutoff_hz, double internal_rate_hz
 
 BandLimitChain::BandLimitChain(const BandLimit& limit, double output_rate_hz) : limit_(limit) {
   const int l = limit_.oversampling;
-  const double internal_rate_hz = output_rate_hz * l;
-  internal_period_s_ = 1.0 / internal_rate_hz;
+  internal_clock_ = SampleClock::FromRateHz(output_rate_hz * l);
+  const double internal_rate_hz = internal_clock_.rate_hz();
   design_ = DesignLowPass(limit_.kind, limit_.cutoff_hz, internal_rate_hz);
 
   box_lengths_ = BoxLengths(limit_.kind, limit_.cutoff_hz, internal_rate_hz);
@@ -196,7 +196,7 @@ BandLimitChain::BandLimitChain(const BandLimit& limit, double output_rate_hz) : 
 }
 
 std::complex<double> BandLimitChain::WidebandGain(double f_hz) const {
-  const double w = 2.0 * std::numbers::pi * f_hz * internal_period_s_;
+  const double w = 2.0 * std::numbers::pi * f_hz * internal_clock_.period_s();
   std::complex<double> sum = 0.0;
   for (std::size_t n = 0; n < internal_response_.size(); ++n) {
     sum += internal_response_[n] * std::polar(1.0, -w * static_cast<double>(n));

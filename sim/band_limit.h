@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/sample_clock.h"
+
 namespace allanlab::sim {
 
 // Every filter has unit DC gain and -3 dB at fc (for the IIR kinds, of the analog prototype).
@@ -62,7 +64,7 @@ class BandLimitChain {
 
   const BandLimit& limit() const { return limit_; }
   int oversampling() const { return limit_.oversampling; }
-  double internal_period_s() const { return internal_period_s_; }
+  double internal_period_s() const { return internal_clock_.period_s(); }
   Biquad MakeFilter() const { return design_; }
   // The box kinds: lengths of the cascaded boxes in internal samples (real, >= 1); empty for IIR.
   const std::vector<double>& box_lengths() const { return box_lengths_; }
@@ -91,7 +93,7 @@ class BandLimitChain {
 
  private:
   BandLimit limit_;
-  double internal_period_s_ = 0.0;
+  SampleClock internal_clock_;  // oversampling x the output rate
   Biquad design_;
   std::vector<double> box_lengths_;
   std::vector<double> internal_response_;

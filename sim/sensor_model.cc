@@ -190,23 +190,23 @@ bool SensorModel::IsValid(std::string* why) const {
     if (why) *why = msg;
     return false;
   };
-  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
+  if (!sample_clock.IsValid()) {
     return fail("sample rate must be a finite number > 0 Hz");
   }
   if (!std::isfinite(bias_rad_per_s)) return fail("bias must be finite");
-  const double tau0 = sample_period_s();
+  const double tau0 = sample_clock.period_s();
   for (const NoiseTerm& term : terms) {
     std::string reason;
     const bool ok = std::visit([&](const auto& t) { return t.IsValid(&reason); }, term);
     if (!ok) return fail(std::string(TermId(term)) + ": " + reason);
     if (const auto* o = std::get_if<Outliers>(&term); o && o->rate_hz * tau0 > 1.0) {
       std::ostringstream os;
-      os << "outliers: rate " << o->rate_hz << " Hz exceeds the sample rate " << sample_rate_hz
+      os << "outliers: rate " << o->rate_hz << " Hz exceeds the sample rate " << sample_clock.rate_hz()
          << " Hz (at most one spike per sample)";
       return fail(os.str());
     }
   }
-  if (!band_limit.IsValid(sample_rate_hz, why)) return false;
+  if (!band_limit.IsValid(sample_clock.rate_hz(), why)) return false;
   if (angle_quantizer && !angle_quantizer->IsValid(why)) return false;
   if (rate_quantizer && !rate_quantizer->IsValid(why)) return false;
   return true;
@@ -214,10 +214,10 @@ bool SensorModel::IsValid(std::string* why) const {
 
 std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t trial,
                                           std::int64_t n) const {
-  const double tau0 = sample_period_s();
+  const double tau0 = sample_clock.period_s();
   auto engine_for = [&](std::size_t i) { return MakeEngine(seed, trial, i); };
   std::shared_ptr<const BandLimitChain> chain;
-  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
+  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_clock.rate_hz());
   const std::int64_t burn_in = chain ? chain->burn_in_samples() : 0;
   const std::int64_t total = n + burn_in;
   // The record starts as the FFT work space of the first Kasdin flicker term (when there is one),
@@ -364,10 +364,10 @@ double SensorModel::ExpectedAvar(std::int64_t m, const RecordShape& shape) const
 
 std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
                                               const RecordShape& shape, FlickerBandLimit flicker) const {
-  const double tau0 = sample_period_s();
+  const double tau0 = sample_clock.period_s();
   std::vector<double> result(ms.size(), 0.0);
   std::shared_ptr<const BandLimitChain> chain;
-  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
+  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_clock.rate_hz());
   for (const NoiseTerm& term : terms) {
     const std::vector<double> part = chain ? std::visit(ChainTheory{*chain, tau0, ms, shape, flicker}, term)
                                            : std::visit(DirectTheory{tau0, ms, shape}, term);
@@ -387,7 +387,7 @@ std::vector<double> SensorModel::ExpectedAvar(std::span<const std::int64_t> ms,
 }
 
 std::vector<double> SensorModel::AngleErrorAutocovariance(std::int64_t lags) const {
-  const double tau0 = sample_period_s();
+  const double tau0 = sample_clock.period_s();
   const double lsb2 = angle_quantizer->lsb_rad * angle_quantizer->lsb_rad;
   for (std::int64_t length = std::min<std::int64_t>(lags, 256);; length = std::min(lags, 4 * length)) {
     const std::vector<double> r = SignalAutocovariance(length);
@@ -414,7 +414,7 @@ std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const
   std::vector<double> total = SignalAutocovariance(lags);
   if (angle_quantizer) {
     const std::vector<double> e = AngleErrorAutocovariance(lags + 1);
-    const std::vector<double> rate_error = AngleQuantizer::RateErrorAutocovariance(sample_period_s(), e);
+    const std::vector<double> rate_error = AngleQuantizer::RateErrorAutocovariance(sample_clock.period_s(), e);
     for (std::size_t j = 0; j < std::min(total.size(), rate_error.size()); ++j) total[j] += rate_error[j];
   }
   if (rate_quantizer) {
@@ -425,10 +425,10 @@ std::vector<double> SensorModel::GaussianAutocovariance(std::int64_t lags) const
 }
 
 std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
-  const double tau0 = sample_period_s();
+  const double tau0 = sample_clock.period_s();
   std::vector<double> total(static_cast<std::size_t>(lags), 0.0);
   std::shared_ptr<const BandLimitChain> chain;
-  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_rate_hz);
+  if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_clock.rate_hz());
   for (const NoiseTerm& term : terms) {
     std::visit(
         [&](const auto& t) {
@@ -454,7 +454,7 @@ std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
 }
 
 double SensorModel::AsymptoticAvar(double tau_s) const {
-  const double tau0 = sample_period_s();
+  const double tau0 = sample_clock.period_s();
   double sum = 0.0;
   const RecordShape long_record{std::int64_t{1} << 40, AvarEstimatorKind::kOverlapping};
   for (const NoiseTerm& term : terms) {

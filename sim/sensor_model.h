@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/sample_clock.h"
 #include "sim/avar_theory.h"
 #include "sim/band_limit.h"
 #include "sim/noise_term.h"
@@ -29,7 +30,7 @@ enum class FlickerBandLimit {
 struct SensorModel {
   std::string name;
   std::string description;
-  double sample_rate_hz = 100.0;  // output rate fs
+  SampleClock sample_clock = SampleClock::FromRateHz(100.0);  // output rate fs and tau0
   double bias_rad_per_s = 0.0;    // constant turn-on bias (no effect on AVAR; matters to quantizers)
   std::vector<NoiseTerm> terms;
   BandLimit band_limit;
@@ -68,9 +69,6 @@ struct SensorModel {
 
   // Continuous IEEE 952 sum of the terms' asymptotes at tau (no band-limit, no quantizers).
   double AsymptoticAvar(double tau_s) const;
-
-  // tau0 = 1 / fs, the one place the period is derived from the rate.
-  double sample_period_s() const { return 1.0 / sample_rate_hz; }
 
   static constexpr std::uint64_t kQuantizerStream = 1000;
   static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset

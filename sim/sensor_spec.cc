@@ -401,7 +401,7 @@ bool ReadTerm(const YAML::Node& node, const std::string& path, double sample_rat
   // The term's own rules (and the model's per-term rules, such as at most one outlier per
   // sample), checked here so the message carries the term's path.
   SensorModel probe;
-  probe.sample_rate_hz = sample_rate_hz;
+  probe.sample_clock = SampleClock::FromRateHz(sample_rate_hz);
   probe.terms = {*term};
   std::string reason;
   if (!probe.IsValid(&reason)) return sink->Fail(node.Mark(), path, reason);
@@ -471,13 +471,14 @@ bool ReadModel(const YAML::Node& root, ErrorSink* sink, SensorModel* model) {
   auto map = MapReader::Open(
       root, "", "a sensor spec",
       {"name", "description", "sample_rate", "bias", "terms", "band_limit", "output"}, sink);
+  double sample_rate_hz = 0.0;
   if (!map || !map->Text("name", true, &model->name) ||
       !map->Text("description", false, &model->description) ||
-      !map->Quantity("sample_rate", Dimension::kFrequency, Sign::kPositive,
-                     &model->sample_rate_hz) ||
+      !map->Quantity("sample_rate", Dimension::kFrequency, Sign::kPositive, &sample_rate_hz) ||
       !map->OptionalQuantity("bias", Dimension::kRate, Sign::kAny, &model->bias_rad_per_s)) {
     return false;
   }
+  model->sample_clock = SampleClock::FromRateHz(sample_rate_hz);
   if (!map->Has("terms")) return map->Missing("terms", "a list of noise terms");
   const YAML::Node terms = map->Get("terms");
   if (!terms.IsSequence()) {
@@ -485,14 +486,14 @@ bool ReadModel(const YAML::Node& root, ErrorSink* sink, SensorModel* model) {
   }
   for (std::size_t i = 0; i < terms.size(); ++i) {
     NoiseTerm term;
-    if (!ReadTerm(terms[i], "terms[" + std::to_string(i) + "]", model->sample_rate_hz, sink,
+    if (!ReadTerm(terms[i], "terms[" + std::to_string(i) + "]", model->sample_clock.rate_hz(), sink,
                   &term)) {
       return false;
     }
     model->terms.push_back(term);
   }
   if (map->Has("band_limit") &&
-      !ReadBandLimit(map->Get("band_limit"), model->sample_rate_hz, sink, &model->band_limit)) {
+      !ReadBandLimit(map->Get("band_limit"), model->sample_clock.rate_hz(), sink, &model->band_limit)) {
     return false;
   }
   if (map->Has("output") && !ReadOutput(map->Get("output"), sink, model)) return false;

@@ -40,7 +40,7 @@ Provenance AvarProvenance(const RecordCurveOptions& o, const AvarReport& report,
                      std::string(RateUnitName(report.output_unit)) + " out");
   p.Add("samples", std::to_string(info.samples) + " read, " +
                        std::to_string(report.summary.num_samples) + " rate samples used");
-  p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
+  p.Add("sample_rate", ShortestDecimal(info.sample_clock.rate_hz()) + " Hz (" + info.rate_source + ")");
   if (info.dropped_nonfinite > 0) {
     p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
   }

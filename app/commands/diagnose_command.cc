@@ -134,9 +134,9 @@ Json ParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits&
 
 // The same parameters in the report's units, as `summary.effects` gives the verdict's (one entry
 // per effect).
-Json ReportedParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits& units, double sample_period_s) {
+Json ReportedParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits& units, SampleClock sample_clock) {
   Json j = Json::array();
-  for (const auto& e : effects) j.push_back(PlainEffectJson(MakePlainEffect(e, units, sample_period_s)));
+  for (const auto& e : effects) j.push_back(PlainEffectJson(MakePlainEffect(e, units, sample_clock)));
   return j;
 }
 
@@ -231,7 +231,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   verdict["params_reported"] = Json::array();
   if (s.verdict_candidate >= 0 && s.verdict != "unexplained") {
     verdict["params"] = ParamsJson(s.candidates[s.verdict_candidate].effects, unit);
-    verdict["params_reported"] = ReportedParamsJson(s.candidates[s.verdict_candidate].effects, unit, s.sample_period_s);
+    verdict["params_reported"] = ReportedParamsJson(s.candidates[s.verdict_candidate].effects, unit, s.sample_clock);
   }
   Json also = Json::array(), separating = Json::object();
   for (const auto& a : s.also_consistent) {
@@ -260,7 +260,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   for (const CandidateResult& c : s.candidates) {
     Json cj{{"effect", c.id()},
             {"params", ParamsJson(c.effects, unit)},
-            {"params_reported", ReportedParamsJson(c.effects, unit, s.sample_period_s)}};
+            {"params_reported", ReportedParamsJson(c.effects, unit, s.sample_clock)}};
     cj["gap_before"] = GapJson(s.before);
     cj["gap_after"] = GapJson(c.after);
     cj["heldout_gap_before"] = c.after.has_heldout ? MetricsJson(c.heldout_before) : Json(nullptr);
@@ -490,7 +490,7 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
     columns += (columns.empty() ? "" : ", ") + c.name + " " + c.units + " (" + c.units_source + ")";
   }
   p.Add("columns", columns);
-  p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
+  p.Add("sample_rate", ShortestDecimal(info.sample_clock.rate_hz()) + " Hz (" + info.rate_source + ")");
   p.Add("samples", std::to_string(info.samples));
   if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
   AddDiagnosisSettings(o, &p);
@@ -504,12 +504,12 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
     DiagnoseProgress progress(c.name, !o.quiet, o.progress);
     DiagnoseOptions with_progress = d;
     with_progress.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
-    const bool diagnosed = DiagnoseRecord(with_progress, rates[i], 1.0 / info.sample_rate_hz, &s);
+    const bool diagnosed = DiagnoseRecord(with_progress, rates[i], info.sample_clock, &s);
     progress.Clear();
     if (!diagnosed) {
       return RuntimeFailure(info.path + ": column " + c.name + ": " + s.message);
     }
-    if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+    if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_clock.rate_hz())) {
       s.notes.push_back("record: " + *stuck);
     }
     const DiagnoseUnits unit{c.sensor, c.units};
@@ -601,19 +601,19 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     }
     DiagnoseProgress progress(std::filesystem::path(o.record.path).filename().string(), !o.quiet, o.progress);
     d.progress = [&](std::string_view stage, int done, int total) { progress.Update(stage, done, total); };
-    const bool diagnosed = DiagnoseRecord(d, rate, 1.0 / info.sample_rate_hz, &s);
+    const bool diagnosed = DiagnoseRecord(d, rate, info.sample_clock, &s);
     d.progress = nullptr;
     progress.Clear();
     if (!diagnosed) return RuntimeFailure(o.record.path + ": " + s.message);
     // Warned about by the reader too (avar_command.cc); the report keeps it beside the verdict.
-    if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+    if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_clock.rate_hz())) {
       s.notes.push_back("record: " + *stuck);
     }
     unit.record_unit = info.units;
     p.Add("input", info.path);
     p.Add("column", info.column);
     p.Add("units", info.units + " (" + info.units_source + ")");
-    p.Add("sample_rate", ShortestDecimal(info.sample_rate_hz) + " Hz (" + info.rate_source + ")");
+    p.Add("sample_rate", ShortestDecimal(info.sample_clock.rate_hz()) + " Hz (" + info.rate_source + ")");
     p.Add("samples", std::to_string(rate.size()));
     if (info.dropped_nonfinite > 0) p.Add("dropped_nonfinite", std::to_string(info.dropped_nonfinite));
   }
@@ -627,7 +627,7 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     RecordInfo info2;
     if (const int code = ReadRateFromFile(v, kCommand, &rate2, &info2, &why); code != kExitOk) return Failure{code, why};
     ValidationScores scores;
-    if (!ScoreOnSecondRecord(d, s, rate2, 1.0 / info2.sample_rate_hz, &scores, &why)) {
+    if (!ScoreOnSecondRecord(d, s, rate2, info2.sample_clock, &scores, &why)) {
       return RuntimeFailure(o.validate_path + ": " + why);
     }
     validation = ValidationJson(o.validate_path, scores);

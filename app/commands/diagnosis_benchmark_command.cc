@@ -117,7 +117,7 @@ bool SpecYaml(const BenchmarkCase& c, std::string* yaml, std::string* why) {
   // The spec must be the model whose strength was measured.
   sim::SensorModel loaded;
   if (!sim::LoadSensorModelYaml(*yaml, "benchmark spec", &loaded, why)) return false;
-  loaded.sample_rate_hz = c.rate_hz;
+  loaded.sample_clock = c.sample_clock;
   const sim::RecordShape shape{c.num_samples, sim::AvarEstimatorKind::kOverlapping};
   for (std::int64_t m : {1, 10, 100, 1000}) {
     const double a = loaded.ExpectedAvar(m, shape), b = c.model.ExpectedAvar(m, shape);
@@ -342,7 +342,7 @@ PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const Benchmark
     const std::string stem = "rec" + std::to_string(i);
     SetPaths(work, stem, p);
     // A free IEEE baseline: the sim generator's effects (a band-limit among them) are gaps from it.
-    p->diagnose_args = {"--format", "f64", "--rate", SignificantDigits(p->c.rate_hz, 17), "--units", "rad/s", "--model", "Q,N,B,K,R"};
+    p->diagnose_args = {"--format", "f64", "--rate", SignificantDigits(p->c.sample_clock.rate_hz(), 17), "--units", "rad/s", "--model", "Q,N,B,K,R"};
     std::string yaml;
     if (!SpecYaml(p->c, &yaml, &why)) return RuntimeFailure(why);
     MaybeReuse(o, p);
@@ -355,7 +355,7 @@ PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const Benchmark
     }
     SimulateOptions so;
     so.sensor_path = spec.string();
-    so.rate_hz = p->c.rate_hz;
+    so.rate_hz = p->c.sample_clock.rate_hz();
     so.duration_s = p->c.duration_s();
     so.seed = o.seed;
     so.trial = static_cast<std::uint64_t>(i);
@@ -363,7 +363,7 @@ PrepareRecording SimPreparer(const DiagnosisBenchmarkOptions& o, const Benchmark
     so.format = "f64";
     so.units = "rad/s";
     std::ostringstream sim_line;
-    sim_line << "allanlab simulate --sensor " << spec.string() << " --rate " << SignificantDigits(p->c.rate_hz, 17) << " --duration "
+    sim_line << "allanlab simulate --sensor " << spec.string() << " --rate " << SignificantDigits(p->c.sample_clock.rate_hz(), 17) << " --duration "
              << SignificantDigits(so.duration_s, 17) << " --seed " << o.seed << " --trial " << i << " --format f64 --units rad/s -o "
              << p->record.string();
     if (auto failure = WriteSimulatedRecord(so, sim_line.str())) {
@@ -409,14 +409,14 @@ std::optional<CommandFailure> LoadRealSegments(const fs::path& dir, double segme
       RecordInfo info;
       RecordError error;
       if (!ReadRecordValues(ro, &values, &info, &error)) return RuntimeFailure(error.message);
-      out->rate_hz = info.sample_rate_hz;
-      const auto len = static_cast<std::size_t>(std::llround(segment_s * info.sample_rate_hz));
+      out->rate_hz = info.sample_clock.rate_hz();
+      const auto len = static_cast<std::size_t>(std::llround(segment_s * info.sample_clock.rate_hz()));
       for (std::size_t start = 0, k = 0; start + len <= values.size(); start += len, ++k) {
         std::vector<double> seg(values.begin() + static_cast<std::ptrdiff_t>(start),
                                 values.begin() + static_cast<std::ptrdiff_t>(start + len));
         for (double& v : seg) v *= M_PI / 180.0;
         std::ostringstream name;
-        name << file << ':' << axis << ':' << static_cast<double>(start) / info.sample_rate_hz << "s";
+        name << file << ':' << axis << ':' << static_cast<double>(start) / info.sample_clock.rate_hz() << "s";
         out->segments.emplace_back(name.str(), std::move(seg));
       }
     }

@@ -429,7 +429,7 @@ std::optional<CommandFailure> FitAxis(const FitCommandOptions& o, const estimato
   std::string why;
   int parameters = static_cast<int>(fit.terms.size());
   for (const auto& t : fit.extra) parameters += static_cast<int>(t->parameters().size());
-  if (!CheckRecordSupportsFit(report->summary.num_samples, report->record.sample_rate_hz, parameters, &why)) {
+  if (!CheckRecordSupportsFit(report->summary.num_samples, report->record.sample_clock.rate_hz(), parameters, &why)) {
     return Failure{kExitRuntimeError, Where(*report) + ": " + why};
   }
   const estimators::AvarCurve full_curve = estimators::CurveFromSummary(report->summary);
@@ -474,8 +474,8 @@ Provenance FitProvenance(const FitCommandOptions& o, const AvarReport& report, c
   p.Add("input", report.record.path);
   p.Add("column", report.record.column);
   p.Add("units", report.input_units + " (" + report.record.units_source + ")");
-  if (!o.published.path.empty()) p.Add("curve", DescribeCurve(o.published, report.record.sample_rate_hz));
-  p.Add("sample_rate", ShortestDecimal(report.record.sample_rate_hz) + " Hz (" + report.record.rate_source + ")");
+  if (!o.published.path.empty()) p.Add("curve", DescribeCurve(o.published, report.record.sample_clock.rate_hz()));
+  p.Add("sample_rate", ShortestDecimal(report.record.sample_clock.rate_hz()) + " Hz (" + report.record.rate_source + ")");
   p.Add("samples", std::to_string(report.summary.num_samples));
   p.Add("taus", o.published.path.empty() ? o.curve.taus : "the curve's own");
   p.Add("noise_identification", "per tau, from at most " + std::to_string(kIdentificationMaxAverages) +
@@ -590,7 +590,7 @@ std::optional<Failure> FitSeveral(const FitCommandOptions& o, const estimators::
                                     {"units", r.input_units}};
     entry.update(one);
     columns.push_back(std::move(entry));
-    noise.push_back({r.record.column, r.sensor, KalibrNoise(a.fitted, r.record.sample_rate_hz)});
+    noise.push_back({r.record.column, r.sensor, KalibrNoise(a.fitted, r.record.sample_clock.rate_hz())});
     if (png->is_open()) {
       const AllanPlot plot = FitPlot(r, a.curve, a.fitted.fit, a.fitted_model ? &*a.fitted_model : nullptr);
       curves.push_back({&r, plot.series.front(), plot.series.back()});
@@ -661,7 +661,7 @@ std::optional<Failure> Fit(const FitCommandOptions& o, const std::string& comman
   WriteTable(std::cout, o, fitted, bandwidth);
   std::cout.flush();
   if (json.is_open()) json.stream() << FitJson(o, fitted, bandwidth, p).dump(2) << "\n";
-  if (kalibr.is_open()) kalibr.stream() << KalibrImuYaml(KalibrNoise(fitted, report.record.sample_rate_hz), p);
+  if (kalibr.is_open()) kalibr.stream() << KalibrImuYaml(KalibrNoise(fitted, report.record.sample_clock.rate_hz()), p);
   if (png.is_open() && !RenderAllanPlot(FitPlot(report, curve, summary, fitted_model ? &*fitted_model : nullptr), &png, &why)) {
     return Failure{kExitRuntimeError, why};
   }

@@ -53,7 +53,7 @@ AvarReport ReportOfCurve(const CurveCommandOptions& o, const CurveTable& table) 
   const estimators::AvarCurve& c = table.curve;
   r.record.path = o.path == "-" ? "stdin" : o.path;
   r.record.column = o.column;
-  r.record.sample_rate_hz = 1.0 / c.sample_period_s;
+  r.record.sample_clock = c.sample_clock;
   r.record.rate_source = "--rate (curve mode)";
   r.record.units = o.units + (table.variance ? " (squared)" : "");
   r.record.units_source = "--curve-units";
@@ -62,7 +62,7 @@ AvarReport ReportOfCurve(const CurveCommandOptions& o, const CurveTable& table) 
   r.summary.ok = true;
   r.summary.num_samples = c.num_samples;
   r.summary.options.statistic = estimators::Statistic::kAllanOverlapping;
-  r.summary.options.sample_period_s = c.sample_period_s;
+  r.summary.options.sample_clock = c.sample_clock;
   r.summary.options.confidence_method = estimators::ConfidenceMethod::kNone;
   for (std::size_t k = 0; k < c.size(); ++k) {
     estimators::AvarPoint p;

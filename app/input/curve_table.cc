@@ -57,10 +57,9 @@ class TableReader {
     std::unique_ptr<ByteSource> source;
     std::string why;
     if (!OpenByteSource(o_.path, &source, &why)) return Fail(error, kExitRuntimeError, why);
-    const double tau0 = 1.0 / o_.sample_rate_hz;
     estimators::AvarCurve& c = t_->curve;
     c = estimators::AvarCurve();
-    c.sample_period_s = tau0;
+    c.sample_clock = SampleClock::FromRateHz(o_.sample_rate_hz);
     c.num_samples = static_cast<std::int64_t>(std::llround(o_.record_length_s * o_.sample_rate_hz));
     c.estimator = sim::AvarEstimatorKind::kOverlapping;
     std::vector<char> chunk(1 << 16);
@@ -111,10 +110,10 @@ class TableReader {
     }
     ++t_->rows;
     estimators::AvarCurve& c = t_->curve;
-    const std::int64_t m = std::llround(tau / c.sample_period_s);
+    const std::int64_t m = std::llround(tau / c.sample_clock.period_s());
     const std::string at = "line " + std::to_string(line_) + ": tau " + ShortestDecimal(tau) + " s";
     if (m < 1) {
-      t_->skipped.push_back(at + " is below the sample period " + ShortestDecimal(c.sample_period_s) + " s");
+      t_->skipped.push_back(at + " is below the sample period " + ShortestDecimal(c.sample_clock.period_s()) + " s");
       return true;
     }
     if (2 * m > c.num_samples) {
@@ -126,7 +125,7 @@ class TableReader {
       return true;
     }
     c.m.push_back(m);
-    c.tau_s.push_back(static_cast<double>(m) * c.sample_period_s);
+    c.tau_s.push_back(static_cast<double>(m) * c.sample_clock.period_s());
     const double si = t_->variance ? ToRadPerSecond(o_.unit, ToRadPerSecond(o_.unit, value))
                                    : ToRadPerSecond(o_.unit, value);
     c.avar.push_back(t_->variance ? si : si * si);

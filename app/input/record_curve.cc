@@ -198,7 +198,7 @@ std::optional<Failure> CurveOfValues(const Plan& plan, std::span<double> storage
   InputScale(plan.input, report->record.units).Apply(storage.subspan(1));
   report->input_units = report->record.units;
   estimators::AvarOptions options = plan.avar;
-  options.sample_period_s = 1.0 / report->record.sample_rate_hz;
+  options.sample_clock = report->record.sample_clock;
   // The record is not needed afterwards: its storage becomes the integrated record.
   if (!estimators::ComputeAvarOnStorage(options, storage, &report->summary)) {
     return Runtime(plan.read.path + ": " + report->summary.message);
@@ -239,7 +239,7 @@ std::optional<Failure> DescribeSamples(const RecordCurveOptions& o, const Plan& 
   info->units = plan.read.units;
   info->units_source = "units";
   info->samples = static_cast<std::int64_t>(values.size());
-  info->sample_rate_hz = *o.rate_hz;
+  info->sample_clock = SampleClock::FromRateHz(*o.rate_hz);
   info->rate_source = "rate";
   return std::nullopt;
 }
@@ -247,7 +247,7 @@ std::optional<Failure> DescribeSamples(const RecordCurveOptions& o, const Plan& 
 // A single column's values in the record's units to a rate in rad/s (angle input differenced).
 void RateToSi(const Plan& plan, const RecordInfo& info, std::vector<double>* values) {
   InputScale(plan.input, info.units).Apply(*values);
-  if (plan.input == InputKind::kAngle) *values = estimators::AngleToRate(*values, 1.0 / info.sample_rate_hz);
+  if (plan.input == InputKind::kAngle) *values = estimators::AngleToRate(*values, info.sample_clock.period_s());
 }
 
 // One column of a several-column read to SI: a gyro's as InputScale, an accelerometer's to m/s^2.
@@ -295,7 +295,7 @@ std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::strin
     ColumnToSi(plan, c, &columns[k]);
     // Acceleration samples are the rate of velocity.
     if (c.sensor == ImuSensor::kAccelerometer) options.input = InputKind::kRate;
-    options.sample_period_s = 1.0 / info.sample_rate_hz;
+    options.sample_clock = info.sample_clock;
     if (!estimators::ComputeAvarInPlace(options, &columns[k], &r.summary)) {
       return Runtime(plan.read.path + ": column " + c.name + ": " + r.summary.message);
     }
@@ -308,11 +308,11 @@ std::optional<Failure> ComputeColumnsInMemory(const Plan& plan, const std::strin
 // read): values scaled by `scale` (1 / tau0^2 for angle input, whose differences were streamed).
 std::optional<Failure> StreamedCurve(const Plan& plan, const estimators::StreamingAvar& stream, bool angle,
                                      std::int64_t exact_max_m, AvarReport* report) {
-  const double tau0 = 1.0 / report->record.sample_rate_hz;
+  const double tau0 = report->record.sample_clock.period_s();
   const double scale = angle ? 1.0 / (tau0 * tau0) : 1.0;
   estimators::AvarSummary& s = report->summary;
   s.options = plan.avar;
-  s.options.sample_period_s = tau0;
+  s.options.sample_clock = report->record.sample_clock;
   s.num_samples = stream.count();
   const bool overlapping = plan.avar.statistic == Statistic::kAllanOverlapping;
   for (const estimators::StreamingAvarPoint& p : stream.Points()) {
@@ -451,11 +451,11 @@ void WarnAboutRecord(const RecordInfo& info, const std::string& command) {
   }
   if (info.columns.size() > 1) {
     for (const ColumnInfo& c : info.columns) {
-      if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+      if (const auto stuck = DescribeConstantStretch(c.longest_constant_stretch, info.samples, info.sample_clock.rate_hz())) {
         PrintWarning(info.path + ": column " + c.name + ": " + *stuck, command);
       }
     }
-  } else if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_rate_hz)) {
+  } else if (const auto stuck = DescribeConstantStretch(info.longest_constant_stretch, info.samples, info.sample_clock.rate_hz())) {
     PrintWarning(info.path + ": " + *stuck, command);
   }
 }
@@ -664,7 +664,7 @@ int ReadRatesFromFile(const RecordCurveOptions& options, const std::string& comm
   for (std::size_t k = 0; k < rates->size(); ++k) {
     ColumnToSi(plan, info->columns[k], &(*rates)[k]);
     if (info->columns[k].sensor == ImuSensor::kGyro && plan.input == InputKind::kAngle) {
-      (*rates)[k] = estimators::AngleToRate((*rates)[k], 1.0 / info->sample_rate_hz);
+      (*rates)[k] = estimators::AngleToRate((*rates)[k], info->sample_clock.period_s());
     }
   }
   WarnAboutRecord(*info, command);

@@ -475,13 +475,13 @@ class Reader {
       }
       if (t.nominal_step_s > 0) {
         const double from_time = RoundToSignificantDigits(1.0 / t.nominal_step_s, 10);
-        info_->sample_rate_hz = from_time;
+        info_->sample_clock = SampleClock::FromRateHz(from_time);
         info_->rate_source = TimeColumnPhrase() + TimeUnitNote();
         if (o_.rate_hz) {
           if (std::abs(*o_.rate_hz - from_time) > kRateTolerance * from_time &&
               info_->time_column_guessed) {
             // Only a guess (a counter, or time in another unit): the rate given wins.
-            info_->sample_rate_hz = *o_.rate_hz;
+            info_->sample_clock = SampleClock::FromRateHz(*o_.rate_hz);
             info_->rate_source = "--rate (the headerless first column, read as time, gives " +
                                  ShortestDecimal(from_time) + " Hz: not used)";
             info_->time = TimeSteps::Summary();
@@ -496,16 +496,16 @@ class Reader {
                                     ShortestDecimal(t.nominal_step_s) +
                                     " s); drop --rate or fix it");
           }
-          info_->sample_rate_hz = *o_.rate_hz;
+          info_->sample_clock = SampleClock::FromRateHz(*o_.rate_hz);
           info_->rate_source = "--rate (" + TimeColumnPhrase() + " agrees)";
         }
       }
     }
-    if (info_->sample_rate_hz == 0.0 && !o_.rate_hz && sidecar_ && sidecar_->sample_rate_hz) {
-      info_->sample_rate_hz = *sidecar_->sample_rate_hz;
+    if (info_->rate_source.empty() && !o_.rate_hz && sidecar_ && sidecar_->sample_rate_hz) {
+      info_->sample_clock = SampleClock::FromRateHz(*sidecar_->sample_rate_hz);
       info_->rate_source = "the sidecar " + sidecar_->path;
-    } else if (info_->sample_rate_hz == 0.0 && o_.rate_hz && sidecar_ && sidecar_->sample_rate_hz) {
-      info_->sample_rate_hz = *o_.rate_hz;
+    } else if (info_->rate_source.empty() && o_.rate_hz && sidecar_ && sidecar_->sample_rate_hz) {
+      info_->sample_clock = SampleClock::FromRateHz(*o_.rate_hz);
       info_->rate_source = "--rate (the sidecar " + sidecar_->path + " agrees)";
     }
     return ConcludeCounts(error);
@@ -522,14 +522,14 @@ class Reader {
                                   ": a truncated file or another record's sidecar");
       }
     }
-    if (info_->sample_rate_hz == 0.0) {
+    if (info_->rate_source.empty()) {  // no time column, sidecar or --rate has set the clock
       if (!o_.rate_hz) {
         // A time column with fewer than two samples: it cannot give a rate.
         return Usage(error, In() + "cannot read a sample rate from " +
                                 std::to_string(info_->samples) +
                                 " sample(s); give it with --rate HZ");
       }
-      info_->sample_rate_hz = *o_.rate_hz;
+      info_->sample_clock = SampleClock::FromRateHz(*o_.rate_hz);
       info_->rate_source = "--rate";
     }
     if (info_->samples < o_.min_samples) {

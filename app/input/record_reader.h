@@ -43,6 +43,7 @@
 #include "app/input/constant_stretch.h"
 #include "app/input/imu_columns.h"
 #include "app/input/time_steps.h"
+#include "common/sample_clock.h"
 #include "estimators/avar_summary.h"
 
 namespace allanlab::app {
@@ -110,8 +111,9 @@ struct RecordInfo {
   std::int64_t lines = 0;    // text: physical lines read
   std::int64_t samples = 0;  // values passed to the sink
   std::int64_t dropped_nonfinite = 0;  // rows skipped by drop_nonfinite
-  double sample_rate_hz = 0.0;
-  // "--rate", "time column t_s", "--rate (time column t_s agrees)" or "sidecar r.f64.json"
+  SampleClock sample_clock;  // the record's, once rate_source is set
+  // "--rate", "time column t_s", "--rate (time column t_s agrees)" or "sidecar r.f64.json";
+  // empty until the rate is known.
   std::string rate_source;
   TimeSteps::Summary time;  // the time column's steps (samples == 0 without one)
   ConstantStretch longest_constant_stretch;  // of the kept values, in file units

@@ -79,7 +79,7 @@ std::string RecordLine(const AvarReport& r) {
   return i.path + ", " + i.column + ", " + std::to_string(r.summary.num_samples) + " " +
          (r.sensor == ImuSensor::kAccelerometer ? std::string("accelerometer")
                                                  : TypeName(r.summary.options.input)) +
-         " samples at " + ShortestDecimal(i.sample_rate_hz) + " Hz (" +
+         " samples at " + ShortestDecimal(i.sample_clock.rate_hz()) + " Hz (" +
          i.rate_source + "), input in " + r.input_units + " (" + i.units_source + ")";
 }
 
@@ -267,7 +267,7 @@ nlohmann::ordered_json AvarJson(const AvarReport& r) {
   input["samples_read"] = i.samples;
   input["rate_samples"] = r.summary.num_samples;
   input["dropped_nonfinite"] = i.dropped_nonfinite;
-  input["sample_rate_hz"] = i.sample_rate_hz;
+  input["sample_rate_hz"] = i.sample_clock.rate_hz();
   input["sample_rate_source"] = i.rate_source;
   if (!i.time_column.empty()) {
     // Positions are lines of a text file, or message numbers of a ROS bag: the keys say which.
@@ -332,7 +332,7 @@ AllanPlot AvarPlot(const AvarReport& r) {
   AllanPlot plot;
   plot.title = "allanlab avar: " + r.record.path + ", " + r.record.column + " (" +
                std::to_string(r.summary.num_samples) + " samples at " +
-               ShortestDecimal(r.record.sample_rate_hz) + " Hz)";
+               ShortestDecimal(r.record.sample_clock.rate_hz()) + " Hz)";
   plot.y_label = DeviationName(s) + " [" + unit + "]";
   PlotSeries series{StatisticDescription(s) + " (deviation)", PlotStyle::kPoints, {}, {}, {}, {}};
   bool bars = false;

@@ -138,9 +138,10 @@ std::string QuantityText(const PlainQuantity& q) {
 // A correlation time near the sample period or a cutoff near the Nyquist frequency is where the
 // fit ran out of record, not a property measured (physically impossible values are refused as
 // candidates: experiments/diagnosis/physical_bounds.h).
-void AddCaveat(double sample_period_s, PlainQuantity* q) {
-  if (!(sample_period_s > 0.0)) return;
-  const double nyquist = 0.5 / sample_period_s;
+void AddCaveat(SampleClock sample_clock, PlainQuantity* q) {
+  if (!sample_clock.IsValid()) return;
+  const double sample_period_s = sample_clock.period_s();
+  const double nyquist = 0.5 * sample_clock.rate_hz();
   if (q->unit == "s" && q->name != "time" && q->value < 2.0 * sample_period_s) {
     q->caveat = "within 2x of the " + PlainNumber(sample_period_s) + " s sample period: the record cannot resolve it";
   } else if (q->name == "cutoff" && q->value > 0.9 * nyquist) {
@@ -172,12 +173,12 @@ std::string QuantitiesText(const PlainEffect& e) {
   return t;
 }
 
-PlainEffect MakePlainEffect(const EffectInstance& e, const DiagnoseUnits& units, double sample_period_s) {
+PlainEffect MakePlainEffect(const EffectInstance& e, const DiagnoseUnits& units, SampleClock sample_clock) {
   PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect, units), {}};
   if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
   for (const std::string& name : EffectParameterNames(e.effect)) {
     pe.quantities.push_back(Quantity(name, e.params.at(name), units));
-    AddCaveat(sample_period_s, &pe.quantities.back());
+    AddCaveat(sample_clock, &pe.quantities.back());
   }
   return pe;
 }
@@ -204,7 +205,7 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
   p.best_tried = c != nullptr && s.verdict == "unexplained";
   if (c != nullptr) {
     p.model_label = "with " + c->id();
-    for (const EffectInstance& e : c->effects) p.effects.push_back(MakePlainEffect(e, units, s.sample_period_s));
+    for (const EffectInstance& e : c->effects) p.effects.push_back(MakePlainEffect(e, units, s.sample_clock));
     std::vector<View> departing;
     for (const GapRegion& r : s.regions) {
       if (std::find(departing.begin(), departing.end(), r.view) == departing.end()) departing.push_back(r.view);
@@ -227,7 +228,7 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
   }
   if (s.baseline_model.band_limit.enabled()) {
     const auto& b = s.baseline_model.band_limit;
-    const double nyquist = s.sample_period_s > 0.0 ? 0.5 / s.sample_period_s : 0.0;
+    const double nyquist = s.sample_clock.period_s() > 0.0 ? 0.5 / s.sample_clock.period_s() : 0.0;
     p.baseline_note = std::string("the baseline includes the output chain's band-limit that allanlab fit finds: a ") +
                       (b.kind == sim::LowPassKind::kFirstOrder ? "first-order" : "second-order Butterworth") +
                       " low-pass at " + PlainNumber(b.cutoff_hz) + " Hz" +

@@ -71,7 +71,7 @@ struct PlainSummary {
 };
 
 // One effect's parameters in the report's units, with their caveats (as `effects` holds them).
-PlainEffect MakePlainEffect(const experiments::EffectInstance& e, const DiagnoseUnits& units, double sample_period_s);
+PlainEffect MakePlainEffect(const experiments::EffectInstance& e, const DiagnoseUnits& units, SampleClock sample_clock);
 // {"id", "description", "quantities": [{"name", "value", "unit", "record_value", "record_unit",
 // "caveat"}]}: an effect as JSON `summary.effects` and each candidate's `params_reported` give it.
 nlohmann::ordered_json PlainEffectJson(const PlainEffect& e);

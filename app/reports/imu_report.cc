@@ -44,7 +44,7 @@ const char* AxisColor(std::size_t axis) {
 
 std::string PanelTitle(const std::string& what, const AvarReport& r) {
   return what + ": " + r.record.path + ", " + std::string(ImuSensorName(r.sensor)) + " (" +
-         std::to_string(r.summary.num_samples) + " samples at " + ShortestDecimal(r.record.sample_rate_hz) + " Hz)";
+         std::to_string(r.summary.num_samples) + " samples at " + ShortestDecimal(r.record.sample_clock.rate_hz()) + " Hz)";
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ AllanNumbers ComputeAllanNumbers(const sim::SensorModel& model,
   a.oavar_exact =
       model.ExpectedAvar(a.ms, sim::RecordShape{n, sim::AvarEstimatorKind::kOverlapping});
   for (std::int64_t m : a.ms) {
-    const double tau = static_cast<double>(m) / model.sample_rate_hz;
+    const double tau = static_cast<double>(m) / model.sample_clock.rate_hz();
     a.tau_s.push_back(tau);
     a.oavar_ieee.push_back(model.AsymptoticAvar(tau));
   }
@@ -154,7 +154,7 @@ AllanPlot MakePlot(const AllanNumbers& a, const sim::SensorModel& model, const s
   AllanPlot plot;
   plot.title = "allanlab simulate: " + source + ", seed " + std::to_string(seed) + ", trial " +
                std::to_string(trial) + " (" + std::to_string(n) + " samples at " +
-               ShortestDecimal(model.sample_rate_hz) + " Hz)";
+               ShortestDecimal(model.sample_clock.rate_hz()) + " Hz)";
   PlotSeries sim{"simulated (overlapping ADEV)", PlotStyle::kPoints, a.tau_s, {}};
   PlotSeries exact{
       model.ExpectedAvarIsExact() ? "exact theory" : "theory (quantizers approximated)",
@@ -201,7 +201,7 @@ std::optional<CommandFailure> LoadSimulateModel(const SimulateOptions& o, sim::S
     return Runtime(why);
   }
   if (o.rate_hz) {
-    model->sample_rate_hz = *o.rate_hz;
+    model->sample_clock = SampleClock::FromRateHz(*o.rate_hz);
     if (!model->IsValid(&why)) {
       return Usage("--rate " + ShortestDecimal(*o.rate_hz) +
                    " Hz does not suit the sensor: " + why);
@@ -250,7 +250,7 @@ std::optional<CommandFailure> WriteSimulatedRecord(const SimulateOptions& o, con
   // 2. The sensor and the record length.
   sim::SensorModel model;
   if (auto failure = LoadSimulateModel(o, &model)) return failure;
-  const double fs = model.sample_rate_hz;
+  const double fs = model.sample_clock.rate_hz();
   std::int64_t n = 0;
   if (auto failure = SimulateSampleCount(o, fs, &n)) return failure;
 

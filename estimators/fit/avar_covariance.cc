@@ -119,7 +119,7 @@ AvarCovarianceModel::AvarCovarianceModel(const AvarCurve& curve, std::span<const
           {max_lag, std::llabs(r.k_lo - 2 * curve.m[x]), std::llabs(r.k_hi + 2 * curve.m[y])});
     }
   }
-  const Variograms variograms(curve.sample_period_s, max_lag + 2, with_flicker);
+  const Variograms variograms(curve.sample_clock.period_s(), max_lag + 2, with_flicker);
 
   const std::size_t p = terms_.size();
   const auto q_position = static_cast<std::size_t>(

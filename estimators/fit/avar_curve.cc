@@ -9,7 +9,7 @@ bool AvarCurve::IsValid(std::string* why) const {
     if (why) *why = msg;
     return false;
   };
-  if (!(std::isfinite(sample_period_s) && sample_period_s > 0.0)) {
+  if (!sample_clock.IsValid()) {
     return fail("curve: sample period must be > 0 s");
   }
   if (m.empty()) return fail("curve: no taus");
@@ -49,7 +49,7 @@ AvarCurve TauRange(const AvarCurve& curve, double min_tau_s, double max_tau_s) {
 
 AvarCurve CurveFromSummary(const AvarSummary& summary, std::int64_t min_m, std::int64_t max_m) {
   AvarCurve c;
-  c.sample_period_s = summary.options.sample_period_s;
+  c.sample_clock = summary.options.sample_clock;
   c.num_samples = summary.num_samples;
   c.estimator = sim::AvarEstimatorKind::kOverlapping;
   for (const AvarPoint& p : summary.points) {

@@ -6,13 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "common/sample_clock.h"
 #include "estimators/avar_summary.h"
 #include "sim/avar_theory.h"
 
 namespace allanlab::estimators {
 
 struct AvarCurve {
-  double sample_period_s = 1.0;  // tau0
+  SampleClock sample_clock;      // tau0 (default 1 s)
   std::int64_t num_samples = 0;  // N of the record the curve came from
   sim::AvarEstimatorKind estimator = sim::AvarEstimatorKind::kOverlapping;
   std::vector<std::int64_t> m;   // ascending averaging factors

@@ -151,7 +151,7 @@ std::vector<double> TermShape(Coefficient c, const AvarCurve& curve, bool exact)
     return s;
   }
   sim::SensorModel model;
-  model.sample_rate_hz = 1.0 / curve.sample_period_s;
+  model.sample_clock = curve.sample_clock;
   model.terms = {TermFor(c, 1.0)};
   return model.ExpectedAvar(curve.m, {curve.num_samples, curve.estimator});
 }
@@ -243,7 +243,7 @@ void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* ca
   refit.uncertainty = FitUncertainty::kCovariance;
   refit.terms.clear();
   sim::SensorModel model;
-  model.sample_rate_hz = 1.0 / curve.sample_period_s;
+  model.sample_clock = curve.sample_clock;
   for (Coefficient c : kAllCoefficients) {
     const CoefficientEstimate& e = summary->at(c);
     if (!e.fitted) continue;

@@ -78,7 +78,7 @@ class ModelPieces {
   }
   sim::SensorModel Base(const double* u) const {
     sim::SensorModel m;
-    m.sample_rate_hz = 1.0 / curve_.sample_period_s;
+    m.sample_clock = curve_.sample_clock;
     for (std::size_t t = 0; t < extra_.size(); ++t) {
       if (extra_[t]->modifies_other_terms()) extra_[t]->ApplyTo(Params(u, t), &m);
     }
@@ -91,7 +91,7 @@ class ModelPieces {
       // The linear terms' own exact shapes, computed once (the flicker one is O(N) per tau).
       unfiltered_.resize(taus, static_cast<Eigen::Index>(linear_.size()));
       sim::SensorModel m;
-      m.sample_rate_hz = base.sample_rate_hz;
+      m.sample_clock = base.sample_clock;
       for (std::size_t j = 0; j < linear_.size(); ++j) {
         m.terms = {TermFor(static_cast<Coefficient>(linear_[j]), 1.0)};
         const std::vector<double> e = ModelAvarOnCurve(m, curve_);
@@ -107,12 +107,12 @@ class ModelPieces {
         // Filtered = own exact shape + the band-limit's change (sim/band_limited_avar.h), so a new
         // cutoff costs O(len(q)) per tau and term.
         const std::shared_ptr<const sim::BandLimitChain> shared_chain =
-            sim::SharedBandLimitChain(base.band_limit, base.sample_rate_hz);
+            sim::SharedBandLimitChain(base.band_limit, base.sample_clock.rate_hz());
         const sim::BandLimitChain& chain = *shared_chain;
         std::vector<double> change;
         for (std::size_t j = 0; j < linear_.size(); ++j) {
           const sim::NoiseTerm term = TermFor(static_cast<Coefficient>(linear_[j]), 1.0);
-          if (sim::BandLimitAvarChange(term, chain, curve_.sample_period_s, curve_.m, &change)) {
+          if (sim::BandLimitAvarChange(term, chain, curve_.sample_clock.period_s(), curve_.m, &change)) {
             for (Eigen::Index k = 0; k < taus; ++k) s(k, static_cast<Eigen::Index>(j)) += change[k] * scale_[j];
           } else {
             sim::SensorModel m = base;
@@ -414,7 +414,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   for (int i : linear) base.coefficients[i].asked = true;
   std::vector<double> baseline_e(taus, 0.0);
   sim::SensorModel without;
-  without.sample_rate_hz = 1.0 / curve.sample_period_s;
+  without.sample_clock = curve.sample_clock;
   std::array<double, kTerms> baseline_si{};
   if (!linear.empty()) {
     FitOptions b;
@@ -676,7 +676,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
 sim::SensorModel FittedModel(const ParametricFitOptions& options, const AvarCurve& curve,
                              const ParametricFitSummary& summary) {
   sim::SensorModel m;
-  m.sample_rate_hz = 1.0 / curve.sample_period_s;
+  m.sample_clock = curve.sample_clock;
   for (Coefficient c : kAllCoefficients) {
     const CoefficientEstimate& e = summary.base.at(c);
     if (e.fitted) m.terms.push_back(TermFor(c, e.value_si));

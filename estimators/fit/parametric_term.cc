@@ -185,7 +185,7 @@ class HarmonicTerm final : public AmplitudeScaleTerm {
   // From a tenth of a cycle over the longest tau to just below the output Nyquist frequency.
   void ScaleBounds(const AvarCurve& c, double* lo, double* hi) const override {
     *lo = 0.1 / c.tau_s.back();
-    *hi = 0.499 / c.sample_period_s;
+    *hi = 0.499 / c.sample_clock.period_s();
   }
 };
 
@@ -212,9 +212,9 @@ class BandLimitTerm final : public ParametricTerm {
   // 0.1 / tau_max alone, a long record (rlg) let the line search try fc ~ 1e-4 Hz, whose chain
   // runs to 2^26 samples, and the fit never finished.
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
-    *lower = {std::max(0.1 / c.tau_s.back(), 1e-3 / c.sample_period_s)};
+    *lower = {std::max(0.1 / c.tau_s.back(), 1e-3 / c.sample_clock.period_s())};
     // A box kind must stay at least one internal sample long (its fc <= 0.319 L fs for CIC2).
-    *upper = {(sim::IsFirLowPass(kind_) ? 0.3 : 0.45) * oversampling_ / c.sample_period_s};
+    *upper = {(sim::IsFirLowPass(kind_) ? 0.3 : 0.45) * oversampling_ / c.sample_clock.period_s()};
   }
   void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
     model->band_limit = sim::BandLimit{kind_, p[0], oversampling_, sampling_};
@@ -258,17 +258,17 @@ bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int ov
   double best = baseline, best_fc = 0.0;
   // 12 cutoffs a decade: a box's correlation with the next output changes by ~0.1 between grid
   // points near a box of one output period (6 a decade left a 1.2-period box between 0.95 and 1.4).
-  for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_period_s), upper[0], 12.0)) {
+  for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_clock.period_s()), upper[0], 12.0)) {
     sim::SensorModel model = without;
     const double p[] = {fc};
     term.ApplyTo(p, &model);
     std::string invalid;
-    if (!model.band_limit.IsValid(model.sample_rate_hz, &invalid)) continue;  // a box under one sample
-    const sim::BandLimitChain chain(model.band_limit, model.sample_rate_hz);
+    if (!model.band_limit.IsValid(model.sample_clock.rate_hz(), &invalid)) continue;  // a box under one sample
+    const sim::BandLimitChain chain(model.band_limit, model.sample_clock.rate_hz());
     std::vector<std::vector<double>> columns = own;
     std::vector<double> change;
     for (std::size_t i = 0; i < without.terms.size(); ++i) {
-      if (sim::BandLimitAvarChange(without.terms[i], chain, curve.sample_period_s, curve.m, &change)) {
+      if (sim::BandLimitAvarChange(without.terms[i], chain, curve.sample_clock.period_s(), curve.m, &change)) {
         for (std::size_t k = 0; k < change.size(); ++k) columns[i][k] += change[k];
       } else {
         sim::SensorModel one = model;

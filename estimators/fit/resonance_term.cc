@@ -27,7 +27,7 @@ class ResonanceTerm final : public ParametricTerm {
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
     const auto [lo, hi] = std::minmax_element(c.avar.begin(), c.avar.end());
     *lower = {std::sqrt(*lo) * 1e-4, 0.1 / c.tau_s.back(), 1e-3};
-    *upper = {std::sqrt(*hi) * 30.0, 0.499 / c.sample_period_s, 0.95};
+    *upper = {std::sqrt(*hi) * 30.0, 0.499 / c.sample_clock.period_s(), 0.95};
   }
   // The (f0, zeta) on a grid whose exact unit AVAR, scaled by the weighted projection onto the
   // residual (weights nu / (2 AVAR^2)), lowers the weighted SSE most.
@@ -43,7 +43,7 @@ class ResonanceTerm final : public ParametricTerm {
         const sim::Resonance unit{1.0, f0, zeta};
         double sr = 0.0, ss = 0.0;
         for (std::size_t k = 0; k < c.size(); ++k) {
-          const double shape_k = unit.ExpectedAvar(c.m[k], c.sample_period_s, shape);
+          const double shape_k = unit.ExpectedAvar(c.m[k], c.sample_clock.period_s(), shape);
           const double w = 0.5 * Edf(c, k) / (c.avar[k] * c.avar[k]);
           sr += w * shape_k * residual[k];
           ss += w * shape_k * shape_k;

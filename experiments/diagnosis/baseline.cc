@@ -18,7 +18,7 @@ using estimators::Coefficient;
 // The curve against a linear fit's expected OAVAR with the curve's own (Greenhall-Riley) EDFs:
 // a yardstick that does not depend on the model the way each fit's own chi2 does.
 double CurveChi2(const BaselineSpec& spec, const estimators::FitSummary& fit, const estimators::AvarCurve& curve) {
-  const auto mean = spec.Model(fit, 1.0 / curve.sample_period_s).ExpectedAvar(curve.m, {curve.num_samples, curve.estimator});
+  const auto mean = spec.Model(fit, curve.sample_clock).ExpectedAvar(curve.m, {curve.num_samples, curve.estimator});
   double chi2 = 0.0;
   for (std::size_t i = 0; i < curve.size(); ++i) {
     const double z = ZFromChiSquare(curve.avar[i], mean[i], curve.edf[i]);
@@ -99,16 +99,16 @@ estimators::AvarCurve BaselineSpec::WithoutHeldAdditive(const estimators::AvarCu
   estimators::AvarCurve adjusted = curve;
   if (held.terms.empty() && !held.angle_quantizer && !held.rate_quantizer) return adjusted;
   sim::SensorModel additive = held;
-  additive.sample_rate_hz = 1.0 / curve.sample_period_s;
+  additive.sample_clock = curve.sample_clock;
   const auto e = additive.ExpectedAvar(curve.m, {curve.num_samples, curve.estimator});
   for (std::size_t i = 0; i < curve.size(); ++i) adjusted.avar[i] = std::max(curve.avar[i] - e[i], 0.1 * curve.avar[i]);
   return adjusted;
 }
 
-sim::SensorModel BaselineSpec::Model(const estimators::FitSummary& fit, double sample_rate_hz) const {
+sim::SensorModel BaselineSpec::Model(const estimators::FitSummary& fit, SampleClock sample_clock) const {
   sim::SensorModel model = held;
   model.name = "fitted";
-  model.sample_rate_hz = sample_rate_hz;
+  model.sample_clock = sample_clock;
   for (Coefficient c : estimators::kAllCoefficients) {
     const auto& e = fit.at(c);
     if (e.fitted && e.value_si > 0.0) model.terms.push_back(estimators::TermFor(c, e.value_si));
@@ -168,10 +168,10 @@ bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& cu
                  estimators::FitSummary* fit, std::string* note, std::string* why) {
   *spec = BaselineSpec{};
   spec->terms = options.terms;
-  spec->held.sample_rate_hz = 1.0 / curve.sample_period_s;
+  spec->held.sample_clock = curve.sample_clock;
   if (options.baseline == DiagnoseOptions::Baseline::kSensor) {
     spec->held = WithoutFloated(options.sensor, options.terms);
-    spec->held.sample_rate_hz = 1.0 / curve.sample_period_s;
+    spec->held.sample_clock = curve.sample_clock;
     if (!spec->held.IsValid(why)) {
       *why = "the sensor model does not suit the record's rate: " + *why;
       return false;
@@ -205,11 +205,11 @@ bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& cu
 }  // namespace detail
 
 
-bool RecordCurve(std::span<const double> rate, double tau0, estimators::AvarCurve* curve,
+bool RecordCurve(std::span<const double> rate, SampleClock sample_clock, estimators::AvarCurve* curve,
                  std::string* why) {
   estimators::AvarOptions o;
   o.statistic = estimators::Statistic::kAllanOverlapping;
-  o.sample_period_s = tau0;
+  o.sample_clock = sample_clock;
   o.taus.kind = estimators::TauGridKind::kLogDense;
   o.taus.points_per_decade = 10;
   estimators::AvarSummary s;

@@ -24,8 +24,8 @@ struct BaselineSpec {
   std::vector<estimators::Coefficient> terms;  // fitted (empty: the held part alone)
   sim::SensorModel held;  // band-limit, quantizers and terms held as given (empty: a plain fit)
   bool HoldsAnything() const;
-  // The held part plus the fitted linear terms (those with a positive value) at `sample_rate_hz`.
-  sim::SensorModel Model(const estimators::FitSummary& fit, double sample_rate_hz) const;
+  // The held part plus the fitted linear terms (those with a positive value) on `sample_clock`.
+  sim::SensorModel Model(const estimators::FitSummary& fit, SampleClock sample_clock) const;
   // The held band-limit as a fit-library term without free parameters (it filters the fitted
   // terms); nullptr when none is held.
   std::shared_ptr<const estimators::ParametricTerm> HeldBandLimitTerm() const;

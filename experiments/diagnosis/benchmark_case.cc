@@ -32,7 +32,7 @@ StrengthGrid MakeGrid(const sim::SensorModel& base, std::int64_t n, bool halves)
   estimators::TauGridOptions grid;
   grid.kind = estimators::TauGridKind::kLogDense;
   grid.points_per_decade = 10;
-  const double tau0 = 1.0 / base.sample_rate_hz;
+  const double tau0 = base.sample_clock.period_s();
   g.ms = estimators::CandidateAveragingFactors(grid, tau0, n / 2);
   for (std::int64_t m : g.ms) g.tau_s.push_back(static_cast<double>(m) * tau0);
   g.edf = ExactOavar(base, g.ms, n).edf;
@@ -90,9 +90,9 @@ bool Measure(const StrengthGrid& g, const sim::SensorModel& base, const std::opt
   sim::SensorModel full;
   if (!Build(base, effect, &full, why)) return false;
   const sim::RecordShape shape{g.n, sim::AvarEstimatorKind::kOverlapping};
-  const double tau0 = 1.0 / full.sample_rate_hz;
+  const double tau0 = full.sample_clock.period_s();
   estimators::AvarCurve curve;
-  curve.sample_period_s = tau0;
+  curve.sample_clock = full.sample_clock;
   curve.num_samples = g.n;
   curve.m = g.ms;
   curve.tau_s = g.tau_s;
@@ -108,7 +108,7 @@ bool Measure(const StrengthGrid& g, const sim::SensorModel& base, const std::opt
     return false;
   }
   sim::SensorModel fitted;
-  fitted.sample_rate_hz = full.sample_rate_hz;
+  fitted.sample_clock = full.sample_clock;
   for (Coefficient k : estimators::kAllCoefficients) {
     const auto& e = fit.at(k);
     if (e.fitted && e.value_si > 0.0) fitted.terms.push_back(estimators::TermFor(k, e.value_si));
@@ -163,8 +163,8 @@ struct Scaled {
   bool increasing = true;  // strength grows with the parameter (bandwidth: falls with fc)
 };
 
-Scaled Shape(Effect e, const double u[2], double fs, double n, double s0) {
-  const double tau0 = 1.0 / fs, T = n * tau0;
+Scaled Shape(Effect e, const double u[2], SampleClock clock, double n, double s0) {
+  const double fs = clock.rate_hz(), tau0 = clock.period_s(), T = n * tau0;
   Scaled s;
   s.effect.effect = e;
   auto& p = s.effect.params;
@@ -301,16 +301,17 @@ bool DrawBenchmarkCase(const BenchmarkDrawOptions& o, std::uint64_t seed, int in
   for (double& x : u) x = Uniform(engine);
   c->preset = o.presets[std::min(o.presets.size() - 1, static_cast<std::size_t>(u[0] * o.presets.size()))];
   const double duration = LogUniform(u[1], o.min_duration_s, o.max_duration_s);
-  c->rate_hz = LogUniform(u[2], o.min_rate_hz, o.max_rate_hz);
-  c->num_samples = std::llround(duration * c->rate_hz);
+  double rate_hz = LogUniform(u[2], o.min_rate_hz, o.max_rate_hz);
+  c->num_samples = std::llround(duration * rate_hz);
   if (c->num_samples > o.max_samples) {
     c->num_samples = o.max_samples;
-    c->rate_hz = static_cast<double>(o.max_samples) / duration;
+    rate_hz = static_cast<double>(o.max_samples) / duration;
   }
+  c->sample_clock = SampleClock::FromRateHz(rate_hz);
   sim::SensorModel preset;
   if (!sim::LoadPreset(c->preset, &preset, why)) return false;
   c->base.name = c->preset + "_ieee952";
-  c->base.sample_rate_hz = c->rate_hz;
+  c->base.sample_clock = c->sample_clock;
   c->base.terms = preset.terms;  // band-limit and quantizers dropped: they are effects
   if (u[3] < o.control_fraction) {
     c->strength_class = "control";
@@ -331,7 +332,7 @@ bool DrawBenchmarkCase(const BenchmarkDrawOptions& o, std::uint64_t seed, int in
   }
   c->target_z = LogUniform(u[6], lo, hi);
   const double s0 = std::sqrt(c->base.ExpectedAvar(1, {c->num_samples, sim::AvarEstimatorKind::kOverlapping}));
-  Scaled s = Shape(effect, &u[10], c->rate_hz, static_cast<double>(c->num_samples), s0);
+  Scaled s = Shape(effect, &u[10], c->sample_clock, static_cast<double>(c->num_samples), s0);
   // The sign of a drift or a step does not change the Allan curve; it does change the record.
   const double sign = (effect == Effect::kExponentialDrift || effect == Effect::kBiasStep) && u[7] < 0.5 ? -1.0 : 1.0;
   auto strength_at = [&](double x, BenchmarkCase* out) {

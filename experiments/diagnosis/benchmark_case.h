@@ -62,10 +62,10 @@ std::string StrengthClass(bool control, double strength_z);
 struct BenchmarkCase {
   int index = 0;
   std::string preset;
-  double rate_hz = 0.0;
+  SampleClock sample_clock;
   std::int64_t num_samples = 0;
-  double duration_s() const { return static_cast<double>(num_samples) / rate_hz; }
-  sim::SensorModel base;                 // the preset's IEEE 952 terms at rate_hz
+  double duration_s() const { return static_cast<double>(num_samples) / sample_clock.rate_hz(); }
+  sim::SensorModel base;                 // the preset's IEEE 952 terms on sample_clock
   std::optional<EffectInstance> effect;  // nullopt: a control
   sim::SensorModel model;                // base + effect
   double target_z = 0.0;      // drawn strength (0 for controls)

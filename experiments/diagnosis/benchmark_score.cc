@@ -60,7 +60,7 @@ BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& 
   BenchmarkRow r;
   r.index = c.index;
   r.preset = c.preset;
-  r.rate_hz = c.rate_hz;
+  r.rate_hz = c.sample_clock.rate_hz();
   r.num_samples = c.num_samples;
   r.truth = c.effect ? std::string(EffectId(c.effect->effect)) : "control";
   r.params = c.params_text.empty() ? ParamsText(c.effect) : c.params_text;
@@ -81,7 +81,7 @@ BenchmarkRow ScoreBenchmarkCase(const BenchmarkCase& c, const BenchmarkOutcome& 
   // sees the effect peaks (halves: its peak tau; kurtosis: the sample period).
   auto [lo, hi] = c.ExpectedTauRange(o.threshold_z);
   if (lo == 0.0 && c.halves_z >= o.threshold_z) lo = hi = c.halves_peak_tau_s;
-  if (lo == 0.0 && c.kurtosis_z >= o.threshold_z) lo = hi = 1.0 / c.rate_hz;
+  if (lo == 0.0 && c.kurtosis_z >= o.threshold_z) lo = hi = c.sample_clock.period_s();
   r.expected_tau_min_s = lo;
   r.expected_tau_max_s = hi;
   r.detected = o.significant;

@@ -47,7 +47,7 @@ std::vector<double> RandomPartAutocovariance(const sim::SensorModel& model, std:
     const std::vector<double> near = model.GaussianAutocovariance(std::min(lags, kShortLags));
     std::copy(near.begin(), near.end(), r.begin());
   }
-  const double tau0 = model.sample_period_s();
+  const double tau0 = model.sample_clock.period_s();
   for (const sim::NoiseTerm& t : model.terms) {
     if (const auto* o = std::get_if<sim::Outliers>(&t)) r[0] += o->rate_hz * tau0 * o->size_rad_per_s * o->size_rad_per_s;
   }
@@ -319,7 +319,7 @@ std::vector<double> BlockMeans(std::span<const double> x, int blocks) {
 
 std::vector<double> DeterministicPath(const sim::SensorModel& model, std::int64_t n) {
   sim::SensorModel events;
-  events.sample_rate_hz = model.sample_rate_hz;
+  events.sample_clock = model.sample_clock;
   for (const sim::NoiseTerm& t : model.terms) {
     if (IsEvent(t)) events.terms.push_back(t);
   }
@@ -336,7 +336,7 @@ std::vector<int> BlockMeanCounts(std::int64_t n) {
 
 std::vector<double> BlockDifferenceCovariance(const sim::SensorModel& model, std::int64_t m, int blocks) {
   const std::vector<double> r = RandomPartAutocovariance(model, blocks * m + 1);
-  const double block_s = static_cast<double>(m) * model.sample_period_s();
+  const double block_s = static_cast<double>(m) * model.sample_clock.period_s();
   return CovarianceFromAutocovariance(r, m, blocks, RampSquared(model) * block_s * block_s);
 }
 
@@ -344,7 +344,7 @@ std::vector<double> BlockMeanDeviationSd(const sim::SensorModel& model, std::int
   const std::vector<double> r = RandomPartAutocovariance(model, blocks * m + 1);
   std::vector<long double> d = StructureFunction(r, m, blocks);
   // A ramp of unknown sign, a random slope R: D(k) += R^2 (k m tau0)^2.
-  const long double block_s = static_cast<long double>(m) * model.sample_period_s();
+  const long double block_s = static_cast<long double>(m) * model.sample_clock.period_s();
   const long double r2 = RampSquared(model);
   for (int k = 1; k < blocks; ++k) d[k] += r2 * (k * block_s) * (k * block_s);
   // Var(u_b - mean_j u_j) = (1/B) sum_j D(|b - j|) - (1/(2 B^2)) sum_i sum_j D(|i - j|).

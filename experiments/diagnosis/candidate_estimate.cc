@@ -25,7 +25,7 @@ class FlooredBandLimit final : public estimators::ParametricTerm {
   const std::vector<estimators::ParameterSpec>& parameters() const override { return inner_->parameters(); }
   void Bounds(const estimators::AvarCurve& curve, std::vector<double>* lo, std::vector<double>* hi) const override {
     inner_->Bounds(curve, lo, hi);
-    (*lo)[0] = std::max((*lo)[0], 0.01 / curve.sample_period_s);
+    (*lo)[0] = std::max((*lo)[0], 0.01 / curve.sample_clock.period_s());
   }
   bool InitialGuess(const estimators::AvarCurve& curve, std::span<const double> avar, const sim::SensorModel& without,
                     std::vector<double>* params, std::string* why) const override {
@@ -84,7 +84,7 @@ std::optional<EffectInstance> Bump(Effect effect, const EstimateInputs& in, std:
   unit.sigma_rad_per_s = 1.0;
   unit.correlation_time_s = tc;
   const sim::RecordShape shape{c.num_samples, c.estimator};
-  const double s = unit.ExpectedAvar(c.m[best], c.sample_period_s, shape);
+  const double s = unit.ExpectedAvar(c.m[best], c.sample_clock.period_s(), shape);
   const double sigma = std::sqrt((c.avar[best] - in.baseline_avar[best]) / s);
   EffectInstance e{effect, {}};
   if (effect == Effect::kGaussMarkov) {
@@ -121,7 +121,7 @@ bool MatchCorrelation(const sim::BandLimitFamily& f, std::span<const double> rho
                       double* misfit) {
   auto predicted = [&](double cutoff, std::vector<double>* out) {
     sim::SensorModel m;
-    m.sample_rate_hz = fs;
+    m.sample_clock = SampleClock::FromRateHz(fs);
     m.terms = {sim::WhiteRateNoise{1.0}};
     m.band_limit = {f.kind, cutoff, f.oversampling, f.sampling};
     std::string invalid;
@@ -160,7 +160,7 @@ bool MatchCorrelation(const sim::BandLimitFamily& f, std::span<const double> rho
 std::optional<EffectInstance> Bandwidth(const estimators::AvarCurve& curve, const sim::SensorModel* baseline,
                                         std::span<const double> record, std::string* why) {
   const auto& families = sim::BandLimitFamilies();
-  const double fs = 1.0 / curve.sample_period_s;
+  const double fs = curve.sample_clock.rate_hz();
   std::vector<std::pair<double, std::size_t>> screened;  // (screen SSE ratio, family)
   std::vector<double> screen_fc(families.size(), 0.0);
   for (std::size_t f = 0; f < families.size(); ++f) {
@@ -562,11 +562,11 @@ std::optional<EffectInstance> RandomTelegraphStart(const EstimateInputs& in, std
   return Bump(Effect::kRandomTelegraph, in, why);
 }
 std::optional<EffectInstance> HarmonicStart(const EstimateInputs& in, std::string* why) {
-  return Harmonic(in.rate_rad_per_s, in.curve->sample_period_s, why);
+  return Harmonic(in.rate_rad_per_s, in.curve->sample_clock.period_s(), why);
 }
 std::optional<EffectInstance> AngleQuantizationStart(const EstimateInputs& in, std::string* why) {
   if (const auto lsb = ValueGrid(in.rate_rad_per_s, why)) {
-    return EffectInstance{Effect::kAngleQuantization, {{"lsb_rad", *lsb * in.curve->sample_period_s}}};
+    return EffectInstance{Effect::kAngleQuantization, {{"lsb_rad", *lsb * in.curve->sample_clock.period_s()}}};
   }
   const auto lsb = LsbFromBaselineQ(in.baseline_model, why);
   if (!lsb) return std::nullopt;
@@ -578,19 +578,19 @@ std::optional<EffectInstance> RateQuantizationStart(const EstimateInputs& in, st
   return EffectInstance{Effect::kRateQuantization, {{"lsb_rad_per_s", *lsb}}};
 }
 std::optional<EffectInstance> ExponentialDriftStart(const EstimateInputs& in, std::string* why) {
-  return Drift(in.rate_rad_per_s, in.curve->sample_period_s, why);
+  return Drift(in.rate_rad_per_s, in.curve->sample_clock.period_s(), why);
 }
 std::optional<EffectInstance> BiasStepStart(const EstimateInputs& in, std::string* why) {
   if (std::isfinite(in.step_time_s) && std::isfinite(in.step_block_s)) {
-    return LocalStep(in.rate_rad_per_s, in.curve->sample_period_s, in.step_time_s, in.step_block_s, why);
+    return LocalStep(in.rate_rad_per_s, in.curve->sample_clock.period_s(), in.step_time_s, in.step_block_s, why);
   }
-  return Step(in.rate_rad_per_s, in.curve->sample_period_s, why);
+  return Step(in.rate_rad_per_s, in.curve->sample_clock.period_s(), why);
 }
 std::optional<EffectInstance> OutliersStart(const EstimateInputs& in, std::string* why) {
-  return Spikes(in.rate_rad_per_s, in.curve->sample_period_s, why);
+  return Spikes(in.rate_rad_per_s, in.curve->sample_clock.period_s(), why);
 }
 std::optional<EffectInstance> ResonanceStart(const EstimateInputs& in, std::string* why) {
-  if (!in.rate_rad_per_s.empty()) return EstimateResonance(in.rate_rad_per_s, in.curve->sample_period_s, why);
+  if (!in.rate_rad_per_s.empty()) return EstimateResonance(in.rate_rad_per_s, in.curve->sample_clock.period_s(), why);
   // Curve mode: where the term's exact shape best explains the curve above the baseline.
   std::vector<double> residual(in.curve->size()), p;
   for (std::size_t k = 0; k < residual.size(); ++k) residual[k] = in.curve->avar[k] - in.baseline_avar[k];

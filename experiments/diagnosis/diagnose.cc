@@ -36,7 +36,7 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
   const bool block_means = wanted.test(static_cast<int>(View::kChangePoint)) || wanted.test(static_cast<int>(View::kTrend));
   if (block_means && !layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
     ViewResiduals change_point, trend;
-    BlockMeanResiduals(rate, layout.sample_period_s, layout.block_counts, model, layout.rate_random_walk_bound,
+    BlockMeanResiduals(rate, layout.sample_clock.period_s(), layout.block_counts, model, layout.rate_random_walk_bound,
                        &change_point, &trend);
     if (wanted.test(static_cast<int>(View::kChangePoint))) out.push_back(std::move(change_point));
     if (wanted.test(static_cast<int>(View::kTrend))) out.push_back(std::move(trend));
@@ -85,8 +85,8 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
   CandidateResult c;
   c.effects = effects;
   if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why)) return std::nullopt;
-  if (!PhysicallyPossible(c.effects, 1.0 / ctx.curve.sample_period_s,
-                          ctx.curve.sample_period_s * static_cast<double>(ctx.curve.num_samples), why)) {
+  if (!PhysicallyPossible(c.effects, ctx.curve.sample_clock,
+                          ctx.curve.sample_clock.period_s() * static_cast<double>(ctx.curve.num_samples), why)) {
     return std::nullopt;
   }
   c.after = Assess(ctx, c.model, false, 0, why);
@@ -187,12 +187,12 @@ std::string CandidateResult::id() const {
   return id;
 }
 
-bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate, double tau0,
+bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate, SampleClock sample_clock,
                     DiagnosisSummary* summary) {
   DiagnosisSummary& s = *summary;
   s = DiagnosisSummary{};
   if (!CommonChecks(options, summary)) return false;
-  if (!(tau0 > 0.0) || !std::isfinite(tau0)) {
+  if (!sample_clock.IsValid()) {
     s.message = "sample period must be finite and > 0";
     return false;
   }
@@ -212,19 +212,19 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   ctx.rate = rate;
   ctx.have_record = true;
   s.num_samples = static_cast<std::int64_t>(rate.size());
-  s.sample_period_s = tau0;
+  s.sample_clock = sample_clock;
   std::string why;
   ReportProgress(ctx, "baseline", 0, 0);
-  if (!RecordCurve(rate, tau0, &ctx.curve, &why)) {
+  if (!RecordCurve(rate, sample_clock, &ctx.curve, &why)) {
     s.message = why;
     return false;
   }
   std::string fallback;
   if (!FitBaseline(options, ctx.curve, &ctx.spec, &s.baseline, &fallback, &s.message)) return false;
   if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
-  s.baseline_model = ctx.spec.Model(s.baseline, 1.0 / tau0);
+  s.baseline_model = ctx.spec.Model(s.baseline, sample_clock);
   s.curve = ctx.curve;
-  ctx.layout = MakeViewLayout(tau0, s.num_samples, ctx.curve.m);
+  ctx.layout = MakeViewLayout(sample_clock, s.num_samples, ctx.curve.m);
   ctx.layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, s.baseline);
   if (!ComputeViews(ctx.layout, rate, &ctx.observed, &why)) {
     s.message = why;
@@ -237,19 +237,19 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   for (int h = 0; h < 2 && ctx.have_halves; ++h) {
     HalfRecord& r = ctx.halves[h];
     r.rate = rate.subspan(h * half, half);
-    ctx.have_halves = RecordCurve(r.rate, tau0, &r.curve, &why) && FitLinear(ctx.spec, r.curve, &r.baseline, nullptr);
+    ctx.have_halves = RecordCurve(r.rate, sample_clock, &r.curve, &why) && FitLinear(ctx.spec, r.curve, &r.baseline, nullptr);
     if (!ctx.have_halves) break;
-    r.edf = ExactOavar(ctx.spec.Model(r.baseline, 1.0 / tau0), r.curve.m, r.curve.num_samples).edf;
-    r.layout = MakeViewLayout(tau0, static_cast<std::int64_t>(half), r.curve.m);
+    r.edf = ExactOavar(ctx.spec.Model(r.baseline, sample_clock), r.curve.m, r.curve.num_samples).edf;
+    r.layout = MakeViewLayout(sample_clock, static_cast<std::int64_t>(half), r.curve.m);
     r.have_views = ComputeViews(r.layout, r.rate, &r.observed, &why);
   }
   if (ctx.have_halves) {
-    ctx.half_length_s = static_cast<double>(half) * tau0;
+    ctx.half_length_s = static_cast<double>(half) * sample_clock.period_s();
     // A half is judged against models fitted on the other half: K up to what that half allows.
     for (int h = 0; h < 2; ++h) {
       HalfRecord& r = ctx.halves[h];
       r.layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, ctx.halves[1 - h].baseline);
-      r.against_other_baseline = CurveMetrics(ctx.spec.Model(ctx.halves[1 - h].baseline, 1.0 / tau0), r.curve);
+      r.against_other_baseline = CurveMetrics(ctx.spec.Model(ctx.halves[1 - h].baseline, sample_clock), r.curve);
     }
   } else {
     s.notes.push_back("no held-out score: the halves are too short or their fit failed");
@@ -264,7 +264,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     s.before.has_heldout = true;
   }
   Finish(ctx, &s);
-  s.block_means = RecordBlockMeans(rate, tau0, s);
+  s.block_means = RecordBlockMeans(rate, sample_clock.period_s(), s);
   s.ok = true;
   return true;
 }
@@ -292,13 +292,13 @@ bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& 
   ctx.curve = curve;
   s.curve_mode = true;
   s.num_samples = curve.num_samples;
-  s.sample_period_s = curve.sample_period_s;
+  s.sample_clock = curve.sample_clock;
   std::string fallback;
   if (!FitBaseline(options, curve, &ctx.spec, &s.baseline, &fallback, &s.message)) return false;
   if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
-  s.baseline_model = ctx.spec.Model(s.baseline, 1.0 / curve.sample_period_s);
+  s.baseline_model = ctx.spec.Model(s.baseline, curve.sample_clock);
   s.curve = curve;
-  ctx.layout.sample_period_s = curve.sample_period_s;
+  ctx.layout.sample_clock = curve.sample_clock;
   ctx.layout.num_samples = curve.num_samples;
   ctx.layout.oavar_m = curve.m;
   ctx.curve_edf = ExactOavar(s.baseline_model, curve.m, curve.num_samples).edf;

@@ -40,6 +40,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/sample_clock.h"
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "experiments/diagnosis/effect.h"
@@ -150,7 +151,7 @@ struct DiagnosisSummary {
   std::string message;
   bool curve_mode = false;
   std::int64_t num_samples = 0;
-  double sample_period_s = 0.0;
+  SampleClock sample_clock;
   estimators::AvarCurve curve;
   estimators::FitSummary baseline;
   sim::SensorModel baseline_model;
@@ -170,10 +171,10 @@ struct DiagnosisSummary {
   BlockMeanSeries block_means;     // empty in curve mode
 };
 
-// A record of rate samples (rad/s) at period tau0. Returns summary->ok (false: bad options, a
+// A record of rate samples (rad/s) on its sample clock. Returns summary->ok (false: bad options, a
 // record too short for the views, a failed baseline fit, with the reason in message).
 bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate_rad_per_s,
-                    double sample_period_s, DiagnosisSummary* summary);
+                    SampleClock sample_clock, DiagnosisSummary* summary);
 
 // A published curve only (no record): the OAVAR view alone, candidates estimable from the curve
 // (bandwidth, gauss_markov, random_telegraph), no held-out score. curve.num_samples must be set.
@@ -195,12 +196,12 @@ struct ValidationScores {
 // False with *why when the second record gives no usable curve.
 // `options` gives the Monte Carlo views' trials and seed (trials 0: OAVAR only).
 bool ScoreOnSecondRecord(const DiagnoseOptions& options, const DiagnosisSummary& summary,
-                         std::span<const double> rate_rad_per_s, double sample_period_s,
+                         std::span<const double> rate_rad_per_s, SampleClock sample_clock,
                          ValidationScores* scores, std::string* why);
 
 // The record's overlapping Allan curve on 10 taus per decade with Greenhall-Riley EDFs
 // (positive values only), as the baseline fit uses it.
-bool RecordCurve(std::span<const double> rate_rad_per_s, double sample_period_s,
+bool RecordCurve(std::span<const double> rate_rad_per_s, SampleClock sample_clock,
                  estimators::AvarCurve* curve, std::string* why);
 
 }  // namespace allanlab::experiments

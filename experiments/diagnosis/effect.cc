@@ -50,7 +50,7 @@ bool AddBandwidth(const EffectInstance& e, sim::SensorModel* model, std::string*
     model->band_limit.oversampling = f.oversampling;
     model->band_limit.sampling = f.sampling;
   }
-  return model->band_limit.IsValid(model->sample_rate_hz, why);
+  return model->band_limit.IsValid(model->sample_clock.rate_hz(), why);
 }
 
 bool AddGaussMarkov(const EffectInstance& e, sim::SensorModel* model, std::string* why) {
@@ -237,7 +237,7 @@ bool EffectInstance::IsValid(double sample_rate_hz, std::string* why) const {
     }
   }
   sim::SensorModel probe;
-  probe.sample_rate_hz = sample_rate_hz;
+  probe.sample_clock = SampleClock::FromRateHz(sample_rate_hz);
   return AddEffect(*this, &probe, why) && probe.IsValid(why);
 }
 

@@ -29,7 +29,7 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
     HeldoutBefore b;
     std::string ignored;
     b.residuals = RecordResiduals(scored.rate, scored.layout, scored.observed,
-                                  ctx.spec.Model(ctx.halves[1 - h].baseline, 1.0 / ctx.curve.sample_period_s), true,
+                                  ctx.spec.Model(ctx.halves[1 - h].baseline, ctx.curve.sample_clock), true,
                                   ctx.options->trials, ctx.options->seed + 500 + h, &ignored);
     for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
       if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
@@ -60,8 +60,7 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
                   sim::SensorModel* model, std::string* why) {
   const HalfRecord& fit_half = ctx.halves[1 - scored];
   const HalfRecord& scored_half = ctx.halves[scored];
-  const double fs = 1.0 / ctx.curve.sample_period_s;
-  const sim::SensorModel probe = ctx.spec.Model(fit_half.baseline, fs);
+  const sim::SensorModel probe = ctx.spec.Model(fit_half.baseline, ctx.curve.sample_clock);
   std::vector<EffectInstance> stationary, events;
   for (const EffectInstance& e : effects) {
     const bool event = IsOneOffEvent(e.effect);
@@ -86,7 +85,7 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
     }
   }
   stationary.insert(stationary.end(), events.begin(), events.end());
-  return WithEffects(ctx.spec.Model(fit, fs), stationary, model, why);
+  return WithEffects(ctx.spec.Model(fit, ctx.curve.sample_clock), stationary, model, why);
 }
 
 
@@ -125,14 +124,14 @@ GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorM
 namespace allanlab::experiments {
 
 bool ScoreOnSecondRecord(const DiagnoseOptions& options, const DiagnosisSummary& summary,
-                         std::span<const double> rate, double tau0, ValidationScores* scores, std::string* why) {
+                         std::span<const double> rate, SampleClock sample_clock, ValidationScores* scores, std::string* why) {
   estimators::AvarCurve curve;
-  if (!RecordCurve(rate, tau0, &curve, why)) return false;
-  const ViewLayout layout = MakeViewLayout(tau0, static_cast<std::int64_t>(rate.size()), curve.m);
+  if (!RecordCurve(rate, sample_clock, &curve, why)) return false;
+  const ViewLayout layout = MakeViewLayout(sample_clock, static_cast<std::int64_t>(rate.size()), curve.m);
   ViewValues observed;
   if (!ComputeViews(layout, rate, &observed, why)) return false;
   auto score = [&](sim::SensorModel model, std::uint64_t salt, std::vector<ViewResiduals>* views) -> std::optional<GapMetrics> {
-    model.sample_rate_hz = 1.0 / tau0;
+    model.sample_clock = sample_clock;
     std::string ignored;
     if (!model.IsValid(&ignored)) return std::nullopt;
     *views = detail::RecordResiduals(rate, layout, observed, model, true, options.trials, options.seed + salt, &ignored);

@@ -186,7 +186,7 @@ struct Variant {
 };
 
 Variant MakeVariant(const std::string& id, RandomStream& u, const Recipe& base, std::int64_t n, double s0) {
-  const double fs = base.rate_hz, tau0 = 1.0 / fs, T = static_cast<double>(n) * tau0;
+  const double fs = base.rate_hz, tau0 = base.sample_period_s(), T = static_cast<double>(n) * tau0;
   Variant v;
   const double sign = u.Uniform() < 0.5 ? -1.0 : 1.0;
   if (id == "bandwidth") {
@@ -397,7 +397,7 @@ bool DrawIndependentCase(const IndependentDrawOptions& o, std::uint64_t seed, in
   BenchmarkCase& desc = c->descriptor;
   desc.index = index;
   desc.preset = "independent";
-  desc.rate_hz = o.rate_hz;
+  desc.sample_clock = SampleClock::FromRateHz(o.rate_hz);
   desc.num_samples = c->num_samples;
   // The layout: controls spread evenly, effects in turn.
   const double cf = o.control_fraction;
@@ -458,7 +458,7 @@ bool DrawInjectedCase(std::span<const double> segment, double rate_hz, const std
   BenchmarkCase& desc = c->descriptor;
   desc.index = index;
   desc.preset = source;
-  desc.rate_hz = rate_hz;
+  desc.sample_clock = SampleClock::FromRateHz(rate_hz);
   desc.num_samples = n;
   desc.target_z = LogUniform(u.Uniform(), kClearLow, kClearHigh);
   // The segment's own curve in place of a base model.

@@ -6,12 +6,12 @@
 
 namespace allanlab::experiments {
 
-bool PhysicallyPossible(const EffectInstance& e, double fs, double record_length_s, std::string* why) {
+bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, double record_length_s, std::string* why) {
   auto p = [&](const char* name) {
     const auto it = e.params.find(name);
     return it == e.params.end() ? std::nan("") : it->second;
   };
-  const double tau0 = 1.0 / fs, nyquist = 0.5 * fs;
+  const double tau0 = sample_clock.period_s(), nyquist = 0.5 * sample_clock.rate_hz();
   std::ostringstream os;
   os << EffectLabel(e) << ": ";
   bool ok = true;
@@ -74,9 +74,10 @@ bool PhysicallyPossible(const EffectInstance& e, double fs, double record_length
   return ok;
 }
 
-bool PhysicallyPossible(std::span<const EffectInstance> effects, double fs, double record_length_s, std::string* why) {
+bool PhysicallyPossible(std::span<const EffectInstance> effects, SampleClock sample_clock, double record_length_s,
+                        std::string* why) {
   for (const EffectInstance& e : effects) {
-    if (!PhysicallyPossible(e, fs, record_length_s, why)) return false;
+    if (!PhysicallyPossible(e, sample_clock, record_length_s, why)) return false;
   }
   return true;
 }

@@ -15,14 +15,15 @@
 #include <span>
 #include <string>
 
+#include "common/sample_clock.h"
 #include "experiments/diagnosis/effect.h"
 
 namespace allanlab::experiments {
 
 // False with *why naming the effect, the parameter and the bound it breaks.
-bool PhysicallyPossible(const EffectInstance& effect, double sample_rate_hz, double record_length_s,
+bool PhysicallyPossible(const EffectInstance& effect, SampleClock sample_clock, double record_length_s,
                         std::string* why);
-bool PhysicallyPossible(std::span<const EffectInstance> effects, double sample_rate_hz,
+bool PhysicallyPossible(std::span<const EffectInstance> effects, SampleClock sample_clock,
                         double record_length_s, std::string* why);
 
 }  // namespace allanlab::experiments

@@ -26,7 +26,7 @@ std::vector<double> StatisticAt(estimators::Statistic statistic, double tau0,
   if (ms.empty()) return out;
   estimators::AvarOptions options;
   options.statistic = statistic;
-  options.sample_period_s = tau0;
+  options.sample_clock = SampleClock::FromPeriodS(tau0);
   options.confidence_method = estimators::ConfidenceMethod::kNone;
   options.taus.kind = estimators::TauGridKind::kExplicit;
   for (std::int64_t m : ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
@@ -75,7 +75,7 @@ double ExcessKurtosisOfBlockIncrements(std::span<const double> rate, std::int64_
 // ln(OAVAR of the first half / OAVAR of the second) at layout.halves_m.
 void HalvesView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* halves) {
   using estimators::Statistic;
-  const double tau0 = layout.sample_period_s;
+  const double tau0 = layout.sample_clock.period_s();
   const std::size_t half = rate.size() / 2;
   const auto first = StatisticAt(Statistic::kAllanOverlapping, tau0, layout.halves_m, rate.first(half));
   const auto second =
@@ -87,7 +87,7 @@ void HalvesView(const ViewLayout& layout, std::span<const double> rate, std::vec
 void DynamicView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* dynamic) {
   using estimators::Statistic;
   constexpr int kWindows = 8;
-  const double tau0 = layout.sample_period_s;
+  const double tau0 = layout.sample_clock.period_s();
   const std::size_t window = rate.size() / kWindows;
   dynamic->assign(layout.dynamic_m.size(), kNaN);
   if (layout.dynamic_m.empty()) return;
@@ -108,7 +108,7 @@ void DynamicView(const ViewLayout& layout, std::span<const double> rate, std::ve
 // ln of the Welch PSD (Hann, 50 % overlap) averaged in the layout's bands.
 void PsdView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* psd) {
   if (layout.psd_segment <= 0) return;
-  const double tau0 = layout.sample_period_s;
+  const double tau0 = layout.sample_clock.period_s();
   const std::size_t seg = static_cast<std::size_t>(layout.psd_segment);
   std::vector<double> window_fn(seg);
   double w2 = 0.0;
@@ -161,7 +161,7 @@ std::string_view ViewAxisName(View v) {
 std::vector<double> ViewLayout::Axis(View v) const {
   auto taus = [&](const std::vector<std::int64_t>& ms) {
     std::vector<double> x;
-    for (std::int64_t m : ms) x.push_back(static_cast<double>(m) * sample_period_s);
+    for (std::int64_t m : ms) x.push_back(static_cast<double>(m) * sample_clock.period_s());
     return x;
   };
   switch (v) {
@@ -174,17 +174,17 @@ std::vector<double> ViewLayout::Axis(View v) const {
     case View::kChangePoint:
     case View::kTrend: {
       std::vector<double> x;
-      for (int b : block_counts) x.push_back(static_cast<double>(num_samples / b) * sample_period_s);
+      for (int b : block_counts) x.push_back(static_cast<double>(num_samples / b) * sample_clock.period_s());
       return x;
     }
   }
   return {};
 }
 
-ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
+ViewLayout MakeViewLayout(SampleClock sample_clock, std::int64_t num_samples,
                           std::vector<std::int64_t> oavar_m) {
   ViewLayout l;
-  l.sample_period_s = sample_period_s;
+  l.sample_clock = sample_clock;
   l.num_samples = num_samples;
   l.oavar_m = std::move(oavar_m);
   const std::int64_t n = num_samples;
@@ -197,7 +197,7 @@ ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
   while (seg * 2 <= std::min<std::int64_t>(n / 8, std::int64_t{1} << 14)) seg *= 2;
   if (seg >= 64) {
     l.psd_segment = seg;
-    const double df = 1.0 / (static_cast<double>(seg) * sample_period_s);
+    const double df = 1.0 / (static_cast<double>(seg) * sample_clock.period_s());
     const int last_bin = static_cast<int>(seg / 2) - 1;  // below Nyquist
     // Bands of 6 per decade in frequency from bin 1; a band holds at least one bin.
     const double ratio = std::pow(10.0, 1.0 / 6.0);
@@ -227,7 +227,7 @@ bool ComputeViews(const ViewLayout& layout, std::span<const double> rate, ViewVa
       return false;
     }
   }
-  const double tau0 = layout.sample_period_s;
+  const double tau0 = layout.sample_clock.period_s();
   ViewValues& v = *values;
   v.assign(kNumViews, {});
   auto want = [&](View view) {

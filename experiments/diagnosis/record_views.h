@@ -26,6 +26,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/sample_clock.h"
+
 namespace allanlab::experiments {
 
 enum class View { kOavar, kHadamard, kHalves, kDynamic, kPsd, kKurtosis, kChangePoint, kTrend };
@@ -59,7 +61,7 @@ std::string_view ViewAxisName(View v);
 // Where each view is evaluated for a record of N samples at tau0 (the same for real and
 // simulated records).
 struct ViewLayout {
-  double sample_period_s = 1.0;
+  SampleClock sample_clock;
   std::int64_t num_samples = 0;
   std::vector<std::int64_t> oavar_m;  // the fit's grid
   std::vector<std::int64_t> hadamard_m, halves_m, dynamic_m, kurtosis_m;
@@ -76,7 +78,7 @@ struct ViewLayout {
 };
 
 // oavar_m: the fit's averaging factors (ascending, <= N/2).
-ViewLayout MakeViewLayout(double sample_period_s, std::int64_t num_samples,
+ViewLayout MakeViewLayout(SampleClock sample_clock, std::int64_t num_samples,
                           std::vector<std::int64_t> oavar_m);
 
 // Statistics of one record per view (indexed by static_cast<int>(View)), sizes as the layout.

@@ -23,14 +23,13 @@ using estimators::Coefficient;
 bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                     const estimators::FitSummary& start, const std::vector<EffectInstance>& effects,
                     estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
-  const double fs = 1.0 / curve.sample_period_s;
   const sim::RecordShape shape{curve.num_samples, curve.estimator};
   estimators::FitSummary current = start;
   const bool subtract = std::all_of(effects.begin(), effects.end(), [](const EffectInstance& e) {
     return SpecOf(e.effect).held == HeldRefit::kSubtractive;
   });
   for (int pass = 0; pass < 3; ++pass) {
-    const sim::SensorModel linear = spec.Model(current, fs);
+    const sim::SensorModel linear = spec.Model(current, curve.sample_clock);
     sim::SensorModel full;
     if (!WithEffects(linear, effects, &full, why)) return false;
     const auto e_lin = linear.ExpectedAvar(curve.m, shape);
@@ -56,7 +55,7 @@ bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve
     current = next;
   }
   *fit = current;
-  return WithEffects(spec.Model(current, fs), effects, model, why);
+  return WithEffects(spec.Model(current, curve.sample_clock), effects, model, why);
 }
 
 
@@ -238,7 +237,7 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
   // cleared of.
   *model = estimators::FittedModel(best_options, curve, best);
   sim::SensorModel held = spec.held;
-  held.sample_rate_hz = model->sample_rate_hz;
+  held.sample_clock = model->sample_clock;
   model->terms.insert(model->terms.end(), held.terms.begin(), held.terms.end());
   if (held.angle_quantizer && !model->angle_quantizer) model->angle_quantizer = held.angle_quantizer;
   if (held.rate_quantizer && !model->rate_quantizer) model->rate_quantizer = held.rate_quantizer;
@@ -282,7 +281,6 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     double chi2 = 0.0;  // then AIC
   };
   std::vector<Option> options_tried;
-  const double fs = 1.0 / curve.sample_period_s;
   std::string ignored;
   std::vector<std::vector<EffectInstance>> starts = {*effects};
   {
@@ -312,7 +310,7 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     Option o{from, {}, {}, 0.0};
     if (FitWithEffects(spec, curve, start, o.effects, &o.fit, &o.model, why)) options_tried.push_back(std::move(o));
     Option held{from, start, {}, 0.0};
-    if (WithEffects(spec.Model(start, fs), held.effects, &held.model, &ignored)) options_tried.push_back(std::move(held));
+    if (WithEffects(spec.Model(start, curve.sample_clock), held.effects, &held.model, &ignored)) options_tried.push_back(std::move(held));
   }
   if (options_tried.empty()) return false;
   // AIC over the options: chi2 + 2 x the linear terms each keeps (the effects' parameters are

@@ -26,7 +26,7 @@ class DiagnoseCommandTest : public testing_support::CommandTest {
   DiagnoseCommandTest() : CommandTest("allanlab_diagnose", "diagnose") {}
   void WriteRecord(const std::string& name, std::int64_t n) {
     sim::SensorModel model;
-    model.sample_rate_hz = 100.0;
+    model.sample_clock = SampleClock::FromRateHz(100.0);
     sim::WhiteRateNoise white;
     white.arw_rad_per_sqrt_s = 1e-4;
     model.terms = {white};

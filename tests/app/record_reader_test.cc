@@ -85,7 +85,7 @@ TEST_F(RecordReaderTest, PlainGzipAndXzGiveTheSameValues) {
   EXPECT_EQ(a.info.column, "gyro_x");
   EXPECT_EQ(a.info.time_column, "t_s");
   EXPECT_TRUE(a.info.has_header);
-  EXPECT_EQ(a.info.sample_rate_hz, 100);  // rounded to 10 digits, not 99.99999999999993
+  EXPECT_EQ(a.info.sample_clock.rate_hz(), 100);  // rounded to 10 digits, not 99.99999999999993
   EXPECT_EQ(a.info.rate_source, "time column t_s");
   EXPECT_EQ(a.info.time.irregular_steps, 0);
   EXPECT_EQ(a.info.lines, 5002);
@@ -148,7 +148,7 @@ TEST_F(RecordReaderTest, RawFloat32AndFloat64LittleEndian) {
   Result r = Read(o);
   ASSERT_TRUE(r.ok) << r.error.message;
   EXPECT_EQ(r.values, expected);
-  EXPECT_EQ(r.info.sample_rate_hz, 200);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 200);
   EXPECT_EQ(r.info.rate_source, "--rate");
   EXPECT_EQ(r.info.column, "float64 samples");
 
@@ -167,7 +167,7 @@ TEST_F(RecordReaderTest, RateFromTimeColumnAndAgreeingRate) {
   o.rate_hz = 50.02;  // within 1e-3 relative: used as given
   Result r = Read(o);
   ASSERT_TRUE(r.ok) << r.error.message;
-  EXPECT_EQ(r.info.sample_rate_hz, 50.02);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 50.02);
   EXPECT_EQ(r.info.rate_source, "--rate (time column t_s agrees)");
   o.rate_hz = 50.1;
   r = Read(o);
@@ -183,7 +183,7 @@ TEST_F(RecordReaderTest, IrregularStepsAreReported) {
   const Result r =
       Read(Options(Write("r.csv", "time,x\n0,1\n1,2\n2,3\n5,4\n6,5\n7,6\n7.5,7\n8.5,8\n")));
   ASSERT_TRUE(r.ok) << r.error.message;
-  EXPECT_EQ(r.info.sample_rate_hz, 1.0);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 1.0);
   EXPECT_EQ(r.info.time.irregular_steps, 2);
   EXPECT_EQ(r.info.time.largest_step_s, 3.0);
   EXPECT_EQ(r.info.time.largest_step_line, 5);
@@ -388,14 +388,14 @@ std::string RosCsv(const std::string& time_name, int n, std::int64_t step_ns) {
 TEST_F(RecordReaderTest, NanosecondTimeColumnsGiveTheExactRate) {
   const Result r = Read(Options(Write("ros.csv", RosCsv("%time", 2000, 10'000'000))));
   ASSERT_TRUE(r.ok) << r.error.message;
-  EXPECT_EQ(r.info.sample_rate_hz, 100.0);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 100.0);
   EXPECT_EQ(r.info.time_unit_s, 1e-9);
   EXPECT_EQ(r.info.time.irregular_steps, 0);
   EXPECT_EQ(r.info.rate_source, "time column %time in ns");
 
   const Result ms = Read(Options(Write("ms.csv", RosCsv("t_ms", 100, 5))));
   ASSERT_TRUE(ms.ok) << ms.error.message;
-  EXPECT_EQ(ms.info.sample_rate_hz, 200.0);
+  EXPECT_EQ(ms.info.sample_clock.rate_hz(), 200.0);
 }
 
 TEST_F(RecordReaderTest, BareTimeColumnInNanosecondsIsRejectedUnlessTheUnitIsGiven) {
@@ -409,7 +409,7 @@ TEST_F(RecordReaderTest, BareTimeColumnInNanosecondsIsRejectedUnlessTheUnitIsGiv
   o.time_unit_s = 1e-9;
   const Result told = Read(o);
   ASSERT_TRUE(told.ok) << told.error.message;
-  EXPECT_EQ(told.info.sample_rate_hz, 400.0);
+  EXPECT_EQ(told.info.sample_clock.rate_hz(), 400.0);
 }
 
 // The units: what the file states meets --units; nothing stated and nothing given is refused.
@@ -476,7 +476,7 @@ TEST_F(RecordReaderTest, RawRecordsReadTheirSidecar) {
   o.units.clear();
   Result r = Read(o);
   ASSERT_TRUE(r.ok) << r.error.message;
-  EXPECT_EQ(r.info.sample_rate_hz, 250);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 250);
   EXPECT_EQ(r.info.rate_source, "the sidecar " + path + ".json");
   EXPECT_EQ(r.info.units, "deg/s");
   EXPECT_EQ(r.info.units_source, "the sidecar " + path + ".json");
@@ -532,7 +532,7 @@ TEST_F(RecordReaderTest, HeaderlessIncreasingFirstColumnIsTime) {
   EXPECT_EQ(r.info.time_column, "column 0");
   EXPECT_TRUE(r.info.time_column_guessed);
   EXPECT_EQ(r.info.column, "column 1");
-  EXPECT_EQ(r.info.sample_rate_hz, 200);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 200);
   EXPECT_EQ(r.info.time.irregular_steps, 1);
   ASSERT_EQ(r.values.size(), 200u);
   EXPECT_EQ(r.values[3], std::stod(std::to_string(std::sin(0.9))));
@@ -546,7 +546,7 @@ TEST_F(RecordReaderTest, HeaderlessIncreasingFirstColumnIsTime) {
   o.rate_hz = 1000;
   r = Read(o);
   ASSERT_TRUE(r.ok) << r.error.message;
-  EXPECT_EQ(r.info.sample_rate_hz, 1000);
+  EXPECT_EQ(r.info.sample_clock.rate_hz(), 1000);
   EXPECT_TRUE(r.info.time_column.empty());
   EXPECT_EQ(r.info.rate_source,
             "--rate (the headerless first column, read as time, gives 200 Hz: not used)");

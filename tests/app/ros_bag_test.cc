@@ -309,7 +309,7 @@ class RosBagTest : public ::testing::Test {
     EXPECT_EQ(r.info.columns[0].name, "angular_velocity.x");
     EXPECT_EQ(r.info.columns[0].units, "rad/s");
     EXPECT_EQ(r.info.columns[3].units, "m/s^2");
-    EXPECT_EQ(r.info.sample_rate_hz, 200.0);
+    EXPECT_EQ(r.info.sample_clock.rate_hz(), 200.0);
     EXPECT_NE(r.info.bag.find(format + " bag, topic /imu"), std::string::npos) << r.info.bag;
     RecordReaderOptions o;
     o.path = Csv(samples);

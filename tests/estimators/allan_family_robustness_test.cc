@@ -31,7 +31,7 @@ TEST(AllanFamilyRobustness, LargeConstantOffsetChangesNothing) {
                       Statistic::kHadamardOverlapping, Statistic::kTotal, Statistic::kTime}) {
     AvarOptions options;
     options.statistic = s;
-    options.sample_period_s = 0.005;
+    options.sample_clock = SampleClock::FromPeriodS(0.005);
     AvarSummary plain, offset;
     ASSERT_TRUE(ComputeStatisticValues(options, rate, &plain)) << plain.message;
     ASSERT_TRUE(ComputeStatisticValues(options, biased, &offset)) << offset.message;

@@ -44,7 +44,7 @@ std::vector<double> TestRecord(std::int64_t n, std::uint64_t seed) {
 AvarOptions ExplicitOptions(Statistic s, std::vector<std::int64_t> ms, double tau0 = 1.0) {
   AvarOptions options;
   options.statistic = s;
-  options.sample_period_s = tau0;
+  options.sample_clock = SampleClock::FromPeriodS(tau0);
   options.taus.kind = TauGridKind::kExplicit;
   for (std::int64_t m : ms) options.taus.explicit_taus_s.push_back(static_cast<double>(m) * tau0);
   return options;
@@ -162,7 +162,7 @@ TEST(AllanFamily, TimeVarianceIsTauSquaredModifiedOverThree) {
   const std::vector<double> y = TestRecord(500, 1);
   AvarSummary mvar, tvar;
   AvarOptions options;
-  options.sample_period_s = 0.01;
+  options.sample_clock = SampleClock::FromPeriodS(0.01);
   options.statistic = Statistic::kModifiedAllan;
   ASSERT_TRUE(ComputeStatisticValues(options, y, &mvar));
   options.statistic = Statistic::kTime;
@@ -184,7 +184,7 @@ TEST(AllanFamily, RateRampGivesExactAllanAndZeroHadamard) {
   for (Statistic s : {Statistic::kAllanNonOverlapping, Statistic::kAllanOverlapping}) {
     AvarOptions options;
     options.statistic = s;
-    options.sample_period_s = tau0;
+    options.sample_clock = SampleClock::FromPeriodS(tau0);
     AvarSummary summary;
     ASSERT_TRUE(ComputeStatisticValues(options, y, &summary));
     for (const AvarPoint& p : summary.points) {
@@ -197,7 +197,7 @@ TEST(AllanFamily, RateRampGivesExactAllanAndZeroHadamard) {
   for (Statistic s : {Statistic::kHadamardNonOverlapping, Statistic::kHadamardOverlapping}) {
     AvarOptions options;
     options.statistic = s;
-    options.sample_period_s = tau0;
+    options.sample_clock = SampleClock::FromPeriodS(tau0);
     AvarSummary summary;
     ASSERT_TRUE(ComputeStatisticValues(options, y, &summary));
     for (const AvarPoint& p : summary.points) EXPECT_NEAR(p.value, 0.0, 1e-20) << p.m;
@@ -285,7 +285,7 @@ TEST(AllanFamily, RejectsBadInput) {
   EXPECT_EQ(summary.message, "rate sample 17 is not finite (inf)");
 
   AvarOptions bad;
-  bad.sample_period_s = 0.0;
+  bad.sample_clock = SampleClock::FromPeriodS(0.0);
   y[17] = 0.0;
   EXPECT_FALSE(ComputeStatisticValues(bad, y, &summary));
   EXPECT_EQ(summary.message.rfind("invalid options: sample period", 0), 0u) << summary.message;

@@ -20,10 +20,10 @@ TEST(AvarOptions, RejectsEachBadField) {
     void (*spoil)(AvarOptions*);
   };
   const Case cases[] = {
-      {"sample period", [](AvarOptions* o) { o->sample_period_s = 0.0; }},
-      {"sample period", [](AvarOptions* o) { o->sample_period_s = -1.0; }},
+      {"sample period", [](AvarOptions* o) { o->sample_clock = SampleClock::FromPeriodS(0.0); }},
+      {"sample period", [](AvarOptions* o) { o->sample_clock = SampleClock::FromPeriodS(-1.0); }},
       {"sample period",
-       [](AvarOptions* o) { o->sample_period_s = std::numeric_limits<double>::infinity(); }},
+       [](AvarOptions* o) { o->sample_clock = SampleClock::FromPeriodS(std::numeric_limits<double>::infinity()); }},
       {"confidence", [](AvarOptions* o) { o->confidence = 1.0; }},
       {"confidence", [](AvarOptions* o) { o->confidence = 0.0; }},
       {"min_terms", [](AvarOptions* o) { o->min_terms = 0; }},

@@ -21,7 +21,7 @@ std::vector<double> WhiteRecord(std::int64_t n) {
 
 AvarOptions Options(ConfidenceMethod method) {
   AvarOptions options;
-  options.sample_period_s = 0.01;
+  options.sample_clock = SampleClock::FromPeriodS(0.01);
   options.confidence_method = method;
   return options;
 }

@@ -42,7 +42,7 @@ struct Agreement {
 
 std::vector<int> Alphas(const std::vector<double>& rate, std::int64_t cap, std::vector<std::int64_t>* ms) {
   AvarOptions o;
-  o.sample_period_s = 0.01;
+  o.sample_clock = SampleClock::FromPeriodS(0.01);
   o.confidence_method = ConfidenceMethod::kAuto;
   o.identification_max_averages = cap;
   AvarSummary s;

@@ -22,7 +22,7 @@ TEST(ExactQuadraticMomentsStat, ModifiedAndHadamardMomentsMatchMonteCarlo) {
   constexpr std::int64_t kN = 1024;
   constexpr double kZ = testing_support::kZ;
   sim::SensorModel model;
-  model.sample_rate_hz = 10.0;
+  model.sample_clock = SampleClock::FromRateHz(10.0);
   model.terms.push_back(sim::WhiteRateNoise{1e-3});
   model.terms.push_back(sim::RandomWalkRate{1e-4});
   const std::vector<std::int64_t> ms = {1, 4, 16, 64, 256};
@@ -31,7 +31,7 @@ TEST(ExactQuadraticMomentsStat, ModifiedAndHadamardMomentsMatchMonteCarlo) {
     std::vector<double> sum(ms.size(), 0.0), sum_sq(ms.size(), 0.0);
     AvarOptions options;
     options.statistic = s;
-    options.sample_period_s = 0.1;
+    options.sample_clock = SampleClock::FromPeriodS(0.1);
     options.taus.kind = TauGridKind::kExplicit;
     for (std::int64_t m : ms) options.taus.explicit_taus_s.push_back(0.1 * static_cast<double>(m));
     options.confidence_method = ConfidenceMethod::kNone;

@@ -31,7 +31,7 @@ constexpr std::int64_t kN = 40;
 double Estimate(Statistic s, std::int64_t m, const std::vector<double>& y) {
   AvarOptions options;
   options.statistic = s;
-  options.sample_period_s = 1.0;
+  options.sample_clock = SampleClock::FromPeriodS(1.0);
   options.taus.kind = TauGridKind::kExplicit;
   options.taus.explicit_taus_s = {static_cast<double>(m)};
   options.confidence_method = ConfidenceMethod::kNone;

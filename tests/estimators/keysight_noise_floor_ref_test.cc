@@ -77,7 +77,7 @@ AvarOptions TicOptions(Statistic statistic, std::vector<double> taus) {
   options.confidence_method = ConfidenceMethod::kGreenhallRiley;  // Stable32's method
   options.statistic = statistic;
   options.input = InputKind::kAngle;  // phase
-  options.sample_period_s = 1.0;
+  options.sample_clock = SampleClock::FromPeriodS(1.0);
   options.confidence = 0.683;
   options.taus.kind = TauGridKind::kExplicit;
   options.taus.explicit_taus_s = std::move(taus);

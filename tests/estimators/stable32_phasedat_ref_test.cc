@@ -33,7 +33,7 @@ AvarOptions PhaseDatOptions(Statistic statistic, const std::vector<Stable32Row>&
   options.confidence_method = ConfidenceMethod::kGreenhallRiley;  // Stable32's method
   options.statistic = statistic;
   options.input = InputKind::kAngle;  // phase
-  options.sample_period_s = 1.0;
+  options.sample_clock = SampleClock::FromPeriodS(1.0);
   options.confidence = 0.683;
   options.taus.kind = TauGridKind::kExplicit;
   for (const Stable32Row& row : rows) options.taus.explicit_taus_s.push_back(row.tau_s);

@@ -27,9 +27,8 @@ SweepSpec WhiteSpec(std::int64_t trials) {
   spec.taus = "octave";
   SweepPoint point;
   point.index = 0;
-  point.model.sample_rate_hz = 100.0;
+  point.model.sample_clock = SampleClock::FromRateHz(100.0);
   point.model.terms.push_back(sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 1e-3});
-  point.sample_rate_hz = 100.0;
   point.num_samples = 1024;
   spec.points.push_back(point);
   spec.canonical_text = "test spec\nsecond line";

@@ -62,7 +62,7 @@ TEST(CoefficientTrial, FitTausStartWhereTheBandLimitDeficitIsSmall) {
   const SweepPoint p = PresetPoint("tg100", 50.0, 1200.0, 0);
   std::vector<std::int64_t> octave;
   for (std::int64_t m = 1; m <= p.num_samples / 2; m *= 2) octave.push_back(m);
-  const std::int64_t m = SmallestFitAveragingFactor(p.model, 50.0, p.num_samples, octave);
+  const std::int64_t m = SmallestFitAveragingFactor(p.model, p.num_samples, octave);
   const double tau = m / 50.0;
   EXPECT_GE(tau * 100.0, 47.0 / 2.0);  // octave grid: the first tau past the threshold
   EXPECT_LE(tau * 100.0, 2.0 * 48.0 + 1e-9);
@@ -78,14 +78,14 @@ TEST(CoefficientTrial, BandLimitResidualBiasOfNStaysSmallAgainstItsSigma) {
   const SweepPoint p = PresetPoint("fog", 125.0, 2.0 * 3600.0, 0);
   std::vector<std::int64_t> octave;
   for (std::int64_t m = 1; m <= p.num_samples / 2; m *= 2) octave.push_back(m);
-  const std::int64_t min_m = SmallestFitAveragingFactor(p.model, 125.0, p.num_samples, octave);
+  const std::int64_t min_m = SmallestFitAveragingFactor(p.model, p.num_samples, octave);
   EXPECT_GE(min_m, 8);  // the fixed 0.5 % rule alone would keep m = 4
   const TrueCoefficients truth = TrueCoefficientsOf(p.model);
   sim::SensorModel no_band_limit = p.model;
   no_band_limit.band_limit = sim::BandLimit{};
   for (const sim::SensorModel* model : {&p.model, static_cast<const sim::SensorModel*>(&no_band_limit)}) {
     estimators::AvarCurve curve;
-    curve.sample_period_s = 1.0 / 125.0;
+    curve.sample_clock = SampleClock::FromPeriodS(1.0 / 125.0);
     curve.num_samples = p.num_samples;
     const sim::RecordShape shape{p.num_samples, sim::AvarEstimatorKind::kOverlapping};
     for (std::int64_t m : octave) {
@@ -129,9 +129,9 @@ TEST(CoefficientTrial, GlsAndWlsRecoverTg100WithinTheirEdfError) {
   // bound is the EDF at the record's quarter length (flicker, ~ 1.2 T/tau, docs/theory.md §3.2).
   std::vector<std::int64_t> octave;
   for (std::int64_t m = 1; m <= p.num_samples / 2; m *= 2) octave.push_back(m);
-  const double tau_min = SmallestFitAveragingFactor(p.model, p.sample_rate_hz, p.num_samples, octave) /
-                         p.sample_rate_hz;
-  const double duration = p.num_samples / p.sample_rate_hz;
+  const double tau_min = SmallestFitAveragingFactor(p.model, p.num_samples, octave) *
+                         p.model.sample_clock.period_s();
+  const double duration = p.num_samples / p.model.sample_clock.rate_hz();
   const double sd_n = 0.5 * std::sqrt(2.0 / (1.5 * duration / tau_min));
   const double sd_b = 0.5 * std::sqrt(2.0 / (1.2 * 4.0));
   for (const char* method : {"wls", "gls", "log_wls"}) {
@@ -180,11 +180,10 @@ TEST(CoefficientTrial, SlopeMethodReadsWhiteNoiseAlone) {
   spec.fit_methods = {"slope", "gls"};
   SweepPoint p;
   p.model.name = "white";
-  p.model.sample_rate_hz = 10.0;
+  p.model.sample_clock = SampleClock::FromRateHz(10.0);
   sim::WhiteRateNoise white;
   white.arw_rad_per_sqrt_s = 1e-5;
   p.model.terms.push_back(white);
-  p.sample_rate_hz = 10.0;
   p.num_samples = 20000;
   spec.points.push_back(p);
   CoefficientTrialDriver driver;

@@ -31,7 +31,6 @@ SweepSpec PresetSpec(const char* preset, std::int64_t samples, std::int64_t tria
   SweepPoint point;
   std::string why;
   EXPECT_TRUE(sim::LoadPreset(preset, &point.model, &why)) << why;
-  point.sample_rate_hz = point.model.sample_rate_hz;
   point.num_samples = samples;
   spec.points.push_back(point);
   spec.canonical_text = "name: seed_paper_test";

@@ -35,7 +35,7 @@ TEST(SweepSpec, UnsweptSpecIsOnePointWithDefaults) {
   const SweepSpec spec = MustLoad(kBase);
   ASSERT_EQ(spec.points.size(), 1u);
   EXPECT_EQ(spec.points[0].num_samples, 1000);
-  EXPECT_EQ(spec.points[0].sample_rate_hz, 100.0);
+  EXPECT_EQ(spec.points[0].model.sample_clock.rate_hz(), 100.0);
   EXPECT_TRUE(spec.points[0].coordinates.empty());
   ASSERT_EQ(spec.estimators.size(), 1u);
   EXPECT_EQ(spec.estimators[0], estimators::Statistic::kAllanOverlapping);
@@ -77,7 +77,7 @@ sweep:
   EXPECT_EQ(spec.points[2].coordinates[0].value_text, "60 min");
   EXPECT_EQ(spec.points[0].num_samples, 600);
   EXPECT_EQ(spec.points[2].num_samples, 3600 * 50);
-  EXPECT_EQ(spec.points[2].model.sample_rate_hz, 50.0);
+  EXPECT_EQ(spec.points[2].model.sample_clock.rate_hz(), 50.0);
   EXPECT_NEAR(spec.points[1].coordinates[0].value, std::sqrt(60.0), 1e-12);
 }
 

@@ -23,7 +23,7 @@ constexpr std::int64_t kN = 1 << 16;
 
 double SimAvar(const sim::NoiseTerm& term, std::int64_t m, const sim::BandLimit& bl = {}) {
   sim::SensorModel model;
-  model.sample_rate_hz = kRate;
+  model.sample_clock = SampleClock::FromRateHz(kRate);
   model.terms = {term};
   model.band_limit = bl;
   return model.ExpectedAvar(m, {kN, sim::AvarEstimatorKind::kOverlapping});

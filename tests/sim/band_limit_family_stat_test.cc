@@ -132,7 +132,7 @@ TEST_P(BandLimitFamilyTest, WhiteNoiseAvarMatchesTransferFunctionIntegral) {
   const FamilyCase& c = GetParam();
   const double fs = 100.0, arw = 0.01;
   SensorModel model;
-  model.sample_rate_hz = fs;
+  model.sample_clock = SampleClock::FromRateHz(fs);
   model.terms = {WhiteRateNoise{arw}};
   model.band_limit = c.limit;
   std::string why;
@@ -165,7 +165,7 @@ TEST_P(BandLimitFamilyTest, MonteCarloMatchesExactAvar) {
   constexpr std::int64_t kSamples = 1 << 13;
   constexpr int kTrials = 150;
   SensorModel model;
-  model.sample_rate_hz = 100.0;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
   // White noise (wideband path) and a Gauss-Markov term (held path) through the filter.
   model.terms = {WhiteRateNoise{0.01}, GaussMarkov{0.02, 0.03}};
   model.band_limit = c.limit;
@@ -185,7 +185,7 @@ INSTANTIATE_TEST_SUITE_P(Families, BandLimitFamilyTest, ::testing::ValuesIn(Case
 TEST(BandLimitFamily, MovingAverageGivesTheLagOneCorrelationOfAnInternalDecimator) {
   const double fs = 100.0;
   SensorModel model;
-  model.sample_rate_hz = fs;
+  model.sample_clock = SampleClock::FromRateHz(fs);
   model.terms = {WhiteRateNoise{0.01}};
   model.band_limit = {LowPassKind::kMovingAverage, SincHalfPower(1) * fs / 1.205, 8, OutputSampling::kPoint};
   const std::vector<double> r = model.GaussianAutocovariance(4);

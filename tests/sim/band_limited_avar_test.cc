@@ -121,7 +121,7 @@ TEST(BandLimitedAvarTest, SensorModelMatchesTheDirectSumOfItsTerms) {
   const RandomWalkRate walk{units::DegPerHourPerSqrtHour(0.03)};
   const RateRamp ramp{units::DegPerHourSquared(5.0)};
   SensorModel model;
-  model.sample_rate_hz = kRate;
+  model.sample_clock = SampleClock::FromRateHz(kRate);
   model.terms = {quantization, white, walk, ramp};
   const double tau0 = 1.0 / kRate;
   for (const ChainCase& c : Cases()) {
@@ -146,7 +146,7 @@ TEST(BandLimitedAvarTest, KasdinFlickerDiffersByAStartUpTermOnly) {
   // (tc = fs/(2 pi fc) samples; measured up to 0.43 (tc + 1)/T here, and scaling as 1/N for
   // N = 2^12..2^18 at fixed m).
   SensorModel model;
-  model.sample_rate_hz = kRate;
+  model.sample_clock = SampleClock::FromRateHz(kRate);
   model.terms = {FlickerNoise{units::DegPerHour(0.18)}};
   for (const ChainCase& c : Cases()) {
     model.band_limit = BandLimit{c.kind, c.fc_hz, c.oversampling, c.sampling};

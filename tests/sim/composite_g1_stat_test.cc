@@ -17,7 +17,7 @@ constexpr std::int64_t kN = std::int64_t{1} << 18;
 SensorModel G1() {
   SensorModel model;
   model.name = "G1";
-  model.sample_rate_hz = 1.0;
+  model.sample_clock = SampleClock::FromRateHz(1.0);
   model.terms = {QuantizationNoise{0.5}, WhiteRateNoise{1.0}, FlickerNoise{0.03},
                  RandomWalkRate{std::sqrt(9e-8)}};
   return model;

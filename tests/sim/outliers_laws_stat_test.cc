@@ -39,7 +39,7 @@ TEST(OutliersLawsTest, ExactAvarMatchesTheLawsAndMonteCarlo) {
       EXPECT_NEAR(o.ExpectedAvar(m, 1.0 / kRate, RecordShape{kSamples}), var / static_cast<double>(m), 1e-15);
     }
     SensorModel model;
-    model.sample_rate_hz = kRate;
+    model.sample_clock = SampleClock::FromRateHz(kRate);
     model.terms = {WhiteRateNoise{1e-3}, o};
     const std::vector<std::int64_t> ms = OctaveFactorsUpTo(kSamples / 8);
     const RecordShape shape{kSamples, AvarEstimatorKind::kOverlapping};
@@ -50,7 +50,7 @@ TEST(OutliersLawsTest, ExactAvarMatchesTheLawsAndMonteCarlo) {
     // The record's mean and the share of samples beyond 5 a (none for fixed spikes; e^-5 of the
     // spikes for exponential ones): sample moments with z = 5 binomial / normal tolerances.
     SensorModel spikes_only;
-    spikes_only.sample_rate_hz = kRate;
+    spikes_only.sample_clock = SampleClock::FromRateHz(kRate);
     spikes_only.terms = {o};
     const std::vector<double> y = spikes_only.Generate(7, 0, 1 << 20);
     double mean = 0.0;

@@ -109,7 +109,7 @@ TEST(ResonanceTest, MonteCarloMatchesExactAvarAlsoBehindABandLimit) {
   constexpr int kTrials = 200;
   for (LowPassKind kind : {LowPassKind::kNone, LowPassKind::kMovingAverage, LowPassKind::kButterworth2}) {
     SensorModel model;
-    model.sample_rate_hz = 100.0;
+    model.sample_clock = SampleClock::FromRateHz(100.0);
     model.terms = {WhiteRateNoise{0.002}, Resonance{0.02, 20.0, 0.04}};
     model.band_limit = {kind, 40.0, 4, OutputSampling::kPoint};
     std::string why;

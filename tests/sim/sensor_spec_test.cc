@@ -73,7 +73,7 @@ TEST(SensorSpec, EveryTermTypeIsReadIntoSi) {
   const double rel = 1e-12;
   EXPECT_EQ(m.name, "every_term");
   EXPECT_EQ(m.description, "one of each");
-  EXPECT_EQ(m.sample_rate_hz, 200.0);
+  EXPECT_EQ(m.sample_clock.rate_hz(), 200.0);
   ExpectRelNear(m.bias_rad_per_s, 0.2 * kDeg, rel, "bias");
   ASSERT_EQ(m.terms.size(), 13u);
 

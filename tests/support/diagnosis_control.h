@@ -8,7 +8,7 @@ namespace allanlab::testing {
 
 inline sim::SensorModel DiagnosisControlModel() {
   sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
   sim::WhiteRateNoise white;
   white.arw_rad_per_sqrt_s = 1e-4;
   sim::RandomWalkRate walk;

@@ -31,7 +31,7 @@ inline experiments::DiagnoseOptions TestDiagnoseOptions(std::vector<estimators::
 inline experiments::DiagnosisSummary DiagnoseShortRecord(const sim::SensorModel& model, std::uint64_t seed) {
   const std::vector<double> record = model.Generate(seed, 0, kDiagnosisTestSamples);
   experiments::DiagnosisSummary s;
-  EXPECT_TRUE(experiments::DiagnoseRecord(TestDiagnoseOptions(), record, 1.0 / model.sample_rate_hz, &s))
+  EXPECT_TRUE(experiments::DiagnoseRecord(TestDiagnoseOptions(), record, model.sample_clock, &s))
       << s.message;
   return s;
 }
@@ -49,7 +49,7 @@ inline experiments::DiagnosisSummary DiagnoseIndependentRecord(const independent
                                                                const experiments::DiagnoseOptions& options) {
   const std::vector<double> record = independent::Generate(recipe, n, seed, 0);
   experiments::DiagnosisSummary s;
-  EXPECT_TRUE(experiments::DiagnoseRecord(options, record, 1.0 / recipe.rate_hz, &s)) << s.message;
+  EXPECT_TRUE(experiments::DiagnoseRecord(options, record, SampleClock::FromRateHz(recipe.rate_hz), &s)) << s.message;
   return s;
 }
 

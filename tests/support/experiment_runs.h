@@ -40,8 +40,7 @@ inline experiments::SweepPoint PresetPoint(const std::string& preset, double rat
   std::string why;
   EXPECT_TRUE(sim::LoadPreset(preset, &p.model, &why)) << why;
   p.index = index;
-  p.model.sample_rate_hz = rate_hz;
-  p.sample_rate_hz = rate_hz;
+  p.model.sample_clock = SampleClock::FromRateHz(rate_hz);
   p.num_samples = static_cast<std::int64_t>(std::llround(rate_hz * duration_s));
   return p;
 }

@@ -28,10 +28,10 @@ inline estimators::AvarCurve Curve(double rate_hz, std::int64_t n,
                                    const std::vector<std::int64_t>& ms,
                                    const std::vector<double>& avar) {
   estimators::AvarCurve c;
-  c.sample_period_s = 1.0 / rate_hz;
+  c.sample_clock = SampleClock::FromPeriodS(1.0 / rate_hz);
   c.num_samples = n;
   c.m = ms;
-  for (std::int64_t m : ms) c.tau_s.push_back(static_cast<double>(m) * c.sample_period_s);
+  for (std::int64_t m : ms) c.tau_s.push_back(static_cast<double>(m) * c.sample_clock.period_s());
   c.avar = avar;
   return c;
 }
@@ -43,11 +43,11 @@ inline estimators::AvarCurve DenseCurveOf(const std::vector<double>& rate, doubl
   o.statistic = estimators::Statistic::kAllanOverlapping;
   std::string why;
   EXPECT_TRUE(estimators::TauGridOptions::Parse("dense:10", &o.taus, &why)) << why;
-  o.sample_period_s = 1.0 / rate_hz;
+  o.sample_clock = SampleClock::FromPeriodS(1.0 / rate_hz);
   estimators::AvarSummary s;
   EXPECT_TRUE(estimators::ComputeAvar(o, rate, &s)) << s.message;
   estimators::AvarCurve c;
-  c.sample_period_s = o.sample_period_s;
+  c.sample_clock = o.sample_clock;
   c.num_samples = s.num_samples;
   c.estimator = sim::AvarEstimatorKind::kOverlapping;
   for (const estimators::AvarPoint& p : s.points) {

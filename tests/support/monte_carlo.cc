@@ -74,7 +74,7 @@ std::vector<std::int64_t> OctaveFactorsUpTo(std::int64_t max_m) {
 sim::SensorModel SingleTermModel(const sim::NoiseTerm& term, double sample_rate_hz) {
   sim::SensorModel model;
   model.name = "single_term";
-  model.sample_rate_hz = sample_rate_hz;
+  model.sample_clock = SampleClock::FromRateHz(sample_rate_hz);
   model.terms = {term};
   return model;
 }

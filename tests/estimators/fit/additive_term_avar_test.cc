@@ -16,7 +16,7 @@ namespace {
 
 AvarCurve Grid(std::int64_t n, double fs) {
   AvarCurve c;
-  c.sample_period_s = 1.0 / fs;
+  c.sample_clock = SampleClock::FromPeriodS(1.0 / fs);
   c.num_samples = n;
   c.m = testing_support::LogDense(n / 2, 10);
   for (std::int64_t m : c.m) {
@@ -48,13 +48,13 @@ void ExpectSameAsWholeModel(const sim::SensorModel& base, const std::vector<doub
 
 TEST(AdditiveTermAvar, SumIsTheWholeModelsBits) {
   sim::SensorModel base;
-  base.sample_rate_hz = 100.0;
+  base.sample_clock = SampleClock::FromRateHz(100.0);
   ExpectSameAsWholeModel(base, {});
 }
 
 TEST(AdditiveTermAvar, SumIsTheWholeModelsBitsBehindABandLimit) {
   sim::SensorModel base;
-  base.sample_rate_hz = 100.0;
+  base.sample_clock = SampleClock::FromRateHz(100.0);
   const double cutoff_hz = 7.0;
   MakeBandLimitTerm(sim::LowPassKind::kFirstOrder)->ApplyTo(std::vector<double>{cutoff_hz}, &base);
   ASSERT_TRUE(base.band_limit.enabled());
@@ -64,7 +64,7 @@ TEST(AdditiveTermAvar, SumIsTheWholeModelsBitsBehindABandLimit) {
 TEST(AdditiveTermAvar, DeclinesAModifier) {
   const AvarCurve curve = Grid(20000, 100.0);
   sim::SensorModel base;
-  base.sample_rate_hz = 100.0;
+  base.sample_clock = SampleClock::FromRateHz(100.0);
   AdditiveTermAvar cache(curve);
   const auto band = MakeBandLimitTerm(sim::LowPassKind::kFirstOrder);
   EXPECT_EQ(cache.Part(0, *band, std::vector<double>{7.0}, base, {}), nullptr);

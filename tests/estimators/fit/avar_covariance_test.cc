@@ -19,7 +19,7 @@ Eigen::MatrixXd CheckedCovariance(std::int64_t n, const std::vector<std::int64_t
                                   const std::array<double, 5>& theta) {
   const double tau0 = 0.01;
   AvarCurve curve;
-  curve.sample_period_s = tau0;
+  curve.sample_clock = SampleClock::FromPeriodS(tau0);
   curve.num_samples = n;
   curve.m = ms;
   for (std::int64_t m : curve.m) curve.tau_s.push_back(m * tau0), curve.avar.push_back(1.0);
@@ -28,7 +28,7 @@ Eigen::MatrixXd CheckedCovariance(std::int64_t n, const std::vector<std::int64_t
   const AvarCovarianceModel model(curve, terms);
   const Eigen::MatrixXd cov = model.Covariance(theta);
   sim::SensorModel truth;
-  truth.sample_rate_hz = 1.0 / tau0;
+  truth.sample_clock = SampleClock::FromRateHz(1.0 / tau0);
   if (theta[0] > 0.0) truth.terms.push_back(sim::QuantizationNoise{std::sqrt(theta[0])});
   if (theta[1] > 0.0) truth.terms.push_back(sim::WhiteRateNoise{std::sqrt(theta[1])});
   if (theta[2] > 0.0) truth.terms.push_back(sim::FlickerNoise{std::sqrt(theta[2])});
@@ -60,7 +60,7 @@ TEST(AvarCovariance, LongestTausKeepTheirVariance) {
 TEST(AvarCovariance, WhiteNoiseCrossCovarianceMatchesTheory) {
   // docs/theory.md §3.1: white noise, N = 1000, Cov(OAVAR(4), OAVAR(8)) = 1.296e-4 (exact recipe).
   AvarCurve curve;
-  curve.sample_period_s = 1.0;
+  curve.sample_clock = SampleClock::FromPeriodS(1.0);
   curve.num_samples = 1000;
   curve.m = {4, 8};
   curve.tau_s = {4, 8};
@@ -79,7 +79,7 @@ TEST(AvarCovariance, QuantizationSpikesAreSummedExactly) {
   const double tau0 = 0.01;
   const std::int64_t n = 1 << 15;
   AvarCurve curve;
-  curve.sample_period_s = tau0;
+  curve.sample_clock = SampleClock::FromPeriodS(tau0);
   curve.num_samples = n;
   curve.m = {1, 100, 150, 700, 4096};
   for (std::int64_t m : curve.m) curve.tau_s.push_back(m * tau0), curve.avar.push_back(1.0);
@@ -88,7 +88,7 @@ TEST(AvarCovariance, QuantizationSpikesAreSummedExactly) {
   const double q2 = 0.7;
   const Eigen::MatrixXd cov = model.Covariance({q2, 0.0, 0.0, 0.0, 0.0});
   sim::SensorModel truth;
-  truth.sample_rate_hz = 1.0 / tau0;
+  truth.sample_clock = SampleClock::FromRateHz(1.0 / tau0);
   truth.terms = {sim::QuantizationNoise{std::sqrt(q2)}};
   const auto r = truth.GaussianAutocovariance(n + 2 * curve.m.back());
   for (std::size_t k = 0; k < curve.size(); ++k) {

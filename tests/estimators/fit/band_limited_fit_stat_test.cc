@@ -40,11 +40,11 @@ TEST(BandLimitedFit, DefaultGlsIsUnbiasedOnTheSeedPresets) {
     sim::SensorModel model;
     std::string why;
     ASSERT_TRUE(sim::LoadPreset(preset, &model, &why)) << why;
-    ASSERT_EQ(model.sample_rate_hz, 400.0);
+    ASSERT_EQ(model.sample_clock.rate_hz(), 400.0);
     ASSERT_EQ(model.band_limit.kind, sim::LowPassKind::kFirstOrder);
     const std::array<double, 5> truth = Truth(model);
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-      const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(seed, 0, kSamples), model.sample_rate_hz);
+      const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(seed, 0, kSamples), model.sample_clock.rate_hz());
       BandLimitedFitOptions o;
       o.fit.method = FitMethod::kGls;
       BandLimitedFitSummary s;
@@ -83,7 +83,7 @@ TEST(BandLimitedFit, NothingDetectedWithoutABandLimit) {
   ASSERT_TRUE(sim::LoadPreset("tg100", &model, &why)) << why;
   model.band_limit.kind = sim::LowPassKind::kNone;
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-    const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(seed, 0, kSamples / 4), model.sample_rate_hz);
+    const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(seed, 0, kSamples / 4), model.sample_clock.rate_hz());
     BandLimitedFitOptions o;
     o.fit.method = FitMethod::kGls;
     BandLimitedFitSummary s;
@@ -97,7 +97,7 @@ TEST(BandLimitedFit, OffKeepsThePlainFit) {
   sim::SensorModel model;
   std::string why;
   ASSERT_TRUE(sim::LoadPreset("tg100", &model, &why)) << why;
-  const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(7, 0, kSamples / 4), model.sample_rate_hz);
+  const AvarCurve curve = testing_support::DenseCurveOf(model.Generate(7, 0, kSamples / 4), model.sample_clock.rate_hz());
   BandLimitedFitOptions o;
   o.fit.method = FitMethod::kGls;
   o.policy = BandLimitPolicy::kOff;

@@ -16,13 +16,13 @@ namespace {
 
 AvarCurve CurveOf(const sim::SensorModel& model, std::int64_t n, bool simulated, std::uint64_t seed) {
   AvarCurve c;
-  c.sample_period_s = 1.0 / model.sample_rate_hz;
+  c.sample_clock = model.sample_clock;
   c.num_samples = n;
   for (double x = 1; x <= 400; x *= std::pow(10.0, 1.0 / 20.0)) {
     const auto m = static_cast<std::int64_t>(std::llround(x));
     if (c.m.empty() || m > c.m.back()) c.m.push_back(m);
   }
-  for (std::int64_t m : c.m) c.tau_s.push_back(m * c.sample_period_s);
+  for (std::int64_t m : c.m) c.tau_s.push_back(m * c.sample_clock.period_s());
   const sim::RecordShape shape{n, sim::AvarEstimatorKind::kOverlapping};
   c.avar = simulated ? AllanVariance(model.Generate(seed, 0, n), c.m, shape.estimator)
                      : model.ExpectedAvar(c.m, shape);
@@ -33,7 +33,7 @@ AvarCurve CurveOf(const sim::SensorModel& model, std::int64_t n, bool simulated,
 
 sim::SensorModel BandLimitedWhite(sim::LowPassKind kind) {
   sim::SensorModel model;
-  model.sample_rate_hz = 10000.0;
+  model.sample_clock = SampleClock::FromRateHz(10000.0);
   model.terms = {sim::WhiteRateNoise{1e-3}};
   model.band_limit = {kind, 100.0, 8, sim::OutputSampling::kAverage};
   return model;
@@ -61,7 +61,7 @@ TEST(BandwidthEstimate, SimulatedRecordsWithinThreeSigma) {
 
 TEST(BandwidthEstimate, SaysWhyWhenNoPeak) {
   sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
   model.terms = {sim::WhiteRateNoise{1e-3}};
   const auto e = EstimateBandwidth(CurveOf(model, 1 << 14, false, 0));
   EXPECT_FALSE(e.found);

@@ -34,7 +34,7 @@ TEST(GlsFit, RecoversPresentCoefficientsWithHonestSigmas) {
   std::vector<double> z;
   for (const Case& c : cases) {
     sim::SensorModel model;
-    model.sample_rate_hz = rate;
+    model.sample_clock = SampleClock::FromRateHz(rate);
     const std::pair<Coefficient, double> truth[] = {{Coefficient::kQ, c.q_urad},
                                                     {Coefficient::kN, c.n_deg_rt_h},
                                                     {Coefficient::kB, c.b_deg_h},
@@ -98,7 +98,7 @@ TEST(GlsFit, TermSelectionDropsAbsentTerms) {
   const std::int64_t n = 1 << 18;
   const auto ms = LogDense(n / 8, 8.0);
   sim::SensorModel model;
-  model.sample_rate_hz = rate;
+  model.sample_clock = SampleClock::FromRateHz(rate);
   model.terms = {TermFor(Coefficient::kN, FromDatasheetUnit(Coefficient::kN, 0.115)),
                  TermFor(Coefficient::kB, FromDatasheetUnit(Coefficient::kB, 6.0)),
                  TermFor(Coefficient::kK, FromDatasheetUnit(Coefficient::kK, 41.0))};

@@ -31,10 +31,10 @@ using testing_support::LogDense;
 
 AvarCurve ExpectedCurve(const sim::SensorModel& model, std::int64_t n) {
   AvarCurve c;
-  c.sample_period_s = 1.0 / model.sample_rate_hz;
+  c.sample_clock = model.sample_clock;
   c.num_samples = n;
   c.m = LogDense(n / 8, 8.0);
-  for (std::int64_t m : c.m) c.tau_s.push_back(m * c.sample_period_s);
+  for (std::int64_t m : c.m) c.tau_s.push_back(m * c.sample_clock.period_s());
   c.avar = ModelAvarOnCurve(model, c);
   return c;
 }
@@ -50,13 +50,13 @@ std::vector<Case> Cases() {
   const std::pair<double, double> bumps[] = {{50.0, 3.0}, {100.0, 3.0}};  // sigma deg/h, Tc s
   for (auto [sigma, tc] : bumps) {
     sim::SensorModel m;
-    m.sample_rate_hz = 100.0;
+    m.sample_clock = SampleClock::FromRateHz(100.0);
     m.terms = {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)},
                sim::GaussMarkov{units::DegPerHour(sigma), tc}};
     out.push_back({"N + Gauss-Markov", m, sigma});
   }
   sim::SensorModel band;
-  band.sample_rate_hz = 100.0;
+  band.sample_clock = SampleClock::FromRateHz(100.0);
   band.terms = {sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)},
                 sim::RandomWalkRate{units::DegPerHourPerSqrtHour(2.0)}};
   band.band_limit.kind = sim::LowPassKind::kFirstOrder;

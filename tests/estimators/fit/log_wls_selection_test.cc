@@ -24,7 +24,7 @@ TEST(LogWlsSelection, RemovingATermNeverLowersTheCost) {
     sim::SensorModel model;
     std::string why;
     ASSERT_TRUE(sim::LoadPreset(preset, &model, &why)) << why;
-    const auto n = static_cast<std::int64_t>(1800.0 * model.sample_rate_hz);
+    const auto n = static_cast<std::int64_t>(1800.0 * model.sample_clock.rate_hz());
     const auto ms = LogDense(n / 8, 10.0);
     const auto y = model.Generate(1, 0, n);
     FitOptions options;
@@ -32,7 +32,7 @@ TEST(LogWlsSelection, RemovingATermNeverLowersTheCost) {
     FitSummary s;
     ASSERT_TRUE(FitAvarModel(
         options,
-        Curve(model.sample_rate_hz, n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)),
+        Curve(model.sample_clock.rate_hz(), n, ms, AllanVariance(y, ms, sim::AvarEstimatorKind::kOverlapping)),
         &s))
         << s.message;
     for (Coefficient c : kAllCoefficients) {

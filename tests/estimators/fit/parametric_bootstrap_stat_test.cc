@@ -44,7 +44,7 @@ TEST(ParametricBootstrap, HarmonicAmplitudeSigmaMatchesEmpiricalSpread) {
   const auto ms = LogDense(kSamples / 8, 8.0);
   const double omega0 = units::DegPerHour(40.0), f0 = 0.2;
   sim::SensorModel truth;
-  truth.sample_rate_hz = kRate;
+  truth.sample_clock = SampleClock::FromRateHz(kRate);
   truth.terms = {TermFor(Coefficient::kN, FromDatasheetUnit(Coefficient::kN, 0.3)),
                  sim::Harmonic{omega0, f0, std::nullopt}};
   ParametricFitOptions options;
@@ -94,7 +94,7 @@ TEST(ParametricBootstrap, HarmonicAmplitudeSigmaMatchesEmpiricalSpread) {
 TEST(ParametricBootstrap, GaussianModelBootstrapMatchesCovariance) {
   const auto ms = LogDense(kSamples / 8, 8.0);
   sim::SensorModel truth;
-  truth.sample_rate_hz = kRate;
+  truth.sample_clock = SampleClock::FromRateHz(kRate);
   truth.terms = {TermFor(Coefficient::kN, FromDatasheetUnit(Coefficient::kN, 0.2)),
                  TermFor(Coefficient::kB, FromDatasheetUnit(Coefficient::kB, 3.0))};
   FitOptions options;

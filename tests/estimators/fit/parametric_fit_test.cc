@@ -22,10 +22,10 @@ using testing_support::LogDense;
 AvarCurve ExactCurve(const sim::SensorModel& model, std::int64_t n,
                      const std::vector<std::int64_t>& ms) {
   AvarCurve c;
-  c.sample_period_s = 1.0 / model.sample_rate_hz;
+  c.sample_clock = model.sample_clock;
   c.num_samples = n;
   c.m = ms;
-  for (std::int64_t m : ms) c.tau_s.push_back(m * c.sample_period_s);
+  for (std::int64_t m : ms) c.tau_s.push_back(m * c.sample_clock.period_s());
   c.avar = ModelAvarOnCurve(model, c);
   c.edf.assign(ms.size(), 0.0);
   for (std::size_t k = 0; k < ms.size(); ++k) c.edf[k] = std::max(1.0, 0.75 * n / ms[k]);
@@ -34,7 +34,7 @@ AvarCurve ExactCurve(const sim::SensorModel& model, std::int64_t n,
 
 sim::SensorModel Model(std::vector<sim::NoiseTerm> terms) {
   sim::SensorModel m;
-  m.sample_rate_hz = 100.0;
+  m.sample_clock = SampleClock::FromRateHz(100.0);
   m.terms = std::move(terms);
   return m;
 }

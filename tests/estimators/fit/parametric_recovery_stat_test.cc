@@ -50,7 +50,7 @@ TEST(ParametricRecovery, GlsRecoversPresentParametersWithinThreeReportedSigmas) 
     options.terms.clear();
     options.extra = {std::shared_ptr<const ParametricTerm>(MakeParametricTerm(c.term))};
     sim::SensorModel model;
-    model.sample_rate_hz = rate;
+    model.sample_clock = SampleClock::FromRateHz(rate);
     for (auto [coef, value] : c.linear) {
       model.terms.push_back(TermFor(coef, FromDatasheetUnit(coef, value)));
       options.terms.push_back(coef);

@@ -15,10 +15,10 @@ namespace {
 // IEEE 952 asymptote curve for coefficients in SI on a dense log grid 1e-2 .. 1e5 s.
 AvarCurve AsymptoteCurve(double q, double n, double b, double k, double r) {
   AvarCurve c;
-  c.sample_period_s = 1e-2;
+  c.sample_clock = SampleClock::FromPeriodS(1e-2);
   c.num_samples = std::int64_t{1} << 40;
   for (std::int64_t m = 1; m <= 10'000'000; m = std::max(m + 1, static_cast<std::int64_t>(m * 1.12))) {
-    const double tau = m * c.sample_period_s;
+    const double tau = m * c.sample_clock.period_s();
     c.m.push_back(m);
     c.tau_s.push_back(tau);
     c.avar.push_back(q * q * AsymptoteShape(Coefficient::kQ, tau) +

@@ -23,7 +23,7 @@ constexpr double kRate = 100.0;
 
 sim::SensorModel Truth() {
   sim::SensorModel model;
-  model.sample_rate_hz = kRate;
+  model.sample_clock = SampleClock::FromRateHz(kRate);
   model.terms = {sim::WhiteRateNoise{units::DegPerSqrtHour(0.2)},
                  sim::FlickerNoise{units::DegPerHour(3.0)},
                  sim::RandomWalkRate{units::DegPerHourPerSqrtHour(20.0)}};
@@ -42,10 +42,10 @@ std::vector<std::int64_t> LogDense(std::int64_t max_m) {
 AvarCurve CurveOf(const sim::SensorModel& model, std::int64_t n, const std::vector<double>& avar,
                   const std::vector<std::int64_t>& ms) {
   AvarCurve c;
-  c.sample_period_s = 1.0 / model.sample_rate_hz;
+  c.sample_clock = model.sample_clock;
   c.num_samples = n;
   c.m = ms;
-  for (std::int64_t m : ms) c.tau_s.push_back(m * c.sample_period_s);
+  for (std::int64_t m : ms) c.tau_s.push_back(m * c.sample_clock.period_s());
   c.avar = avar;
   const auto r = model.GaussianAutocovariance(n + 2 * ms.back());
   for (std::int64_t m : ms) {
@@ -107,7 +107,7 @@ TEST(WlsFit, SimulatedRecordsRecoverPresentTerms) {
 
 TEST(WlsFit, RefusesTooShortCurves) {
   AvarCurve c;
-  c.sample_period_s = 0.01;
+  c.sample_clock = SampleClock::FromPeriodS(0.01);
   c.num_samples = 100;
   c.m = {1, 2};
   c.tau_s = {0.01, 0.02};

@@ -30,17 +30,17 @@ TEST(BenchmarkCaseTest, DrawsAreDeterministicAndInRange) {
     ASSERT_TRUE(DrawBenchmarkCase(o, 11, i, &b, &why)) << why;
     EXPECT_EQ(a.preset, b.preset);
     EXPECT_EQ(a.num_samples, b.num_samples);
-    EXPECT_EQ(a.rate_hz, b.rate_hz);
+    EXPECT_EQ(a.sample_clock, b.sample_clock);
     EXPECT_EQ(a.strength_z, b.strength_z);
     EXPECT_EQ(a.effect.has_value(), b.effect.has_value());
     if (a.effect) {
       EXPECT_EQ(a.effect->params, b.effect->params);
     }
     EXPECT_LE(a.num_samples, o.max_samples);
-    EXPECT_GE(a.rate_hz, o.min_rate_hz * (1 - 1e-12));
-    EXPECT_LE(a.rate_hz, o.max_rate_hz);
-    EXPECT_GE(a.duration_s(), o.min_duration_s - 1.0 / a.rate_hz);
-    EXPECT_LE(a.duration_s(), o.max_duration_s + 1.0 / a.rate_hz);
+    EXPECT_GE(a.sample_clock.rate_hz(), o.min_rate_hz * (1 - 1e-12));
+    EXPECT_LE(a.sample_clock.rate_hz(), o.max_rate_hz);
+    EXPECT_GE(a.duration_s(), o.min_duration_s - a.sample_clock.period_s());
+    EXPECT_LE(a.duration_s(), o.max_duration_s + a.sample_clock.period_s());
     EXPECT_FALSE(a.base.band_limit.enabled());
     EXPECT_FALSE(a.base.rate_quantizer.has_value());
   }
@@ -51,7 +51,7 @@ TEST(BenchmarkCaseTest, ControlHasNoStrengthAndEffectsGrowWithSize) {
   std::string why;
   ASSERT_TRUE(sim::LoadPreset("tg100", &base, &why)) << why;
   base.band_limit = {};
-  base.sample_rate_hz = 200.0;
+  base.sample_clock = SampleClock::FromRateHz(200.0);
   BenchmarkCase c;
   ASSERT_TRUE(MeasureStrength(base, std::nullopt, 20000, &c, &why)) << why;
   EXPECT_LT(c.strength_z, 1e-6);  // the baseline fit absorbs the baseline exactly
@@ -90,7 +90,7 @@ BenchmarkCase GaussMarkovCase() {
   BenchmarkCase c;
   c.index = 3;
   c.preset = "tg100";
-  c.rate_hz = 100.0;
+  c.sample_clock = SampleClock::FromRateHz(100.0);
   c.num_samples = 10000;
   c.effect = EffectInstance{Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-4}, {"correlation_time_s", 2.0}}};
   c.strength_z = 20.0;

@@ -52,7 +52,7 @@ independent::Recipe RecipeOf(const Sensor& s) {
 
 sim::SensorModel ModelOf(const Sensor& s) {
   sim::SensorModel m;
-  m.sample_rate_hz = s.rate_hz;
+  m.sample_clock = SampleClock::FromRateHz(s.rate_hz);
   sim::WhiteRateNoise white;
   white.arw_rad_per_sqrt_s = s.n_deg_per_sqrt_h * kDeg / 60.0;
   sim::FlickerNoise flicker;
@@ -139,13 +139,14 @@ struct Fitted {
 Fitted FittedBaseline(std::span<const double> y, double rate_hz) {
   estimators::AvarCurve curve;
   std::string why, note;
-  EXPECT_TRUE(RecordCurve(y, 1.0 / rate_hz, &curve, &why)) << why;
+  const SampleClock clock = SampleClock::FromRateHz(rate_hz);
+  EXPECT_TRUE(RecordCurve(y, clock, &curve, &why)) << why;
   DiagnoseOptions options;
   options.terms = {estimators::Coefficient::kN, estimators::Coefficient::kB, estimators::Coefficient::kK};
   detail::BaselineSpec spec;
   estimators::FitSummary fit;
   EXPECT_TRUE(detail::FitBaseline(options, curve, &spec, &fit, &note, &why)) << why;
-  return {spec.Model(fit, rate_hz), detail::RandomWalkBound(spec, fit), fit.at(estimators::Coefficient::kK).fitted};
+  return {spec.Model(fit, clock), detail::RandomWalkBound(spec, fit), fit.at(estimators::Coefficient::kK).fitted};
 }
 
 // The fitted K's value in the model [rad/s/sqrt(s)] (0 when the fit left K out).

@@ -20,12 +20,12 @@ namespace {
 
 TEST(BlockMeans, WhiteNoiseDifferencesAreMovingAverage) {
   sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
   sim::WhiteRateNoise white;
   white.arw_rad_per_sqrt_s = 1e-3;
   model.terms = {white};
   const std::int64_t m = 500;
-  const double s2 = 1e-6 * model.sample_rate_hz;  // N^2 / tau0
+  const double s2 = 1e-6 * model.sample_clock.rate_hz();  // N^2 / tau0
   const std::vector<double> c = BlockDifferenceCovariance(model, m, 16);
   ASSERT_EQ(c.size(), 15u);
   EXPECT_NEAR(c[0], 2.0 * s2 / m, 1e-9 * s2 / m);
@@ -35,12 +35,12 @@ TEST(BlockMeans, WhiteNoiseDifferencesAreMovingAverage) {
 
 TEST(BlockMeans, RandomWalkDifferences) {
   sim::SensorModel model;
-  model.sample_rate_hz = 100.0;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
   sim::RandomWalkRate walk;
   walk.rrw_rad_per_s_per_sqrt_s = 1e-5;
   model.terms = {walk};
   const std::int64_t m = 2000;
-  const double k2t = 1e-10 * static_cast<double>(m) / model.sample_rate_hz;
+  const double k2t = 1e-10 * static_cast<double>(m) / model.sample_clock.rate_hz();
   const std::vector<double> c = BlockDifferenceCovariance(model, m, 32);
   EXPECT_NEAR(c[0], 2.0 / 3.0 * k2t, 2e-3 * k2t);
   EXPECT_NEAR(c[1], 1.0 / 6.0 * k2t, 2e-3 * k2t);
@@ -55,24 +55,24 @@ TEST(BlockMeans, RandomWalkDifferences) {
 //     largest at the ends, where the walk strays furthest from its mean.
 TEST(BlockMeans, DeviationFromTheMeanOfAllBlocks) {
   sim::SensorModel white_model;
-  white_model.sample_rate_hz = 100.0;
+  white_model.sample_clock = SampleClock::FromRateHz(100.0);
   sim::WhiteRateNoise white;
   white.arw_rad_per_sqrt_s = 1e-3;
   white_model.terms = {white};
   const std::int64_t m = 500;
-  const double s2 = 1e-6 * white_model.sample_rate_hz;
+  const double s2 = 1e-6 * white_model.sample_clock.rate_hz();
   const std::vector<double> sd_white = BlockMeanDeviationSd(white_model, m, 16);
   ASSERT_EQ(sd_white.size(), 16u);
   for (double sd : sd_white) EXPECT_NEAR(sd * sd, s2 / m * (1.0 - 1.0 / 16.0), 1e-9 * s2 / m);
 
   sim::SensorModel walk_model;
-  walk_model.sample_rate_hz = 100.0;
+  walk_model.sample_clock = SampleClock::FromRateHz(100.0);
   sim::RandomWalkRate walk;
   walk.rrw_rad_per_s_per_sqrt_s = 1e-5;
   walk_model.terms = {walk};
   const int blocks = 32;
   const std::int64_t mw = 2000;
-  const double k2t = 1e-10 * static_cast<double>(mw) / walk_model.sample_rate_hz;
+  const double k2t = 1e-10 * static_cast<double>(mw) / walk_model.sample_clock.rate_hz();
   const std::vector<double> sd_walk = BlockMeanDeviationSd(walk_model, mw, blocks);
   const double big_b = blocks;
   const double all = k2t * ((big_b * big_b * big_b - big_b) / 3.0 - big_b * (big_b - 1.0) / 3.0);
@@ -87,7 +87,7 @@ TEST(BlockMeans, DeviationFromTheMeanOfAllBlocks) {
 // A rate ramp of unknown sign is a random slope of variance R^2: every difference shares it.
 TEST(BlockMeans, RampAddsAConstant) {
   sim::SensorModel model;
-  model.sample_rate_hz = 10.0;
+  model.sample_clock = SampleClock::FromRateHz(10.0);
   sim::WhiteRateNoise white;
   white.arw_rad_per_sqrt_s = 1e-3;
   sim::RateRamp ramp;
@@ -114,7 +114,7 @@ TEST(BlockMeans, MeansOfEqualBlocksLeaveTheRemainderOut) {
 
 TEST(BlockMeans, DeterministicPathIsTheStepAloneAndEmptyWithoutEvents) {
   sim::SensorModel model;
-  model.sample_rate_hz = 10.0;
+  model.sample_clock = SampleClock::FromRateHz(10.0);
   model.terms = {sim::WhiteRateNoise{}};
   EXPECT_TRUE(DeterministicPath(model, 100).empty());
   model.terms.push_back(sim::BiasStep{2e-4, 4.0});
@@ -134,7 +134,7 @@ TEST(BlockMeans, TheDiagnosisKeepsTheRecordsBlockMeansAndTheVerdictsPath) {
   recipe.bias_step = independent::BiasStep{6e-5, 98.3};
   const std::vector<double> record = independent::Generate(recipe, 16384, 3, 0);
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(testing::TestDiagnoseOptions({estimators::Coefficient::kN}), record, 0.01, &s))
+  ASSERT_TRUE(DiagnoseRecord(testing::TestDiagnoseOptions({estimators::Coefficient::kN}), record, SampleClock::FromPeriodS(0.01), &s))
       << s.message;
   ASSERT_EQ(s.verdict, "bias_step") << testing::DescribeVerdict(s);
   const BlockMeanSeries& b = s.block_means;

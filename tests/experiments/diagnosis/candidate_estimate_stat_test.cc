@@ -24,20 +24,20 @@ TEST(CandidateEstimateStatTest, AngleLsbWithoutAValueGrid) {
   constexpr double kFs = 100.0, kLsb = 1e-5;
   constexpr std::int64_t kN = 1 << 17;
   sim::SensorModel model;
-  model.sample_rate_hz = kFs;
+  model.sample_clock = SampleClock::FromRateHz(kFs);
   const double arw = 3.0 * kLsb * std::sqrt(kFs);  // angle increment sd = arw sqrt(tau0)
   model.terms = {sim::WhiteRateNoise{arw}};
   model.angle_quantizer = sim::AngleQuantizer{kLsb};
   std::vector<double> y = model.Generate(5, 0, kN);
   sim::SensorModel after;
-  after.sample_rate_hz = kFs;
+  after.sample_clock = SampleClock::FromRateHz(kFs);
   after.terms = {sim::WhiteRateNoise{0.01 * arw}};
   const std::vector<double> post = after.Generate(6, 0, kN);
   for (std::size_t k = 0; k < y.size(); ++k) y[k] += post[k];
 
   estimators::AvarCurve curve;
   std::string why;
-  ASSERT_TRUE(RecordCurve(y, 1.0 / kFs, &curve, &why)) << why;
+  ASSERT_TRUE(RecordCurve(y, SampleClock::FromRateHz(kFs), &curve, &why)) << why;
   estimators::FitOptions fo;
   fo.method = estimators::FitMethod::kGls;
   estimators::FitSummary fit;
@@ -45,7 +45,7 @@ TEST(CandidateEstimateStatTest, AngleLsbWithoutAValueGrid) {
   const auto& q = fit.at(estimators::Coefficient::kQ);
   ASSERT_TRUE(q.fitted);
   sim::SensorModel baseline;
-  baseline.sample_rate_hz = kFs;
+  baseline.sample_clock = SampleClock::FromRateHz(kFs);
   for (estimators::Coefficient c : estimators::kAllCoefficients) {
     if (fit.at(c).fitted && fit.at(c).value_si > 0.0) baseline.terms.push_back(estimators::TermFor(c, fit.at(c).value_si));
   }

@@ -34,7 +34,7 @@ constexpr std::int64_t kSamples = 1 << 17;
 DiagnosisSummary DiagnoseAgainst(const sim::SensorModel& truth, const DiagnoseOptions& options, std::uint64_t seed) {
   const std::vector<double> record = truth.Generate(seed, 0, kSamples);
   DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, record, 1.0 / truth.sample_rate_hz, &s)) << s.message;
+  EXPECT_TRUE(DiagnoseRecord(options, record, truth.sample_clock, &s)) << s.message;
   return s;
 }
 

@@ -56,7 +56,7 @@ TEST(DiagnoseEffectsStatTest, BiasStepIsNamedAndPlaced) {
   sim::SensorModel model = testing::DiagnosisControlModel();
   sim::BiasStep step;
   step.size_rad_per_s = 1e-3;
-  step.time_s = 0.4 * testing::kDiagnosisTestSamples / model.sample_rate_hz;
+  step.time_s = 0.4 * testing::kDiagnosisTestSamples / model.sample_clock.rate_hz();
   model.terms.push_back(step);
   const DiagnosisSummary s = DiagnoseShortRecord(model, 32);
   ASSERT_TRUE(s.significant);

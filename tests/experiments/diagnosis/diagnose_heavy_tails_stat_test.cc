@@ -27,7 +27,7 @@ TEST(DiagnoseHeavyTailsStatTest, StudentTWhiteNoiseIsNamedOutliers) {
   DiagnoseOptions options;
   options.trials = 12;
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, 1.0 / r.rate_hz, &s)) << s.message;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
   ASSERT_TRUE(s.significant);
   EXPECT_EQ(s.verdict, "outliers") << testing::DescribeVerdict(s);
 }

@@ -27,7 +27,7 @@ DiagnosisSummary DiagnoseStepAt(double time_s) {
   options.trials = 12;
   options.max_effects = 1;
   DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, record, 0.01, &s)) << s.message;
+  EXPECT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.01), &s)) << s.message;
   return s;
 }
 

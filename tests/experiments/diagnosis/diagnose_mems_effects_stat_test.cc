@@ -50,7 +50,8 @@ TEST(DiagnoseMemsEffectsStatTest, MovingAverageDecimatorIsNamedByItsFamily) {
 }
 
 TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
-  const double fs = 100.0, length = 3600.0;
+  const SampleClock clock = SampleClock::FromRateHz(100.0);
+  const double length = 3600.0;
   struct Case {
     EffectInstance e;
     const char* reason;
@@ -67,7 +68,7 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
   };
   for (const Case& c : cases) {
     std::string why;
-    EXPECT_FALSE(PhysicallyPossible(c.e, fs, length, &why)) << EffectId(c.e.effect);
+    EXPECT_FALSE(PhysicallyPossible(c.e, clock, length, &why)) << EffectId(c.e.effect);
     EXPECT_NE(why.find(c.reason), std::string::npos) << why;
     EXPECT_NE(why.find("physically impossible"), std::string::npos) << why;
   }
@@ -79,7 +80,7 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
   };
   for (const EffectInstance& e : fine) {
     std::string why;
-    EXPECT_TRUE(PhysicallyPossible(e, fs, length, &why)) << why;
+    EXPECT_TRUE(PhysicallyPossible(e, clock, length, &why)) << why;
   }
 }
 
@@ -92,7 +93,7 @@ TEST(DiagnoseMemsEffectsStatTest, NoReportedCandidateBreaksAPhysicalBound) {
   const DiagnosisSummary s = DiagnoseShortRecord(model, 43);
   for (const CandidateResult& c : s.candidates) {
     std::string why;
-    EXPECT_TRUE(PhysicallyPossible(c.effects, model.sample_rate_hz, testing::kDiagnosisTestSamples / model.sample_rate_hz, &why))
+    EXPECT_TRUE(PhysicallyPossible(c.effects, model.sample_clock, testing::kDiagnosisTestSamples / model.sample_clock.rate_hz(), &why))
         << why << " " << DescribeVerdict(s);
   }
 }

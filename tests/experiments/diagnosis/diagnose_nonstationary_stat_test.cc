@@ -42,7 +42,7 @@ DiagnosisSummary Diagnose(const independent::Recipe& r, std::uint64_t seed) {
   options.baseline = DiagnoseOptions::Baseline::kTerms;
   options.terms = {Coefficient::kN, Coefficient::kB, Coefficient::kK};
   DiagnosisSummary s;
-  EXPECT_TRUE(DiagnoseRecord(options, record, 1.0 / r.rate_hz, &s)) << s.message;
+  EXPECT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
   return s;
 }
 

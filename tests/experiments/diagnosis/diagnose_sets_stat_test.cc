@@ -133,7 +133,7 @@ TEST(DiagnoseSetsStatTest, NoMemberForADepartureAnotherMembersRefitMade) {
   options.baseline = DiagnoseOptions::Baseline::kTerms;
   options.terms = {estimators::Coefficient::kN, estimators::Coefficient::kB, estimators::Coefficient::kK};
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, c.recipe.sample_period_s(), &s)) << s.message;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(c.recipe.rate_hz), &s)) << s.message;
   ASSERT_TRUE(s.significant);
   EXPECT_LE(s.before.View(View::kTrend).max_abs_z, s.threshold);
   EXPECT_FALSE(Names(s, "exponential_drift")) << DescribeVerdict(s);

@@ -29,7 +29,7 @@ TEST(DiagnoseStatTest, ControlsAreCleanAtTheStatedRate) {
   for (int r = 0; r < 20; ++r) {
     const std::vector<double> record = model.Generate(4242, r, 4096);
     DiagnosisSummary s;
-    ASSERT_TRUE(DiagnoseRecord(options, record, 0.01, &s)) << s.message;
+    ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.01), &s)) << s.message;
     if (s.significant) ++flagged;
     EXPECT_EQ(s.significant, s.verdict != "none");
   }
@@ -46,7 +46,7 @@ TEST(DiagnoseStatTest, SpikesShowInTheKurtosisViewAndAreNamed) {
   DiagnoseOptions options;
   options.trials = 12;
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, 0.01, &s)) << s.message;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.01), &s)) << s.message;
   EXPECT_TRUE(s.significant);
   // Spikes add white noise to every Allan view; the kurtosis view is where they show.
   bool kurtosis_region = false;
@@ -66,7 +66,7 @@ TEST(DiagnoseStatTest, SpikesShowInTheKurtosisViewAndAreNamed) {
 // the IEEE 952 baseline of the bump tests.
 sim::SensorModel Baseline(double arw_deg_per_sqrt_h) {
   sim::SensorModel model;
-  model.sample_rate_hz = 20.0;
+  model.sample_clock = SampleClock::FromRateHz(20.0);
   model.terms = {sim::WhiteRateNoise{units::DegPerSqrtHour(arw_deg_per_sqrt_h)}, sim::FlickerNoise{units::DegPerHour(2.0)},
                  sim::RandomWalkRate{units::DegPerHourPerSqrtHour(2.0)}};
   return model;
@@ -85,7 +85,7 @@ TEST(DiagnoseStatTest, GaussMarkovBumpIsNamedAndClosed) {
   DiagnoseOptions options;
   options.trials = 12;
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, 0.05, &s)) << s.message;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.05), &s)) << s.message;
   ASSERT_TRUE(s.significant);
   ASSERT_EQ(s.verdict, "gauss_markov");
   const CandidateResult& c = s.candidates[s.verdict_candidate];
@@ -115,7 +115,7 @@ TEST(DiagnoseStatTest, TelegraphIsToldFromGaussMarkovByKurtosis) {
   DiagnoseOptions options;
   options.trials = 12;
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, 0.05, &s)) << s.message;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.05), &s)) << s.message;
   ASSERT_EQ(s.verdict, "random_telegraph");
   const CandidateResult& chosen = s.candidates[s.verdict_candidate];
   for (const CandidateResult& c : s.candidates) {
@@ -128,14 +128,14 @@ TEST(DiagnoseStatTest, RefusesShortAndNonFiniteRecords) {
   DiagnoseOptions options;
   DiagnosisSummary s;
   std::vector<double> shortrec(100, 1.0);
-  EXPECT_FALSE(DiagnoseRecord(options, shortrec, 0.01, &s));
+  EXPECT_FALSE(DiagnoseRecord(options, shortrec, SampleClock::FromPeriodS(0.01), &s));
   EXPECT_NE(s.message.find("at least"), std::string::npos) << s.message;
   std::vector<double> constant(5000, 1.0);
-  EXPECT_FALSE(DiagnoseRecord(options, constant, 0.01, &s));
+  EXPECT_FALSE(DiagnoseRecord(options, constant, SampleClock::FromPeriodS(0.01), &s));
   EXPECT_FALSE(s.message.empty());
   std::vector<double> nan = Control().Generate(1, 0, 5000);
   nan[17] = std::nan("");
-  EXPECT_FALSE(DiagnoseRecord(options, nan, 0.01, &s));
+  EXPECT_FALSE(DiagnoseRecord(options, nan, SampleClock::FromPeriodS(0.01), &s));
   EXPECT_NE(s.message.find("sample 17"), std::string::npos) << s.message;
 }
 

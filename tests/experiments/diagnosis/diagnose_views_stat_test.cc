@@ -33,7 +33,7 @@ TEST(DiagnoseViewsStatTest, MonteCarloViewsFlagControlsAtMostAtTheStatedRate) {
     const std::vector<double> record = model.Generate(5150, r, 8192);
     options.seed = 1000 + static_cast<std::uint64_t>(r);
     DiagnosisSummary s;
-    ASSERT_TRUE(DiagnoseRecord(options, record, 0.01, &s)) << s.message;
+    ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.01), &s)) << s.message;
     if (s.before.views.size() == static_cast<std::size_t>(kNumViews)) ++with_all_views;
     bool mc = false;
     for (const GapRegion& g : s.regions) mc |= g.view != View::kOavar;
