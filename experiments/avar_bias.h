@@ -15,32 +15,23 @@
 
 namespace allanlab::experiments {
 
-class AvarBiasDriver : public TrialDriver {
+class AvarBiasDriver : public FaultInjectableDriver {
  public:
-  AvarBiasDriver() = default;
-  explicit AvarBiasDriver(InjectedFault fault) : fault_(fault) {}
+  using FaultInjectableDriver::FaultInjectableDriver;
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
-
- private:
-  InjectedFault fault_;
 };
 
-class AvarBiasExperiment : public Experiment {
+class AvarBiasExperiment : public DriverExperiment<AvarBiasDriver> {
  public:
-  AvarBiasExperiment() = default;
-  explicit AvarBiasExperiment(InjectedFault fault) : driver_(fault) {}
+  using DriverExperiment::DriverExperiment;
   std::string Name() const override { return "avar_bias"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  AvarBiasDriver driver_;
 };
 
 }  // namespace allanlab::experiments

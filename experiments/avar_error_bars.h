@@ -32,17 +32,13 @@ const std::vector<estimators::Statistic>& ErrorBarStatistics();
 // True when sim/ gives the exact expectation (and the exact EDF) of the statistic.
 bool HasExactTheory(estimators::Statistic s);
 
-class AvarErrorBarsDriver : public TrialDriver {
+class AvarErrorBarsDriver : public FaultInjectableDriver {
  public:
-  AvarErrorBarsDriver() = default;
-  explicit AvarErrorBarsDriver(InjectedFault fault) : fault_(fault) {}
+  using FaultInjectableDriver::FaultInjectableDriver;
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
-
- private:
-  InjectedFault fault_;
 };
 
 // Averaging factors of a point: spec.taus candidates with 1 <= m <= N/4. Throws
@@ -52,19 +48,14 @@ std::vector<std::int64_t> ErrorBarAveragingFactors(const SweepSpec& spec, const 
 // "white (N)", "flicker (B)", "band-limited white (N, first-order 100 Hz)", "composite (Q+N+B+K)".
 std::string NoiseLabel(const SweepPoint& point);
 
-class AvarErrorBarsExperiment : public Experiment {
+class AvarErrorBarsExperiment : public DriverExperiment<AvarErrorBarsDriver> {
  public:
-  AvarErrorBarsExperiment() = default;
-  explicit AvarErrorBarsExperiment(InjectedFault fault) : driver_(fault) {}
+  using DriverExperiment::DriverExperiment;
   std::string Name() const override { return "avar_error_bars"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  AvarErrorBarsDriver driver_;
 };
 
 }  // namespace allanlab::experiments

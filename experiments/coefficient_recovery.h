@@ -17,21 +17,16 @@
 
 namespace allanlab::experiments {
 
-class CoefficientRecoveryExperiment : public Experiment {
+class CoefficientRecoveryExperiment : public DriverExperiment<CoefficientTrialDriver> {
  public:
-  CoefficientRecoveryExperiment() = default;
-  explicit CoefficientRecoveryExperiment(InjectedFault fault) : driver_(fault) {}
+  using DriverExperiment::DriverExperiment;
   std::string Name() const override { return "coefficient_recovery"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   // <spec.name>.csv, .md and <spec.name>_<sensor>_<coefficient>.{png,svg} (relative RMSE and
   // |bias| vs T).
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  CoefficientTrialDriver driver_;
 };
 
 }  // namespace allanlab::experiments

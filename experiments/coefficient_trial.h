@@ -100,17 +100,13 @@ std::string CoverageColumnName(double level);
 std::vector<estimators::Coefficient> ComparedCoefficients(const SweepSpec& spec,
                                                           const SweepPoint& point);
 
-class CoefficientTrialDriver : public TrialDriver {
+class CoefficientTrialDriver : public FaultInjectableDriver {
  public:
-  CoefficientTrialDriver() = default;
-  explicit CoefficientTrialDriver(InjectedFault fault) : fault_(fault) {}
+  using FaultInjectableDriver::FaultInjectableDriver;
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
-
- private:
-  InjectedFault fault_;
 };
 
 }  // namespace allanlab::experiments

@@ -28,17 +28,13 @@ class DefaultIntervalsDriver : public TrialDriver {
 // Octave averaging factors with at least 8 clusters: 1, 2, 4, ..., m <= N/8.
 std::vector<std::int64_t> DefaultIntervalFactors(std::int64_t num_samples);
 
-class DefaultIntervalsExperiment : public Experiment {
+class DefaultIntervalsExperiment : public DriverExperiment<DefaultIntervalsDriver> {
  public:
   std::string Name() const override { return "default_intervals"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  DefaultIntervalsDriver driver_;
 };
 
 }  // namespace allanlab::experiments

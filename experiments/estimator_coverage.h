@@ -51,19 +51,15 @@ class EstimatorCoverageDriver : public TrialDriver {
                           TrialWorkspace* workspace) const override;
 };
 
-class EstimatorCoverageExperiment : public Experiment {
+class EstimatorCoverageExperiment : public DriverExperiment<EstimatorCoverageDriver> {
  public:
   std::string Name() const override { return "estimator_coverage"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   // <spec.name>.csv (every cell) and .md (per statistic and noise: the median cell and the worst
   // one, with Wilson 95 % intervals and met / not met / undecided against nominal +- 2 points).
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  EstimatorCoverageDriver driver_;
 };
 
 }  // namespace allanlab::experiments

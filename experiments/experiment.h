@@ -40,4 +40,17 @@ class Experiment {
                            std::string* why) const = 0;
 };
 
+// An experiment whose trials one driver of type D runs, made with the fault (injected_fault.h)
+// the driver applies when D takes one.
+template <class D>
+class DriverExperiment : public Experiment {
+ public:
+  template <class... Fault>
+  explicit DriverExperiment(Fault... fault) : driver_(fault...) {}
+  const TrialDriver& Driver() const final { return driver_; }
+
+ private:
+  D driver_;
+};
+
 }  // namespace allanlab::experiments

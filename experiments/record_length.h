@@ -47,21 +47,16 @@ struct LogLogSlope {
 bool FitLine(const std::vector<double>& x, const std::vector<double>& y,
              const std::vector<double>& sigma, LogLogSlope* line);
 
-class RecordLengthExperiment : public Experiment {
+class RecordLengthExperiment : public DriverExperiment<CoefficientTrialDriver> {
  public:
-  RecordLengthExperiment() = default;
-  explicit RecordLengthExperiment(InjectedFault fault) : driver_(fault) {}
+  using DriverExperiment::DriverExperiment;
   std::string Name() const override { return "record_length"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   // <spec.name>.csv, .md and <spec.name>_<sensor>_<coefficient>.{png,svg} (relative RMSE vs T,
   // with the T^-1/2 reference through GLS when the tau range is fixed).
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  CoefficientTrialDriver driver_;
 };
 
 }  // namespace allanlab::experiments

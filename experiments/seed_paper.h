@@ -31,32 +31,23 @@ SeedPaperTruth TruthOf(const sim::SensorModel& model);
 // reading point). Throws std::invalid_argument on a bad grid.
 std::vector<std::int64_t> SeedPaperAveragingFactors(const SweepSpec& spec, const SweepPoint& point);
 
-class SeedPaperDriver : public TrialDriver {
+class SeedPaperDriver : public FaultInjectableDriver {
  public:
-  SeedPaperDriver() = default;
-  explicit SeedPaperDriver(InjectedFault fault) : fault_(fault) {}
+  using FaultInjectableDriver::FaultInjectableDriver;
   std::vector<std::string> Columns(const SweepSpec& spec, const SweepPoint& point) const override;
   std::unique_ptr<TrialWorkspace> MakeWorkspace() const override;
   std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point, std::int64_t trial,
                           TrialWorkspace* workspace) const override;
-
- private:
-  InjectedFault fault_;
 };
 
-class SeedPaperExperiment : public Experiment {
+class SeedPaperExperiment : public DriverExperiment<SeedPaperDriver> {
  public:
-  SeedPaperExperiment() = default;
-  explicit SeedPaperExperiment(InjectedFault fault) : driver_(fault) {}
+  using DriverExperiment::DriverExperiment;
   std::string Name() const override { return "seed_paper"; }
   std::string Question() const override;
-  const TrialDriver& Driver() const override { return driver_; }
   bool WriteReport(const SweepSpec& spec, const RunSummary& run,
                    const std::vector<PointStats>& stats, const ReportContext& context,
                    std::string* why) const override;
-
- private:
-  SeedPaperDriver driver_;
 };
 
 }  // namespace allanlab::experiments

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments/injected_fault.h"
 #include "experiments/sweep_spec.h"
 
 namespace allanlab::experiments {
@@ -38,6 +39,16 @@ class TrialDriver {
   // it as a row with status "failed: <what>", never drops it).
   virtual std::vector<double> Run(const SweepSpec& spec, const SweepPoint& point,
                                   std::int64_t trial, TrialWorkspace* workspace) const = 0;
+};
+
+// A driver that applies an InjectedFault to the estimates it takes (the identity by default).
+class FaultInjectableDriver : public TrialDriver {
+ public:
+  FaultInjectableDriver() = default;
+  explicit FaultInjectableDriver(InjectedFault fault) : fault_(fault) {}
+
+ protected:
+  InjectedFault fault_;
 };
 
 // The seed a point's records are generated from: splitmix64 of (spec seed, point index), so
