@@ -242,11 +242,20 @@ std::string CoefficientPlotBody(const std::vector<CoefficientRow>& rows, const s
 bool RenderCoefficientPlots(const std::vector<CoefficientRow>& rows, const std::string& base,
                             const std::string& title_prefix, const std::vector<GuideLine>& guides,
                             std::string* markdown_images, std::string* why) {
+  // The sensor goes into the file name unless the table's name already says it
+  // (coefficient_recovery_tg100_N, not coefficient_recovery_tg100_tg100_N).
+  std::string table = "_";
+  table += base.substr(base.find_last_of('/') + 1);
+  table += '_';
   std::set<std::string> done;
   for (const CoefficientRow& r : rows) {
     const std::string id(estimators::CoefficientId(r.coefficient));
     if (!done.insert(r.sensor + "_" + id).second) continue;
-    const std::string path = base + "_" + r.sensor + "_" + id;
+    std::string token = "_";
+    token += r.sensor;
+    token += '_';
+    const bool named = table.find(token) != std::string::npos;
+    const std::string path = base + "_" + (named ? std::string() : r.sensor + "_") + id;
     const std::string title = title_prefix + ": " + r.sensor + ", " + id;
     if (!RenderGnuplotFigure(CoefficientPlotBody(rows, r.sensor, r.coefficient, title, guides), path,
                              900, 560, why)) {
