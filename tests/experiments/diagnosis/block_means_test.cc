@@ -18,12 +18,23 @@
 namespace allanlab::experiments {
 namespace {
 
-TEST(BlockMeans, WhiteNoiseDifferencesAreMovingAverage) {
+// At 100 Hz: white rate noise of N = 1e-3 rad/sqrt(s), and a rate random walk of K = 1e-5 rad/s/sqrt(s).
+sim::SensorModel WhiteModel() {
   sim::SensorModel model;
   model.sample_clock = SampleClock::FromRateHz(100.0);
-  sim::WhiteRateNoise white;
-  white.arw_rad_per_sqrt_s = 1e-3;
-  model.terms = {white};
+  model.terms = {sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 1e-3}};
+  return model;
+}
+
+sim::SensorModel WalkModel() {
+  sim::SensorModel model;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
+  model.terms = {sim::RandomWalkRate{.rrw_rad_per_s_per_sqrt_s = 1e-5}};
+  return model;
+}
+
+TEST(BlockMeans, WhiteNoiseDifferencesAreMovingAverage) {
+  const sim::SensorModel model = WhiteModel();
   const std::int64_t m = 500;
   const double s2 = 1e-6 * model.sample_clock.rate_hz();  // N^2 / tau0
   const std::vector<double> c = BlockDifferenceCovariance(model, m, 16);
@@ -34,11 +45,7 @@ TEST(BlockMeans, WhiteNoiseDifferencesAreMovingAverage) {
 }
 
 TEST(BlockMeans, RandomWalkDifferences) {
-  sim::SensorModel model;
-  model.sample_clock = SampleClock::FromRateHz(100.0);
-  sim::RandomWalkRate walk;
-  walk.rrw_rad_per_s_per_sqrt_s = 1e-5;
-  model.terms = {walk};
+  const sim::SensorModel model = WalkModel();
   const std::int64_t m = 2000;
   const double k2t = 1e-10 * static_cast<double>(m) / model.sample_clock.rate_hz();
   const std::vector<double> c = BlockDifferenceCovariance(model, m, 32);
@@ -54,22 +61,14 @@ TEST(BlockMeans, RandomWalkDifferences) {
 //     sum_{j != b} |b - j| = b (b + 1) / 2 + (B - 1 - b) (B - b) / 2 and sum_{i != j} |i - j| = (B^3 - B) / 3:
 //     largest at the ends, where the walk strays furthest from its mean.
 TEST(BlockMeans, DeviationFromTheMeanOfAllBlocks) {
-  sim::SensorModel white_model;
-  white_model.sample_clock = SampleClock::FromRateHz(100.0);
-  sim::WhiteRateNoise white;
-  white.arw_rad_per_sqrt_s = 1e-3;
-  white_model.terms = {white};
+  const sim::SensorModel white_model = WhiteModel();
   const std::int64_t m = 500;
   const double s2 = 1e-6 * white_model.sample_clock.rate_hz();
   const std::vector<double> sd_white = BlockMeanDeviationSd(white_model, m, 16);
   ASSERT_EQ(sd_white.size(), 16u);
   for (double sd : sd_white) EXPECT_NEAR(sd * sd, s2 / m * (1.0 - 1.0 / 16.0), 1e-9 * s2 / m);
 
-  sim::SensorModel walk_model;
-  walk_model.sample_clock = SampleClock::FromRateHz(100.0);
-  sim::RandomWalkRate walk;
-  walk.rrw_rad_per_s_per_sqrt_s = 1e-5;
-  walk_model.terms = {walk};
+  const sim::SensorModel walk_model = WalkModel();
   const int blocks = 32;
   const std::int64_t mw = 2000;
   const double k2t = 1e-10 * static_cast<double>(mw) / walk_model.sample_clock.rate_hz();
