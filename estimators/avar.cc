@@ -33,27 +33,34 @@ NoiseId IdentifyAt(const AvarOptions& options, std::span<const double> rate,
                        phase.size() == rate.size() + 1 ? phase.subspan(first, length + 1) : phase, m);
 }
 
+// The exponent a point uses, and whether it was read at that point's own tau.
+struct PointAlpha {
+  int alpha = 0;
+  bool read_here = true;
+};
+
 // kAuto at a tau with few m-averages: the shorter tau's exponent unless the unrounded estimate
 // is more than one step from it, and never a phase noise (alpha > 0) after a frequency noise. In
 // a sum of power laws the term that dominates at longer taus has the steeper Allan slope, so the
 // exponent cannot rise into phase noise (AVAR ~ 1/tau^2 fades fastest); such a reading at few
 // averages is the ACF's scatter, and its Greenhall-Riley EDF is several times too large.
-int SteadyAlpha(const AvarOptions& options, const NoiseId& id, int previous, bool first) {
+PointAlpha SteadyAlpha(const AvarOptions& options, const NoiseId& id, int previous, bool first) {
   if (options.confidence_method != ConfidenceMethod::kAuto || first ||
       id.averages >= kSteadyIdentificationAverages || !std::isfinite(id.estimate)) {
-    return id.alpha;
+    return {id.alpha, true};
   }
   // At few clusters the reading scatters by a step or more (random-walk records at 8 clusters read
   // as flicker or white in 4 of 10), and there the interval rests on alpha's whole distribution
-  // (estimate_distribution.h): the longer-averaged reading stands.
-  if (id.averages <= kDistributionIntervalMaxClusters) return previous;
-  if (std::abs(id.estimate - previous) <= 1.0) return previous;
-  return id.alpha > std::max(previous, 0) ? previous : id.alpha;
+  // (estimate_distribution.h): the longer-averaged reading stands, and this tau's is not used.
+  if (id.averages <= kDistributionIntervalMaxClusters) return {previous, false};
+  if (std::abs(id.estimate - previous) <= 1.0) return {previous, true};
+  return {id.alpha > std::max(previous, 0) ? previous : id.alpha, true};
 }
 
 // Noise exponent of every point: fixed, or identified from the record. Where identification
 // cannot run (fewer than three m-averages, e.g. TOTVAR beyond n/3), the nearest shorter tau's
 // exponent stands in: noise type changes slowly with tau, and white FM (0) is the neutral start.
+// A point whose exponent was not read at its own tau says so (alpha_identified false).
 int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rate,
                          std::span<const double> phase, std::vector<AvarPoint>* points) {
   int unidentified = 0;
@@ -66,7 +73,9 @@ int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rat
     const NoiseId id = IdentifyAt(options, rate, phase, point.m);
     point.alpha_identified = id.identified;
     if (id.identified) {
-      previous = SteadyAlpha(options, id, previous, &point == &points->front());
+      const PointAlpha steady = SteadyAlpha(options, id, previous, &point == &points->front());
+      previous = steady.alpha;
+      point.alpha_identified = steady.read_here;
     } else {
       ++unidentified;
     }

@@ -14,7 +14,9 @@ struct AvarPoint {
   double value = 0.0;        // the variance, in (input units)^2 ((angle units)^2 for kTime)
   std::int64_t terms = 0;    // number of squared differences averaged
   int alpha = 0;             // noise exponent used for the EDF
-  bool alpha_identified = false;  // false when fixed by the options or when identification failed
+  // false when fixed by the options, when identification failed, or when the shorter tau's
+  // exponent is held at few clusters (kAuto, <= kDistributionIntervalMaxClusters)
+  bool alpha_identified = false;
   double edf = 0.0;          // equivalent degrees of freedom (0 when no interval)
   bool edf_from_record = false;  // kAuto: the EDF was measured on the record (record_edf.h)
   // kAuto at <= kDistributionIntervalMaxClusters clusters: the interval comes from the estimate's

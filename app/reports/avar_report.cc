@@ -216,7 +216,10 @@ void WriteAvarTable(std::ostream& os, const AvarReport& r) {
                   alpha, stride);
     os << line;
   }
-  if (any_unidentified) os << "# alpha*: fixed or not identifiable at that tau (not measured)\n";
+  if (any_unidentified) {
+    os << "# alpha*: fixed, held from a shorter tau, or not identifiable at that tau (not measured "
+          "there)\n";
+  }
   for (const estimators::DroppedTau& d : r.summary.dropped) {
     os << "# dropped: tau " << ShortestDecimal(d.tau_s) << " s (m = " << d.m << "): " << d.reason << "\n";
   }

@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "estimators/allan_family.h"
+#include "estimators/avar_options.h"
 #include "estimators/confidence.h"
+#include "estimators/estimate_distribution.h"
 #include "tests/support/monte_carlo.h"
 
 namespace allanlab::estimators {
@@ -124,6 +126,28 @@ TEST(ComputeAvar, FixedAlphaIsUsedAndNotMarkedIdentified) {
     EXPECT_FALSE(p.alpha_identified);
     EXPECT_EQ(p.edf, StatisticEdf(Statistic::kAllanOverlapping, -2, p.m, 1000, 0.01));
   }
+}
+
+// kAuto at <= 16 clusters holds the shorter tau's exponent (the reading there scatters by a step):
+// the point must not claim it was identified at its own tau, or the table shows a held value as
+// a measured one.
+TEST(ComputeAvar, ExponentHeldAtFewClustersIsNotMarkedIdentified) {
+  const std::int64_t n = 6000;
+  AvarSummary s;
+  ASSERT_TRUE(ComputeAvar(Options(ConfidenceMethod::kAuto), WhiteRecord(n), &s)) << s.message;
+  int held = 0;
+  for (std::size_t k = 0; k < s.points.size(); ++k) {
+    const AvarPoint& p = s.points[k];
+    SCOPED_TRACE("m=" + std::to_string(p.m));
+    if (k > 0 && n / p.m <= kDistributionIntervalMaxClusters) {
+      EXPECT_FALSE(p.alpha_identified);
+      EXPECT_EQ(p.alpha, s.points[k - 1].alpha);
+      ++held;
+    } else if (n / p.m >= kSteadyIdentificationAverages) {
+      EXPECT_TRUE(p.alpha_identified);
+    }
+  }
+  EXPECT_GE(held, 1);
 }
 
 // TOTVAR reaches m = n - 1, where fewer than three m-averages exist: the last identified alpha
