@@ -135,6 +135,46 @@ void StreamingAvar::Push(Octave* o, const DoubleDouble& s, std::int64_t n) {
   }
 }
 
+void StreamingAvar::PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last) {
+  const std::int64_t stride = o->stride;
+  std::int64_t t = t_first;
+  // Until the ring is full a push makes no term: these go one at a time (once per octave).
+  for (; t <= t_last && o->pushed + 1 < 2 * o->span + 1; t += stride) Push(o, PrefixAt(t), t);
+  if (t > t_last) return;
+  // The ring holds 2 span + 1 values, so with the new one written at h, Back(span) is at h - span
+  // and Back(2 span) at h + 1 (mod its size): three positions that each advance by one per push,
+  // and the same terms, in the same order, as Push.
+  const std::int64_t size = static_cast<std::int64_t>(o->ring.size());
+  DoubleDouble* const ring = o->ring.data();
+  std::int64_t h = o->head;
+  std::int64_t b = h - o->span < 0 ? h - o->span + size : h - o->span;
+  std::int64_t c = h + 1 == size ? 0 : h + 1;
+  const std::int64_t m_mask = o->m - 1;  // m is a power of two
+  Sums sums = o->sums;
+  const double* const hi = hi_.data();
+  const double* const lo = lo_.data();
+  std::int64_t pushes = 0;
+  for (; t <= t_last; t += stride, ++pushes) {
+    const auto i = static_cast<std::size_t>(t - first_);
+    const double a_hi = hi[i], a_lo = lo[i];
+    ring[h] = {a_hi, a_lo};
+    const double d = SecondDifference(a_hi, a_lo, ring[b].hi, ring[b].lo, ring[c].hi, ring[c].lo);
+    CompensatedAdd(&sums.o_sum, &sums.o_comp, d * d);
+    if ((t & m_mask) == 0) {
+      CompensatedAdd(&sums.n_sum, &sums.n_comp, d * d);
+      ++sums.n_terms;
+    }
+    if (++h == size) h = 0;
+    if (++b == size) b = 0;
+    if (++c == size) c = 0;
+  }
+  sums.o_terms += pushes;
+  o->sums = sums;
+  o->head = h;
+  o->pushed += pushes;
+  o->last_index = t - stride;
+}
+
 StreamingAvar::DoubleDouble StreamingAvar::PrefixAt(std::int64_t n) const {
   const auto i = static_cast<std::size_t>(n - first_);
   return {hi_[i], lo_[i]};
@@ -199,11 +239,13 @@ void StreamingAvar::Fold() {
   }
   // Octaves may be added inside the loop: index, not iterators or references.
   for (std::size_t j = 0; j < octaves_.size(); ++j) {
-    const std::int64_t stride = octaves_[j].stride;
-    for (std::int64_t t = octaves_[j].last_index + stride; t <= to; t += stride) {
-      Push(&octaves_[j], PrefixAt(t), t);
-      if (j + 1 == octaves_.size() && t == 2 * octaves_[j].m) StartNextOctave();
+    const std::int64_t first = octaves_[j].last_index + octaves_[j].stride;
+    const std::int64_t seed_at = 2 * octaves_[j].m;  // the next octave starts from this ring
+    if (j + 1 == octaves_.size() && first <= seed_at && seed_at <= to) {
+      PushRun(&octaves_[j], first, seed_at);
+      StartNextOctave();
     }
+    PushRun(&octaves_[j], octaves_[j].last_index + octaves_[j].stride, to);
   }
   folded_ = to;
   // Keep S_{to - 2 largest} .. S_to for the next block's lags.

@@ -101,6 +101,8 @@ class StreamingAvar {
     const DoubleDouble& Back(std::int64_t k) const;  // k-th latest pushed value (0 = latest)
   };
   void Push(Octave* o, const DoubleDouble& s, std::int64_t n);
+  // Push of S_t for t = t_first, t_first + stride, ... <= t_last (held in the block).
+  void PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last);
   void StartNextOctave();
   // Folds the prefix sums S_{folded_ + 1} .. S_{n_} into every octave and keeps the last
   // 2 exact_overlap_max_m + 1 of them for the next block.

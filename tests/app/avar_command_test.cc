@@ -418,6 +418,15 @@ TEST_F(AvarCommandTest, BadInputsFailWithOneLineAndNoFiles) {
   EXPECT_EQ(input.err, "allanlab avar: error: FILE and --json both name rate.csv\n");
 }
 
+// The decoder runs ahead of the parser in its own thread: a cut-off xz file still fails once,
+// with the decoder's reason, after the rows before the cut were read.
+TEST_F(AvarCommandTest, ATruncatedXzFileFailsWithOneLine) {
+  ASSERT_EQ(std::system(("xz -kf " + Quote(Path("rate.csv"))).c_str()), 0);
+  fs::resize_file(Path("rate.csv.xz"), fs::file_size(Path("rate.csv.xz")) * 2 / 3);
+  ExpectError("avar rate.csv.xz", 1, "rate.csv.xz: truncated xz data");
+  ExpectError("avar rate.csv.xz --stream", 1, "rate.csv.xz: truncated xz data");
+}
+
 TEST_F(AvarCommandTest, AFailedRunLeavesExistingOutputsAlone) {
   Write("out.json", "previous");
   const RunResult r = Run("avar missing.csv --json out.json");
