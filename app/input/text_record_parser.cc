@@ -1,9 +1,13 @@
 #include "app/input/text_record_parser.h"
 
+#include "app/input/helper_thread.h"
+
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <system_error>
 #include <utility>
@@ -52,6 +56,34 @@ bool IsMissingMarker(std::string_view s) {
   return s.empty() || EqualsIgnoreCase(s, "na") || EqualsIgnoreCase(s, "n/a");
 }
 
+// Appends the decimal digits at p to *digits (digits * 10 + d each), eight at a time while eight
+// are there: the same integer as one at a time (wrapped alike past 19 digits, which the caller
+// refuses). The eight-digit step is the usual SWAR reduction: pairs, then quads, then the eight,
+// by three multiplications of the little-endian word.
+const char* AppendDigits(const char* p, const char* end, std::uint64_t* digits) {
+  std::uint64_t value = *digits;
+  while (end - p >= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p, 8);
+    if constexpr (std::endian::native != std::endian::little) break;
+    // Every byte in '0'..'9': no high bit after adding 0x46 (bytes > '9' overflow into it) or
+    // after subtracting 0x30 (bytes < '0' borrow into it).
+    if (((word + 0x4646464646464646ULL) | (word - 0x3030303030303030ULL)) & 0x8080808080808080ULL) {
+      break;
+    }
+    word -= 0x3030303030303030ULL;
+    word = word * 10 + (word >> 8);  // each byte pair as one two-digit number
+    word = (((word & 0x000000FF000000FFULL) * (100 + (1000000ULL << 32))) +
+            (((word >> 16) & 0x000000FF000000FFULL) * (1 + (10000ULL << 32)))) >>
+           32;
+    value = value * 100000000ULL + (word & 0xFFFFFFFFULL);
+    p += 8;
+  }
+  for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) value = value * 10 + static_cast<std::uint64_t>(*p - '0');
+  *digits = value;
+  return p;
+}
+
 // A plain decimal "123.456e-7" whose digits fit 2^53 and whose power of ten is at most 22 in
 // size: the value is then one exactly-rounded multiplication or division of two exact doubles
 // (Clinger's fast path), the same double std::from_chars returns, at a fraction of its cost.
@@ -65,13 +97,13 @@ bool ParsePlainDecimal(std::string_view s, double* value) {
   // At most 19 digits (leading zeros included) fit a uint64 without overflow.
   std::uint64_t digits = 0;
   const char* const first = p;
-  for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) digits = digits * 10 + (*p - '0');
+  p = AppendDigits(p, end, &digits);
   std::ptrdiff_t count = p - first;
   if (count == 0) return false;
   int scale = 0;  // the power of ten the digits are multiplied by
   if (p != end && *p == '.') {
     const char* const fraction = ++p;
-    for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) digits = digits * 10 + (*p - '0');
+    p = AppendDigits(p, end, &digits);
     if (p == fraction) return false;
     scale = static_cast<int>(fraction - p);
     count += p - fraction;
@@ -159,6 +191,15 @@ bool TextRecordParser::Fail(std::string message) {
 bool TextRecordParser::Feed(std::string_view chunk) {
   if (failed_) return false;
   while (!chunk.empty()) {
+    if (parallel_ && pending_.empty() && chunk.size() >= kParallelBytes && CommonRowsPossible()) {
+      // Every complete line of a large chunk, read by two threads.
+      const std::size_t last = chunk.rfind('\n');
+      if (last != std::string_view::npos) {
+        if (!FeedLinesInParallel(chunk.substr(0, last + 1))) return false;
+        chunk.remove_prefix(last + 1);
+        continue;
+      }
+    }
     const std::size_t newline = chunk.find('\n');
     if (newline == std::string_view::npos) {
       if (pending_.size() + chunk.size() > kMaxLineBytes) {
@@ -168,28 +209,20 @@ bool TextRecordParser::Feed(std::string_view chunk) {
       pending_.append(chunk);
       return true;
     }
-    std::string_view line = chunk.substr(0, newline);
+    const std::string_view line = chunk.substr(0, newline);
     chunk.remove_prefix(newline + 1);
-    bool ok;
     if (pending_.empty()) {
-      if (line.size() > kMaxLineBytes) {
-        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
-                    "record (raw samples? use --format f32|f64)");
-      }
-      ok = ParseLine(line);
-    } else {
-      if (pending_.size() + line.size() > kMaxLineBytes) {
-        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
-                    "record (raw samples? use --format f32|f64)");
-      }
-      pending_.append(line);
-      ok = ParseLine(pending_);
-      pending_.clear();
+      if (!TakeLine(line)) return false;
+      continue;
     }
-    if (!ok) {
-      failed_ = true;
-      return false;
+    if (pending_.size() + line.size() > kMaxLineBytes) {
+      return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                  "record (raw samples? use --format f32|f64)");
     }
+    pending_.append(line);
+    const std::string whole = std::move(pending_);
+    pending_.clear();
+    if (!TakeLine(whole)) return false;
   }
   return true;
 }
@@ -235,24 +268,38 @@ void TextRecordParser::Split(std::string_view line, std::vector<std::string_view
   }
 }
 
-bool TextRecordParser::ParseTimeField(std::string_view field, double* time) {
+TextRecordParser::TimeField TextRecordParser::ReadTimeField(std::string_view field, double* time,
+                                                             std::int64_t* stamp) const {
   std::string_view s = Trim(field);
   if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = Trim(s.substr(1, s.size() - 2));
-  std::int64_t stamp = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), stamp);
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), *stamp);
   const bool integer = !s.empty() && ec == std::errc() && end == s.data() + s.size();
-  if (!time_origin_set_ && integer) {
-    time_origin_set_ = true;
-    time_origin_ = stamp;
-  }
+  if (integer && !time_origin_set_) return TimeField::kFirstStamp;
   std::int64_t since_origin = 0;
-  if (integer && time_origin_set_ && !__builtin_sub_overflow(stamp, time_origin_, &since_origin)) {
+  if (integer && !__builtin_sub_overflow(*stamp, time_origin_, &since_origin)) {
     *time = static_cast<double>(since_origin);
-    return true;
+    return TimeField::kNumber;
   }
-  if (!ParseNumberField(field, time)) return false;
+  if (!ParseNumberField(field, time)) return TimeField::kNotANumber;
   if (time_origin_set_) *time -= static_cast<double>(time_origin_);
-  return true;
+  return TimeField::kNumber;
+}
+
+bool TextRecordParser::ParseTimeField(std::string_view field, double* time) {
+  std::int64_t stamp = 0;
+  switch (ReadTimeField(field, time, &stamp)) {
+    case TimeField::kNumber:
+      return true;
+    case TimeField::kFirstStamp:
+      // The first integer stamp is the origin: later ones are given relative to it, exactly.
+      time_origin_set_ = true;
+      time_origin_ = stamp;
+      *time = 0.0;
+      return true;
+    case TimeField::kNotANumber:
+      break;
+  }
+  return false;
 }
 
 bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first, bool header) {
@@ -479,8 +526,6 @@ bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
                 (time_index_ >= 0 ? " and " + TimeColumnPhrase(time_column_) : std::string()) + " need " +
                 std::to_string(needed));
   }
-  TextRow row;
-  row.line = line_no;
   for (std::size_t k = 0; k < value_indices_.size(); ++k) {
     const int index = value_indices_[k];
     if (!ParseNumberField(fields_[index], &values_[k])) {
@@ -488,21 +533,152 @@ bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
                   Shown(Trim(fields_[index])) + "' is not a number");
     }
   }
+  double time = 0.0;
+  if (time_index_ >= 0 && !ParseTimeField(fields_[time_index_], &time)) {
+    return Fail("line " + std::to_string(line_no) + ": " + TimeColumnPhrase(time_column_) + ": '" +
+                Shown(Trim(fields_[time_index_])) + "' is not a number");
+  }
+  return EmitRow(line_no, time_index_ >= 0, time);
+}
+
+bool TextRecordParser::EmitRow(std::int64_t line_no, bool has_time, double time) {
+  TextRow row;
+  row.line = line_no;
   row.value = values_.front();
   row.values = values_;
-  if (time_index_ >= 0) {
-    row.has_time = true;
-    if (!ParseTimeField(fields_[time_index_], &row.time)) {
-      return Fail("line " + std::to_string(line_no) + ": " + TimeColumnPhrase(time_column_) + ": '" +
-                  Shown(Trim(fields_[time_index_])) + "' is not a number");
-    }
-  }
+  row.has_time = has_time;
+  row.time = time;
   ++data_rows_;
   if (!sink_(row)) {
     failed_ = true;
     return false;
   }
   return true;
+}
+
+namespace {
+
+// 0x80 in each byte of `word` equal to c, 0 in every other (exact: no carries between bytes).
+std::uint64_t BytesEqual(std::uint64_t word, unsigned char c) {
+  constexpr std::uint64_t kLow7 = 0x7f7f7f7f7f7f7f7fULL;
+  const std::uint64_t x = word ^ (0x0101010101010101ULL * c);
+  return ~(((x & kLow7) + kLow7) | x | kLow7);
+}
+
+}  // namespace
+
+bool TextRecordParser::CommonRowsPossible() const {
+  // Before the first data row the format, the columns and the time origin may still change.
+  return format_known_ && !probing_ && data_rows_ > 0 && delimiter_ != ' ';
+}
+
+bool TextRecordParser::ParseCommonRow(std::string_view line, std::vector<std::string_view>* fields,
+                                      double* values, double* time) const {
+  if (line.size() > kMaxLineBytes || Trim(line).empty()) return false;  // a blank line is skipped
+  std::size_t needed = static_cast<std::size_t>(time_index_ + 1);
+  for (int index : value_indices_) needed = std::max(needed, static_cast<std::size_t>(index) + 1);
+  // One pass over the line: a '#' or NUL sends it to ParseLine; each delimiter ends a field,
+  // trimmed as Split trims it. Eight bytes at a time, then the rest one at a time.
+  fields->clear();
+  const char* const p = line.data();
+  const std::size_t n = line.size();
+  const auto delimiter = static_cast<unsigned char>(delimiter_);
+  std::size_t field_start = 0;
+  const auto end_field = [&](std::size_t at) {
+    if (fields->size() < needed) fields->push_back(Trim(line.substr(field_start, at - field_start)));
+    field_start = at + 1;
+  };
+  std::size_t i = 0;
+  if constexpr (std::endian::native == std::endian::little) {
+    for (; i + 8 <= n; i += 8) {
+      std::uint64_t word;
+      std::memcpy(&word, p + i, 8);
+      if (BytesEqual(word, '#') | BytesEqual(word, 0)) return false;
+      for (std::uint64_t d = BytesEqual(word, delimiter); d != 0; d &= d - 1) {
+        end_field(i + static_cast<std::size_t>(std::countr_zero(d)) / 8);
+      }
+    }
+  }
+  for (; i < n; ++i) {
+    if (p[i] == '#' || p[i] == '\0') return false;
+    if (p[i] == delimiter_) end_field(i);
+  }
+  end_field(n);
+  if (fields->size() < needed) return false;
+  for (std::size_t k = 0; k < value_indices_.size(); ++k) {
+    if (!ParseNumberField((*fields)[static_cast<std::size_t>(value_indices_[k])], &values[k])) return false;
+  }
+  *time = 0.0;
+  std::int64_t stamp = 0;
+  return time_index_ < 0 ||
+         ReadTimeField((*fields)[static_cast<std::size_t>(time_index_)], time, &stamp) == TimeField::kNumber;
+}
+
+bool TextRecordParser::ReadCommonRow(std::string_view line, bool* ok) {
+  double time = 0.0;
+  if (!CommonRowsPossible() || !ParseCommonRow(line, &fields_, values_.data(), &time)) return false;
+  ++line_;
+  *ok = EmitRow(line_, time_index_ >= 0, time);
+  return true;
+}
+
+bool TextRecordParser::TakeLine(std::string_view line) {
+  if (line.size() > kMaxLineBytes) {
+    return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                "record (raw samples? use --format f32|f64)");
+  }
+  bool ok;
+  if (!ReadCommonRow(line, &ok)) ok = ParseLine(line);
+  if (!ok) failed_ = true;
+  return ok;
+}
+
+void TextRecordParser::ParseCommonRows(std::string_view text, CommonRowBatch* batch) const {
+  const std::size_t width = value_indices_.size() + 1;
+  batch->lines.clear();
+  batch->numbers.clear();
+  batch->read.clear();
+  while (!text.empty()) {
+    const std::size_t newline = text.find('\n');
+    const std::string_view line = text.substr(0, newline);
+    text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
+    batch->lines.push_back(line);
+    batch->numbers.resize(batch->numbers.size() + width);
+    double* const row = batch->numbers.data() + batch->numbers.size() - width;
+    batch->read.push_back(ParseCommonRow(line, &batch->fields, row, row + width - 1));
+  }
+}
+
+bool TextRecordParser::TakeCommonRows(const CommonRowBatch& batch) {
+  const std::size_t width = value_indices_.size() + 1;
+  // Read with the origin the parse began with: once a line ParseLine reads sets it (the first
+  // integer stamp), the times read ahead are not relative to it, and every later line is read
+  // again, one at a time.
+  const bool origin_set = time_origin_set_;
+  for (std::size_t i = 0; i < batch.lines.size(); ++i) {
+    if (!batch.read[i] || time_origin_set_ != origin_set) {
+      if (!TakeLine(batch.lines[i])) return false;
+      continue;
+    }
+    const double* const row = batch.numbers.data() + i * width;
+    std::copy(row, row + width - 1, values_.begin());
+    ++line_;
+    if (!EmitRow(line_, time_index_ >= 0, row[width - 1])) return false;
+  }
+  return true;
+}
+
+bool TextRecordParser::FeedLinesInParallel(std::string_view lines) {
+  // The helper reads the later two thirds while this thread reads the first third and then
+  // passes every row on (the sink's share); the split only moves work, never a result.
+  std::size_t split = lines.find('\n', lines.size() / 3);
+  split = split == std::string_view::npos ? lines.size() : split + 1;
+  const std::string_view first = lines.substr(0, split), rest = lines.substr(split);
+  if (!helper_) helper_ = std::make_unique<HelperThread>();
+  helper_->Run([this, rest] { ParseCommonRows(rest, &later_rows_); });
+  ParseCommonRows(first, &first_rows_);
+  helper_->Wait();
+  return TakeCommonRows(first_rows_) && TakeCommonRows(later_rows_);
 }
 
 }  // namespace allanlab::app
