@@ -261,24 +261,43 @@ void StreamingAvar::Fold() {
   }
 }
 
-void StreamingAvar::Add(double y) {
-  if (n_ == 0) reference_ = y;
-  const double x = y - reference_;
-  // prefix_ += x in double-double (TwoSum, then renormalise).
-  const double t = prefix_.hi + x;
-  const double bp = t - prefix_.hi;
-  const double err = (prefix_.hi - (t - bp)) + (x - bp);
-  const double lo = prefix_.lo + err;
-  prefix_.hi = t + lo;
-  prefix_.lo = lo - (prefix_.hi - t);
-  ++n_;
-  hi_.push_back(prefix_.hi);
-  lo_.push_back(prefix_.lo);
-  if (hi_.size() == capacity_) Fold();
-}
+void StreamingAvar::Add(double y) { Add(std::span<const double>(&y, 1)); }
 
 void StreamingAvar::Add(std::span<const double> y) {
-  for (const double v : y) Add(v);
+  if (y.empty()) return;
+  if (n_ == 0) reference_ = y.front();
+  // The prefix sum in locals, so that the chain of dependent additions each sample waits on stays
+  // in registers (a member would be stored and loaded again on every sample).
+  double hi = prefix_.hi, lo = prefix_.lo;
+  const double reference = reference_;
+  std::size_t i = 0;
+  while (i < y.size()) {
+    const std::size_t run = std::min(capacity_ - hi_.size(), y.size() - i);
+    for (std::size_t k = i; k < i + run; ++k) {
+      const double x = y[k] - reference;
+      // (hi, lo) += x in double-double: the exact error of hi + x, then renormalise. When
+      // |hi| >= |x|, as for nearly every sample once the sum has grown, Dekker's FastTwoSum
+      // gives that error in two operations; Knuth's TwoSum, for the rest, in five. Both give it
+      // exactly, so the same bits: the branch only shortens the chain.
+      const double t = hi + x;
+      double err;
+      if (__builtin_expect(std::abs(hi) >= std::abs(x), 1)) {
+        err = x - (t - hi);
+      } else {
+        const double bp = t - hi;
+        err = (hi - (t - bp)) + (x - bp);
+      }
+      const double sum_lo = lo + err;
+      hi = t + sum_lo;
+      lo = sum_lo - (hi - t);
+      hi_.push_back(hi);
+      lo_.push_back(lo);
+    }
+    i += run;
+    n_ += static_cast<std::int64_t>(run);
+    prefix_ = {hi, lo};
+    if (hi_.size() == capacity_) Fold();
+  }
 }
 
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {

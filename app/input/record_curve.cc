@@ -175,6 +175,10 @@ class InputScale {
       ParseRateUnit(unit, &rate_, &ignored);  // canonical: always parses
     }
   }
+  // rad/s or rad in: the values are SI as they are.
+  bool identity() const {
+    return kind_ == InputKind::kAngle ? angle_to_si_ == 1.0 : rate_ == RateUnit::kRadPerSecond;
+  }
   double operator()(double v) const {
     return kind_ == InputKind::kAngle ? v * angle_to_si_ : ToRadPerSecond(rate_, v);
   }
@@ -359,6 +363,10 @@ std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_
   std::vector<double> scaled;
   const BlockSink rate_blocks = [&](std::span<const double> block) {
     if (!scale_to_si) scale_to_si.emplace(plan.input, report->record.units);
+    if (scale_to_si->identity()) {
+      stream.Add(block);
+      return;
+    }
     scaled.resize(block.size());
     for (std::size_t k = 0; k < block.size(); ++k) scaled[k] = (*scale_to_si)(block[k]);
     stream.Add(scaled);
