@@ -16,11 +16,11 @@ HelperThread::~HelperThread() {
   thread_.join();
 }
 
-void HelperThread::Run(std::function<void()> job) {
+void HelperThread::Post(std::function<void()> job) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     job_ = std::move(job);
-    pending_ = true;
+    has_job_ = true;
   }
   if (!thread_.joinable()) {
     thread_ = std::thread([this] { Loop(); });
@@ -29,26 +29,18 @@ void HelperThread::Run(std::function<void()> job) {
   }
 }
 
-void HelperThread::Wait() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return !pending_; });
-}
-
 bool HelperThread::Useful() { return std::thread::hardware_concurrency() > 1 && omp_get_max_threads() > 1; }
 
 void HelperThread::Loop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    wake_.wait(lock, [this] { return stop_ || pending_; });
-    if (pending_) {
-      std::function<void()> job = std::move(job_);
-      lock.unlock();
-      job();
-      lock.lock();
-      pending_ = false;
-      done_.notify_one();
-    }
+    wake_.wait(lock, [this] { return stop_ || has_job_; });
     if (stop_) return;
+    std::function<void()> job = std::move(job_);
+    has_job_ = false;
+    lock.unlock();
+    job();
+    lock.lock();
   }
 }
 

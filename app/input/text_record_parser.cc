@@ -3,6 +3,7 @@
 #include "app/input/helper_thread.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -669,16 +670,44 @@ bool TextRecordParser::TakeCommonRows(const CommonRowBatch& batch) {
 }
 
 bool TextRecordParser::FeedLinesInParallel(std::string_view lines) {
-  // The helper reads the later two thirds while this thread reads the first third and then
-  // passes every row on (the sink's share); the split only moves work, never a result.
-  std::size_t split = lines.find('\n', lines.size() / 3);
-  split = split == std::string_view::npos ? lines.size() : split + 1;
-  const std::string_view first = lines.substr(0, split), rest = lines.substr(split);
+  // The lines in kParallelPieces pieces, split at newlines. This thread and the helper each take
+  // the next piece nobody has taken, until none is left; then this thread passes every row on, in
+  // order (the sink's share). Who read a piece never changes what it holds.
+  pieces_.clear();
+  while (!lines.empty()) {
+    const std::size_t target = std::max<std::size_t>(lines.size() / (kParallelPieces - pieces_.size()), 1);
+    std::size_t end = lines.find('\n', target - 1);
+    end = end == std::string_view::npos ? lines.size() : end + 1;
+    pieces_.push_back(lines.substr(0, end));
+    lines.remove_prefix(end);
+    if (pieces_.size() + 1 == kParallelPieces) {
+      if (!lines.empty()) pieces_.push_back(lines);
+      break;
+    }
+  }
+  const int count = static_cast<int>(pieces_.size());
+  if (piece_rows_.size() < pieces_.size()) piece_rows_.resize(pieces_.size());
+  // Counters of this call alone: a helper that starts late finds every piece taken and touches
+  // nothing else.
+  struct Claims {
+    std::atomic<int> next{0}, done{0};
+  };
+  const auto claims = std::make_shared<Claims>();
+  const auto take_pieces = [this, claims, count] {
+    for (int p; (p = claims->next.fetch_add(1)) < count;) {
+      ParseCommonRows(pieces_[static_cast<std::size_t>(p)], &piece_rows_[static_cast<std::size_t>(p)]);
+      claims->done.fetch_add(1);
+      claims->done.notify_one();
+    }
+  };
   if (!helper_) helper_ = std::make_unique<HelperThread>();
-  helper_->Run([this, rest] { ParseCommonRows(rest, &later_rows_); });
-  ParseCommonRows(first, &first_rows_);
-  helper_->Wait();
-  return TakeCommonRows(first_rows_) && TakeCommonRows(later_rows_);
+  helper_->Post(take_pieces);
+  take_pieces();
+  for (int done = claims->done.load(); done < count; done = claims->done.load()) claims->done.wait(done);
+  for (int p = 0; p < count; ++p) {
+    if (!TakeCommonRows(piece_rows_[static_cast<std::size_t>(p)])) return false;
+  }
+  return true;
 }
 
 }  // namespace allanlab::app

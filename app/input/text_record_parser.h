@@ -72,6 +72,7 @@ class TextRecordParser {
   static constexpr std::size_t kMaxLineBytes = 1 << 20;
   // A chunk of at least this many bytes is read by two threads (when HelperThread::Useful()).
   static constexpr std::size_t kParallelBytes = 1 << 16;
+  static constexpr std::size_t kParallelPieces = 16;
   // Rows of a headerless file read before deciding whether its first column is time: 32 noisy
   // values rise in order by chance with probability 1/32! (~4e-36).
   static constexpr int kTimeProbeRows = 32;
@@ -149,7 +150,7 @@ class TextRecordParser {
   };
   void ParseCommonRows(std::string_view text, CommonRowBatch* batch) const;
   bool TakeCommonRows(const CommonRowBatch& batch);
-  // Complete lines (each ending in a newline) read in two shares, one by the helper thread.
+  // Complete lines (each ending in a newline) read in pieces by this thread and the helper.
   bool FeedLinesInParallel(std::string_view lines);
   bool ParseDataRow(std::int64_t line);
   // The current row (values_, and the time when has_time) to the sink.
@@ -174,7 +175,8 @@ class TextRecordParser {
   std::string pending_;  // the incomplete last line of the previous chunk
   bool parallel_ = HelperThread::Useful();
   std::unique_ptr<HelperThread> helper_;
-  CommonRowBatch first_rows_, later_rows_;
+  std::vector<std::string_view> pieces_;      // FeedLinesInParallel's, and
+  std::vector<CommonRowBatch> piece_rows_;     // what each holds
   std::string error_;
   bool failed_ = false;
   bool error_is_usage_ = false;
