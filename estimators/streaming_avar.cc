@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/piece_sharing.h"
+
 namespace allanlab::estimators {
 namespace {
 
@@ -109,6 +111,7 @@ StreamingAvar::StreamingAvar(StreamingAvarOptions options) : options_(options) {
   lo_.reserve(reserved);
   hi_.push_back(0.0);  // S_0
   lo_.push_back(0.0);
+  if (PieceSharing::Useful()) sharing_ = std::make_shared<PieceSharing>();
 }
 
 const StreamingAvar::DoubleDouble& StreamingAvar::Octave::Back(std::int64_t k) const {
@@ -206,32 +209,31 @@ void StreamingAvar::StartNextOctave() {
   octaves_.push_back(std::move(next));
 }
 
-void StreamingAvar::Fold() {
-  const std::int64_t from = folded_ + 1;
-  const std::int64_t to = n_;
-  if (from > to) return;
+void StreamingAvar::FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const {
   const double* hi = hi_.data();
   const double* lo = lo_.data();
-  const SquaresFn squares = BlockSquares();
-  for (ExactOctave& o : exact_) {
-    const std::int64_t m = o.m;
-    if (2 * m > to) break;  // this octave and every longer one: no term yet
-    const std::int64_t begin = std::max(from, 2 * m);
-    // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
-    const std::int64_t first = begin - first_;
-    const std::int64_t last = to - first_;
-    // Partial sums over the block (vectorised), then one compensated addition per block.
-    const double block = squares(hi, lo, first, last, m);
-    CompensatedAdd(&o.sums.o_sum, &o.sums.o_comp, block);
-    o.sums.o_terms += to - begin + 1;
-    for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
-      const std::int64_t a = t - first_;
-      const double d =
-          SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
-      CompensatedAdd(&o.sums.n_sum, &o.sums.n_comp, d * d);
-      ++o.sums.n_terms;
-    }
+  const std::int64_t m = o->m;
+  const std::int64_t begin = std::max(from, 2 * m);
+  // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
+  const std::int64_t first = begin - first_;
+  const std::int64_t last = to - first_;
+  // The sums in a local: another thread may be writing the next octave's, beside them in memory.
+  Sums sums = o->sums;
+  // Partial sums over the block (vectorised), then one compensated addition per block.
+  const double block = BlockSquares()(hi, lo, first, last, m);
+  CompensatedAdd(&sums.o_sum, &sums.o_comp, block);
+  sums.o_terms += to - begin + 1;
+  for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
+    const std::int64_t a = t - first_;
+    const double d =
+        SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
+    CompensatedAdd(&sums.n_sum, &sums.n_comp, d * d);
+    ++sums.n_terms;
   }
+  o->sums = sums;
+}
+
+void StreamingAvar::FoldStrided(std::int64_t from, std::int64_t to) {
   const std::int64_t first_strided_start = 2 * exact_.back().m;
   if (octaves_.empty() && exact_.back().m <= std::numeric_limits<std::int64_t>::max() / 4 &&
       first_strided_start >= from && first_strided_start <= to) {
@@ -246,6 +248,31 @@ void StreamingAvar::Fold() {
       StartNextOctave();
     }
     PushRun(&octaves_[j], octaves_[j].last_index + octaves_[j].stride, to);
+  }
+}
+
+void StreamingAvar::Fold() {
+  const std::int64_t from = folded_ + 1;
+  const std::int64_t to = n_;
+  if (from > to) return;
+  // Each exact octave with a term (2m <= to) is a piece, and the strided octaves together are
+  // one more (each starts from the one before it): pieces with sums of their own, which read the
+  // block and write nothing else, so two threads may share them.
+  std::size_t active = 0;
+  while (active < exact_.size() && 2 * exact_[active].m <= to) ++active;
+  const auto fold_piece = [&](int piece) {
+    const auto p = static_cast<std::size_t>(piece);
+    if (p < active) {
+      FoldExact(&exact_[p], from, to);
+    } else {
+      FoldStrided(from, to);
+    }
+  };
+  const int pieces = static_cast<int>(active) + 1;
+  if (sharing_ && to - from + 1 >= kSharedFoldValues) {
+    sharing_->Run(pieces, fold_piece);
+  } else {
+    for (int p = 0; p < pieces; ++p) fold_piece(p);
   }
   folded_ = to;
   // Keep S_{to - 2 largest} .. S_to for the next block's lags.

@@ -1,9 +1,8 @@
 #include "app/input/text_record_parser.h"
 
-#include "app/input/helper_thread.h"
+#include "common/piece_sharing.h"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -670,9 +669,9 @@ bool TextRecordParser::TakeCommonRows(const CommonRowBatch& batch) {
 }
 
 bool TextRecordParser::FeedLinesInParallel(std::string_view lines) {
-  // The lines in kParallelPieces pieces, split at newlines. This thread and the helper each take
-  // the next piece nobody has taken, until none is left; then this thread passes every row on, in
-  // order (the sink's share). Who read a piece never changes what it holds.
+  // The lines in kParallelPieces pieces, split at newlines, read by this thread and the helper
+  // (common/piece_sharing.h); then this thread passes every row on, in order (the sink's share).
+  // Who read a piece never changes what it holds.
   pieces_.clear();
   while (!lines.empty()) {
     const std::size_t target = std::max<std::size_t>(lines.size() / (kParallelPieces - pieces_.size()), 1);
@@ -687,23 +686,10 @@ bool TextRecordParser::FeedLinesInParallel(std::string_view lines) {
   }
   const int count = static_cast<int>(pieces_.size());
   if (piece_rows_.size() < pieces_.size()) piece_rows_.resize(pieces_.size());
-  // Counters of this call alone: a helper that starts late finds every piece taken and touches
-  // nothing else.
-  struct Claims {
-    std::atomic<int> next{0}, done{0};
-  };
-  const auto claims = std::make_shared<Claims>();
-  const auto take_pieces = [this, claims, count] {
-    for (int p; (p = claims->next.fetch_add(1)) < count;) {
-      ParseCommonRows(pieces_[static_cast<std::size_t>(p)], &piece_rows_[static_cast<std::size_t>(p)]);
-      claims->done.fetch_add(1);
-      claims->done.notify_one();
-    }
-  };
-  if (!helper_) helper_ = std::make_unique<HelperThread>();
-  helper_->Post(take_pieces);
-  take_pieces();
-  for (int done = claims->done.load(); done < count; done = claims->done.load()) claims->done.wait(done);
+  if (!sharing_) sharing_ = std::make_unique<PieceSharing>();
+  sharing_->Run(count, [this](int p) {
+    ParseCommonRows(pieces_[static_cast<std::size_t>(p)], &piece_rows_[static_cast<std::size_t>(p)]);
+  });
   for (int p = 0; p < count; ++p) {
     if (!TakeCommonRows(piece_rows_[static_cast<std::size_t>(p)])) return false;
   }

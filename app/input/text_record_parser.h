@@ -29,7 +29,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/input/helper_thread.h"
+#include "common/piece_sharing.h"
 
 namespace allanlab::app {
 
@@ -70,7 +70,7 @@ class TextRecordParser {
   using RowSink = std::function<bool(const TextRow&)>;
 
   static constexpr std::size_t kMaxLineBytes = 1 << 20;
-  // A chunk of at least this many bytes is read by two threads (when HelperThread::Useful()).
+  // A chunk of at least this many bytes is read by two threads (when PieceSharing::Useful()).
   static constexpr std::size_t kParallelBytes = 1 << 16;
   static constexpr std::size_t kParallelPieces = 16;
   // Rows of a headerless file read before deciding whether its first column is time: 32 noisy
@@ -173,8 +173,8 @@ class TextRecordParser {
   ColumnChooser choose_;
   RowSink sink_;
   std::string pending_;  // the incomplete last line of the previous chunk
-  bool parallel_ = HelperThread::Useful();
-  std::unique_ptr<HelperThread> helper_;
+  bool parallel_ = PieceSharing::Useful();
+  std::unique_ptr<PieceSharing> sharing_;
   std::vector<std::string_view> pieces_;      // FeedLinesInParallel's, and
   std::vector<CommonRowBatch> piece_rows_;     // what each holds
   std::string error_;
