@@ -649,12 +649,11 @@ void TextRecordParser::ParseCommonRows(std::string_view text, CommonRowBatch* ba
   }
 }
 
-bool TextRecordParser::TakeCommonRows(const CommonRowBatch& batch) {
+bool TextRecordParser::TakeCommonRows(const CommonRowBatch& batch, bool origin_set) {
   const std::size_t width = value_indices_.size() + 1;
-  // Read with the origin the parse began with: once a line ParseLine reads sets it (the first
-  // integer stamp), the times read ahead are not relative to it, and every later line is read
-  // again, one at a time.
-  const bool origin_set = time_origin_set_;
+  // The batch was read with the time origin set or not (origin_set): once a line ParseLine reads
+  // sets it (the first integer stamp), the times read ahead are not relative to it, and every
+  // later line is read again, one at a time.
   for (std::size_t i = 0; i < batch.lines.size(); ++i) {
     if (!batch.read[i] || time_origin_set_ != origin_set) {
       if (!TakeLine(batch.lines[i])) return false;
@@ -685,13 +684,14 @@ bool TextRecordParser::FeedLinesInParallel(std::string_view lines) {
     }
   }
   const int count = static_cast<int>(pieces_.size());
+  const bool origin_set = time_origin_set_;  // as every piece is read with
   if (piece_rows_.size() < pieces_.size()) piece_rows_.resize(pieces_.size());
   if (!sharing_) sharing_ = std::make_unique<PieceSharing>();
   sharing_->Run(count, [this](int p) {
     ParseCommonRows(pieces_[static_cast<std::size_t>(p)], &piece_rows_[static_cast<std::size_t>(p)]);
   });
   for (int p = 0; p < count; ++p) {
-    if (!TakeCommonRows(piece_rows_[static_cast<std::size_t>(p)])) return false;
+    if (!TakeCommonRows(piece_rows_[static_cast<std::size_t>(p)], origin_set)) return false;
   }
   return true;
 }

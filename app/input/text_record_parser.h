@@ -149,7 +149,8 @@ class TextRecordParser {
     std::vector<std::string_view> fields;
   };
   void ParseCommonRows(std::string_view text, CommonRowBatch* batch) const;
-  bool TakeCommonRows(const CommonRowBatch& batch);
+  // The rows of a batch read while the time origin was set or not (`origin_set`), in order.
+  bool TakeCommonRows(const CommonRowBatch& batch, bool origin_set);
   // Complete lines (each ending in a newline) read in pieces by this thread and the helper.
   bool FeedLinesInParallel(std::string_view lines);
   bool ParseDataRow(std::int64_t line);

@@ -403,17 +403,21 @@ TEST(TextRecordParserTest, IntegerStampsKeepTheirOriginInTwoThreads) {
     ASSERT_EQ(p.times.size(), 30000u);
     for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[k], 1e7 * k) << k;
   }
-  // "0.5" first: no origin yet, so the first integer stamp deep inside sets it.
+  // "0.5" first: no origin yet, so the first integer stamp, at the start of a chunk's second
+  // piece, sets it; the times after it, in that piece and the later ones, are relative to it.
   std::string late = "t,gyro_x\n0.5,1\n";
-  for (int k = 0; k < 30000; ++k) late += "0." + std::to_string(600000 + k) + ",2\n";
-  late += "7,3\n8,4\n9.5,5\n";
-  for (const bool single : {false, true}) {
-    const LargeParse p = ParseLarge(late, 1 << 16, single);
-    ASSERT_TRUE(p.ok) << p.error;
-    ASSERT_EQ(p.times.size(), 30004u);
-    EXPECT_EQ(p.times[30001], 0.0);  // 7: the origin
-    EXPECT_EQ(p.times[30002], 1.0);  // 8 - 7
-    EXPECT_EQ(p.times[30003], 2.5);  // 9.5 - 7
+  for (int k = 0; k < 1000; ++k) late += "0." + std::to_string(600000 + k) + ",2\n";
+  late += "7,3\n";
+  for (int k = 0; k < 30000; ++k) late += std::to_string(k + 8) + ".5,4\n";
+  for (const std::size_t chunk : {late.size(), std::size_t{1} << 16}) {
+    for (const bool single : {false, true}) {
+      const LargeParse p = ParseLarge(late, chunk, single);
+      ASSERT_TRUE(p.ok) << p.error;
+      ASSERT_EQ(p.times.size(), 31002u);
+      EXPECT_EQ(p.times[1000], 0.6 + 0.000999);  // no origin yet: as written
+      EXPECT_EQ(p.times[1001], 0.0);             // 7: the origin
+      for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[1002 + k], k + 1.5) << k << (single ? ", one thread" : ", two threads");
+    }
   }
 }
 
