@@ -556,17 +556,6 @@ bool TextRecordParser::EmitRow(std::int64_t line_no, bool has_time, double time)
   return true;
 }
 
-namespace {
-
-// 0x80 in each byte of `word` equal to c, 0 in every other (exact: no carries between bytes).
-std::uint64_t BytesEqual(std::uint64_t word, unsigned char c) {
-  constexpr std::uint64_t kLow7 = 0x7f7f7f7f7f7f7f7fULL;
-  const std::uint64_t x = word ^ (0x0101010101010101ULL * c);
-  return ~(((x & kLow7) + kLow7) | x | kLow7);
-}
-
-}  // namespace
-
 bool TextRecordParser::CommonRowsPossible() const {
   // Before the first data row the format, the columns and the time origin may still change.
   return format_known_ && !probing_ && data_rows_ > 0 && delimiter_ != ' ';
@@ -577,33 +566,19 @@ bool TextRecordParser::ParseCommonRow(std::string_view line, std::vector<std::st
   if (line.size() > kMaxLineBytes || Trim(line).empty()) return false;  // a blank line is skipped
   std::size_t needed = static_cast<std::size_t>(time_index_ + 1);
   for (int index : value_indices_) needed = std::max(needed, static_cast<std::size_t>(index) + 1);
-  // One pass over the line: a '#' or NUL sends it to ParseLine; each delimiter ends a field,
-  // trimmed as Split trims it. Eight bytes at a time, then the rest one at a time.
-  fields->clear();
+  // A '#' or NUL anywhere sends the line to ParseLine; the needed fields end at the delimiters
+  // (trimmed as Split trims them); the fields after them are not looked at.
   const char* const p = line.data();
   const std::size_t n = line.size();
-  const auto delimiter = static_cast<unsigned char>(delimiter_);
-  std::size_t field_start = 0;
-  const auto end_field = [&](std::size_t at) {
-    if (fields->size() < needed) fields->push_back(Trim(line.substr(field_start, at - field_start)));
-    field_start = at + 1;
-  };
-  std::size_t i = 0;
-  if constexpr (std::endian::native == std::endian::little) {
-    for (; i + 8 <= n; i += 8) {
-      std::uint64_t word;
-      std::memcpy(&word, p + i, 8);
-      if (BytesEqual(word, '#') | BytesEqual(word, 0)) return false;
-      for (std::uint64_t d = BytesEqual(word, delimiter); d != 0; d &= d - 1) {
-        end_field(i + static_cast<std::size_t>(std::countr_zero(d)) / 8);
-      }
-    }
+  if (std::memchr(p, '#', n) != nullptr || std::memchr(p, '\0', n) != nullptr) return false;
+  fields->clear();
+  for (std::size_t start = 0; fields->size() < needed;) {
+    const void* const found = std::memchr(p + start, delimiter_, n - start);
+    const std::size_t end = found == nullptr ? n : static_cast<std::size_t>(static_cast<const char*>(found) - p);
+    fields->push_back(Trim(line.substr(start, end - start)));
+    if (found == nullptr) break;
+    start = end + 1;
   }
-  for (; i < n; ++i) {
-    if (p[i] == '#' || p[i] == '\0') return false;
-    if (p[i] == delimiter_) end_field(i);
-  }
-  end_field(n);
   if (fields->size() < needed) return false;
   for (std::size_t k = 0; k < value_indices_.size(); ++k) {
     if (!ParseNumberField((*fields)[static_cast<std::size_t>(value_indices_[k])], &values[k])) return false;
