@@ -274,6 +274,25 @@ TEST_F(AvarCommandTest, StreamAgreesWithInMemory) {
   }
 }
 
+// A text record large enough to be parsed by two threads, its xz copy (decompressed ahead in a
+// second thread) and --stream folds shared by two threads: the table and the JSON points are the
+// same, to the bit, with OpenMP limited to one thread.
+TEST_F(AvarCommandTest, OneThreadOrTwoGiveTheSameOutput) {
+  const std::vector<double> y = Rate(300000, 9);
+  Write("big.csv", Csv(y, 100));
+  ASSERT_EQ(std::system(("xz -kf -1 " + Quote(Path("big.csv"))).c_str()), 0);
+  for (const std::string args : {"big.csv", "big.csv.xz", "big.csv --stream --stream-exact-m 4096"}) {
+    const RunResult two = Run("avar " + args + " --json two.json");
+    ::setenv("OMP_NUM_THREADS", "1", 1);  // inherited by the command
+    const RunResult one = Run("avar " + args + " --json one.json");
+    ::unsetenv("OMP_NUM_THREADS");
+    ASSERT_EQ(two.exit_code, 0) << two.err;
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    EXPECT_EQ(two.out, one.out) << args;
+    EXPECT_EQ(Json("two.json")["points"].dump(), Json("one.json")["points"].dump()) << args;
+  }
+}
+
 TEST_F(AvarCommandTest, IrregularStepsAndDroppedValuesAreReported) {
   std::string text = "t,x\n";
   for (int k = 0; k < 200; ++k) {
