@@ -3,7 +3,6 @@
 #include "common/piece_sharing.h"
 
 #include <algorithm>
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -56,29 +55,9 @@ bool IsMissingMarker(std::string_view s) {
   return s.empty() || EqualsIgnoreCase(s, "na") || EqualsIgnoreCase(s, "n/a");
 }
 
-// Appends the decimal digits at p to *digits (digits * 10 + d each), eight at a time while eight
-// are there: the same integer as one at a time (wrapped alike past 19 digits, which the caller
-// refuses). The eight-digit step is the usual SWAR reduction: pairs, then quads, then the eight,
-// by three multiplications of the little-endian word.
+// Appends the decimal digits at p to *digits (digits * 10 + d each); returns the first non-digit.
 const char* AppendDigits(const char* p, const char* end, std::uint64_t* digits) {
   std::uint64_t value = *digits;
-  while (end - p >= 8) {
-    std::uint64_t word;
-    std::memcpy(&word, p, 8);
-    if constexpr (std::endian::native != std::endian::little) break;
-    // Every byte in '0'..'9': no high bit after adding 0x46 (bytes > '9' overflow into it) or
-    // after subtracting 0x30 (bytes < '0' borrow into it).
-    if (((word + 0x4646464646464646ULL) | (word - 0x3030303030303030ULL)) & 0x8080808080808080ULL) {
-      break;
-    }
-    word -= 0x3030303030303030ULL;
-    word = word * 10 + (word >> 8);  // each byte pair as one two-digit number
-    word = (((word & 0x000000FF000000FFULL) * (100 + (1000000ULL << 32))) +
-            (((word >> 16) & 0x000000FF000000FFULL) * (1 + (10000ULL << 32)))) >>
-           32;
-    value = value * 100000000ULL + (word & 0xFFFFFFFFULL);
-    p += 8;
-  }
   for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) value = value * 10 + static_cast<std::uint64_t>(*p - '0');
   *digits = value;
   return p;
