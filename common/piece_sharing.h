@@ -3,9 +3,8 @@
 // the next piece nobody has taken until none is left, and Run returns when every piece has run.
 // What a piece computes does not depend on which thread ran it, so neither does the result. The
 // caller never waits for the helper to start (on a shared machine it may be kept waiting: it then
-// costs at most the piece it holds), and the helper sleeps between runs (no spinning). Used where
-// one pass over a record has two independent parts: the lines of a text chunk
-// (app/input/text_record_parser.h) and the octaves of a streamed block (estimators/streaming_avar.h).
+// costs at most the piece it holds), and the helper sleeps between runs (no spinning). Used for the
+// octaves of a streamed block (estimators/streaming_avar.h).
 #include <condition_variable>
 #include <functional>
 #include <mutex>

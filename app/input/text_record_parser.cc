@@ -1,12 +1,9 @@
 #include "app/input/text_record_parser.h"
 
-#include "common/piece_sharing.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <system_error>
 #include <utility>
@@ -55,14 +52,6 @@ bool IsMissingMarker(std::string_view s) {
   return s.empty() || EqualsIgnoreCase(s, "na") || EqualsIgnoreCase(s, "n/a");
 }
 
-// Appends the decimal digits at p to *digits (digits * 10 + d each); returns the first non-digit.
-const char* AppendDigits(const char* p, const char* end, std::uint64_t* digits) {
-  std::uint64_t value = *digits;
-  for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) value = value * 10 + static_cast<std::uint64_t>(*p - '0');
-  *digits = value;
-  return p;
-}
-
 // A plain decimal "123.456e-7" whose digits fit 2^53 and whose power of ten is at most 22 in
 // size: the value is then one exactly-rounded multiplication or division of two exact doubles
 // (Clinger's fast path), the same double std::from_chars returns, at a fraction of its cost.
@@ -76,13 +65,13 @@ bool ParsePlainDecimal(std::string_view s, double* value) {
   // At most 19 digits (leading zeros included) fit a uint64 without overflow.
   std::uint64_t digits = 0;
   const char* const first = p;
-  p = AppendDigits(p, end, &digits);
+  for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) digits = digits * 10 + (*p - '0');
   std::ptrdiff_t count = p - first;
   if (count == 0) return false;
   int scale = 0;  // the power of ten the digits are multiplied by
   if (p != end && *p == '.') {
     const char* const fraction = ++p;
-    p = AppendDigits(p, end, &digits);
+    for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) digits = digits * 10 + (*p - '0');
     if (p == fraction) return false;
     scale = static_cast<int>(fraction - p);
     count += p - fraction;
@@ -170,15 +159,6 @@ bool TextRecordParser::Fail(std::string message) {
 bool TextRecordParser::Feed(std::string_view chunk) {
   if (failed_) return false;
   while (!chunk.empty()) {
-    if (parallel_ && pending_.empty() && chunk.size() >= kParallelBytes && CommonRowsPossible()) {
-      // Every complete line of a large chunk, read by two threads.
-      const std::size_t last = chunk.rfind('\n');
-      if (last != std::string_view::npos) {
-        if (!FeedLinesInParallel(chunk.substr(0, last + 1))) return false;
-        chunk.remove_prefix(last + 1);
-        continue;
-      }
-    }
     const std::size_t newline = chunk.find('\n');
     if (newline == std::string_view::npos) {
       if (pending_.size() + chunk.size() > kMaxLineBytes) {
@@ -188,20 +168,28 @@ bool TextRecordParser::Feed(std::string_view chunk) {
       pending_.append(chunk);
       return true;
     }
-    const std::string_view line = chunk.substr(0, newline);
+    std::string_view line = chunk.substr(0, newline);
     chunk.remove_prefix(newline + 1);
+    bool ok;
     if (pending_.empty()) {
-      if (!TakeLine(line)) return false;
-      continue;
+      if (line.size() > kMaxLineBytes) {
+        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                    "record (raw samples? use --format f32|f64)");
+      }
+      ok = ParseLine(line);
+    } else {
+      if (pending_.size() + line.size() > kMaxLineBytes) {
+        return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
+                    "record (raw samples? use --format f32|f64)");
+      }
+      pending_.append(line);
+      ok = ParseLine(pending_);
+      pending_.clear();
     }
-    if (pending_.size() + line.size() > kMaxLineBytes) {
-      return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
-                  "record (raw samples? use --format f32|f64)");
+    if (!ok) {
+      failed_ = true;
+      return false;
     }
-    pending_.append(line);
-    const std::string whole = std::move(pending_);
-    pending_.clear();
-    if (!TakeLine(whole)) return false;
   }
   return true;
 }
@@ -247,38 +235,24 @@ void TextRecordParser::Split(std::string_view line, std::vector<std::string_view
   }
 }
 
-TextRecordParser::TimeField TextRecordParser::ReadTimeField(std::string_view field, double* time,
-                                                             std::int64_t* stamp) const {
+bool TextRecordParser::ParseTimeField(std::string_view field, double* time) {
   std::string_view s = Trim(field);
   if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = Trim(s.substr(1, s.size() - 2));
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), *stamp);
-  const bool integer = !s.empty() && ec == std::errc() && end == s.data() + s.size();
-  if (integer && !time_origin_set_) return TimeField::kFirstStamp;
-  std::int64_t since_origin = 0;
-  if (integer && !__builtin_sub_overflow(*stamp, time_origin_, &since_origin)) {
-    *time = static_cast<double>(since_origin);
-    return TimeField::kNumber;
-  }
-  if (!ParseNumberField(field, time)) return TimeField::kNotANumber;
-  if (time_origin_set_) *time -= static_cast<double>(time_origin_);
-  return TimeField::kNumber;
-}
-
-bool TextRecordParser::ParseTimeField(std::string_view field, double* time) {
   std::int64_t stamp = 0;
-  switch (ReadTimeField(field, time, &stamp)) {
-    case TimeField::kNumber:
-      return true;
-    case TimeField::kFirstStamp:
-      // The first integer stamp is the origin: later ones are given relative to it, exactly.
-      time_origin_set_ = true;
-      time_origin_ = stamp;
-      *time = 0.0;
-      return true;
-    case TimeField::kNotANumber:
-      break;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), stamp);
+  const bool integer = !s.empty() && ec == std::errc() && end == s.data() + s.size();
+  if (!time_origin_set_ && integer) {
+    time_origin_set_ = true;
+    time_origin_ = stamp;
   }
-  return false;
+  std::int64_t since_origin = 0;
+  if (integer && time_origin_set_ && !__builtin_sub_overflow(stamp, time_origin_, &since_origin)) {
+    *time = static_cast<double>(since_origin);
+    return true;
+  }
+  if (!ParseNumberField(field, time)) return false;
+  if (time_origin_set_) *time -= static_cast<double>(time_origin_);
+  return true;
 }
 
 bool TextRecordParser::ChooseColumns(const std::vector<std::string_view>& first, bool header) {
@@ -505,6 +479,8 @@ bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
                 (time_index_ >= 0 ? " and " + TimeColumnPhrase(time_column_) : std::string()) + " need " +
                 std::to_string(needed));
   }
+  TextRow row;
+  row.line = line_no;
   for (std::size_t k = 0; k < value_indices_.size(); ++k) {
     const int index = value_indices_[k];
     if (!ParseNumberField(fields_[index], &values_[k])) {
@@ -512,140 +488,19 @@ bool TextRecordParser::ParseDataRow(std::int64_t line_no) {
                   Shown(Trim(fields_[index])) + "' is not a number");
     }
   }
-  double time = 0.0;
-  if (time_index_ >= 0 && !ParseTimeField(fields_[time_index_], &time)) {
-    return Fail("line " + std::to_string(line_no) + ": " + TimeColumnPhrase(time_column_) + ": '" +
-                Shown(Trim(fields_[time_index_])) + "' is not a number");
-  }
-  return EmitRow(line_no, time_index_ >= 0, time);
-}
-
-bool TextRecordParser::EmitRow(std::int64_t line_no, bool has_time, double time) {
-  TextRow row;
-  row.line = line_no;
   row.value = values_.front();
   row.values = values_;
-  row.has_time = has_time;
-  row.time = time;
+  if (time_index_ >= 0) {
+    row.has_time = true;
+    if (!ParseTimeField(fields_[time_index_], &row.time)) {
+      return Fail("line " + std::to_string(line_no) + ": " + TimeColumnPhrase(time_column_) + ": '" +
+                  Shown(Trim(fields_[time_index_])) + "' is not a number");
+    }
+  }
   ++data_rows_;
   if (!sink_(row)) {
     failed_ = true;
     return false;
-  }
-  return true;
-}
-
-bool TextRecordParser::CommonRowsPossible() const {
-  // Before the first data row the format, the columns and the time origin may still change.
-  return format_known_ && !probing_ && data_rows_ > 0 && delimiter_ != ' ';
-}
-
-bool TextRecordParser::ParseCommonRow(std::string_view line, std::vector<std::string_view>* fields,
-                                      double* values, double* time) const {
-  if (line.size() > kMaxLineBytes || Trim(line).empty()) return false;  // a blank line is skipped
-  std::size_t needed = static_cast<std::size_t>(time_index_ + 1);
-  for (int index : value_indices_) needed = std::max(needed, static_cast<std::size_t>(index) + 1);
-  // A '#' or NUL anywhere sends the line to ParseLine; the needed fields end at the delimiters
-  // (trimmed as Split trims them); the fields after them are not looked at.
-  const char* const p = line.data();
-  const std::size_t n = line.size();
-  if (std::memchr(p, '#', n) != nullptr || std::memchr(p, '\0', n) != nullptr) return false;
-  fields->clear();
-  for (std::size_t start = 0; fields->size() < needed;) {
-    const void* const found = std::memchr(p + start, delimiter_, n - start);
-    const std::size_t end = found == nullptr ? n : static_cast<std::size_t>(static_cast<const char*>(found) - p);
-    fields->push_back(Trim(line.substr(start, end - start)));
-    if (found == nullptr) break;
-    start = end + 1;
-  }
-  if (fields->size() < needed) return false;
-  for (std::size_t k = 0; k < value_indices_.size(); ++k) {
-    if (!ParseNumberField((*fields)[static_cast<std::size_t>(value_indices_[k])], &values[k])) return false;
-  }
-  *time = 0.0;
-  std::int64_t stamp = 0;
-  return time_index_ < 0 ||
-         ReadTimeField((*fields)[static_cast<std::size_t>(time_index_)], time, &stamp) == TimeField::kNumber;
-}
-
-bool TextRecordParser::ReadCommonRow(std::string_view line, bool* ok) {
-  double time = 0.0;
-  if (!CommonRowsPossible() || !ParseCommonRow(line, &fields_, values_.data(), &time)) return false;
-  ++line_;
-  *ok = EmitRow(line_, time_index_ >= 0, time);
-  return true;
-}
-
-bool TextRecordParser::TakeLine(std::string_view line) {
-  if (line.size() > kMaxLineBytes) {
-    return Fail("line " + std::to_string(line_ + 1) + " is longer than 1 MiB: not a text " +
-                "record (raw samples? use --format f32|f64)");
-  }
-  bool ok;
-  if (!ReadCommonRow(line, &ok)) ok = ParseLine(line);
-  if (!ok) failed_ = true;
-  return ok;
-}
-
-void TextRecordParser::ParseCommonRows(std::string_view text, CommonRowBatch* batch) const {
-  const std::size_t width = value_indices_.size() + 1;
-  batch->lines.clear();
-  batch->numbers.clear();
-  batch->read.clear();
-  while (!text.empty()) {
-    const std::size_t newline = text.find('\n');
-    const std::string_view line = text.substr(0, newline);
-    text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
-    batch->lines.push_back(line);
-    batch->numbers.resize(batch->numbers.size() + width);
-    double* const row = batch->numbers.data() + batch->numbers.size() - width;
-    batch->read.push_back(ParseCommonRow(line, &batch->fields, row, row + width - 1));
-  }
-}
-
-bool TextRecordParser::TakeCommonRows(const CommonRowBatch& batch, bool origin_set) {
-  const std::size_t width = value_indices_.size() + 1;
-  // The batch was read with the time origin set or not (origin_set): once a line ParseLine reads
-  // sets it (the first integer stamp), the times read ahead are not relative to it, and every
-  // later line is read again, one at a time.
-  for (std::size_t i = 0; i < batch.lines.size(); ++i) {
-    if (!batch.read[i] || time_origin_set_ != origin_set) {
-      if (!TakeLine(batch.lines[i])) return false;
-      continue;
-    }
-    const double* const row = batch.numbers.data() + i * width;
-    std::copy(row, row + width - 1, values_.begin());
-    ++line_;
-    if (!EmitRow(line_, time_index_ >= 0, row[width - 1])) return false;
-  }
-  return true;
-}
-
-bool TextRecordParser::FeedLinesInParallel(std::string_view lines) {
-  // The lines in kParallelPieces pieces, split at newlines, read by this thread and the helper
-  // (common/piece_sharing.h); then this thread passes every row on, in order (the sink's share).
-  // Who read a piece never changes what it holds.
-  pieces_.clear();
-  while (!lines.empty()) {
-    const std::size_t target = std::max<std::size_t>(lines.size() / (kParallelPieces - pieces_.size()), 1);
-    std::size_t end = lines.find('\n', target - 1);
-    end = end == std::string_view::npos ? lines.size() : end + 1;
-    pieces_.push_back(lines.substr(0, end));
-    lines.remove_prefix(end);
-    if (pieces_.size() + 1 == kParallelPieces) {
-      if (!lines.empty()) pieces_.push_back(lines);
-      break;
-    }
-  }
-  const int count = static_cast<int>(pieces_.size());
-  const bool origin_set = time_origin_set_;  // as every piece is read with
-  if (piece_rows_.size() < pieces_.size()) piece_rows_.resize(pieces_.size());
-  if (!sharing_) sharing_ = std::make_unique<PieceSharing>();
-  sharing_->Run(count, [this](int p) {
-    ParseCommonRows(pieces_[static_cast<std::size_t>(p)], &piece_rows_[static_cast<std::size_t>(p)]);
-  });
-  for (int p = 0; p < count; ++p) {
-    if (!TakeCommonRows(piece_rows_[static_cast<std::size_t>(p)], origin_set)) return false;
   }
   return true;
 }

@@ -22,14 +22,11 @@
 //    and SigmaTheta), in seconds, unless --column chose it as the data.
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include "common/piece_sharing.h"
 
 namespace allanlab::app {
 
@@ -70,9 +67,6 @@ class TextRecordParser {
   using RowSink = std::function<bool(const TextRow&)>;
 
   static constexpr std::size_t kMaxLineBytes = 1 << 20;
-  // A chunk of at least this many bytes is read by two threads (when PieceSharing::Useful()).
-  static constexpr std::size_t kParallelBytes = 1 << 16;
-  static constexpr std::size_t kParallelPieces = 16;
   // Rows of a headerless file read before deciding whether its first column is time: 32 noisy
   // values rise in order by chance with probability 1/32! (~4e-36).
   static constexpr int kTimeProbeRows = 32;
@@ -101,9 +95,6 @@ class TextRecordParser {
   // Parses the last line if it has no newline. Call once, after the last Feed().
   bool Finish();
 
-  // Reads every chunk in the calling thread (the result is the same either way).
-  void set_single_thread() { parallel_ = false; }
-
   const std::string& error() const { return error_; }
   // The error is about the --column choice (the command line), not about the file's content.
   bool error_is_usage() const { return error_is_usage_; }
@@ -128,34 +119,7 @@ class TextRecordParser {
 
  private:
   bool ParseLine(std::string_view line);
-  // Data rows in the common shape (after the first data row, no comment or NUL, every needed
-  // field a number) are read in one pass, without ParseLine's general steps; any other line goes
-  // to ParseLine, which reads it by every rule, with its messages.
-  bool CommonRowsPossible() const;
-  // One line read so, changing nothing (thread-safe): false when it is not a common row.
-  // `values` takes one entry per value column; `fields` is scratch.
-  bool ParseCommonRow(std::string_view line, std::vector<std::string_view>* fields, double* values,
-                      double* time) const;
-  // ParseCommonRow and the row to the sink: true when the line was read so (*ok: the sink's
-  // answer); false, with nothing changed, for any other line.
-  bool ReadCommonRow(std::string_view line, bool* ok);
-  // One complete line (no newline), by whichever path reads it; false on an error or a stop.
-  bool TakeLine(std::string_view line);
-  // Lines read ahead, as ParseCommonRow reads each: per line its values then its time.
-  struct CommonRowBatch {
-    std::vector<std::string_view> lines;
-    std::vector<double> numbers;
-    std::vector<char> read;  // 1: read as a common row; 0: for TakeLine
-    std::vector<std::string_view> fields;
-  };
-  void ParseCommonRows(std::string_view text, CommonRowBatch* batch) const;
-  // The rows of a batch read while the time origin was set or not (`origin_set`), in order.
-  bool TakeCommonRows(const CommonRowBatch& batch, bool origin_set);
-  // Complete lines (each ending in a newline) read in pieces by this thread and the helper.
-  bool FeedLinesInParallel(std::string_view lines);
   bool ParseDataRow(std::int64_t line);
-  // The current row (values_, and the time when has_time) to the sink.
-  bool EmitRow(std::int64_t line, bool has_time, double time);
   bool DecideHeaderlessTime();
   void KeepLeadingComment(std::string_view comment);
   bool ChooseColumns(const std::vector<std::string_view>& first_fields, bool header);
@@ -163,10 +127,6 @@ class TextRecordParser {
                      int* index);
   bool Fail(std::string message);
   bool ParseTimeField(std::string_view field, double* time);
-  // The time field as ParseTimeField reads it, changing nothing: kFirstStamp when it is an
-  // integer stamp and no origin is set yet (*stamp holds it, the origin to set).
-  enum class TimeField { kNumber, kFirstStamp, kNotANumber };
-  TimeField ReadTimeField(std::string_view field, double* time, std::int64_t* stamp) const;
   void Split(std::string_view line, std::vector<std::string_view>* fields) const;
 
   std::string column_spec_;  // the first of column_specs_
@@ -174,10 +134,6 @@ class TextRecordParser {
   ColumnChooser choose_;
   RowSink sink_;
   std::string pending_;  // the incomplete last line of the previous chunk
-  bool parallel_ = PieceSharing::Useful();
-  std::unique_ptr<PieceSharing> sharing_;
-  std::vector<std::string_view> pieces_;      // FeedLinesInParallel's, and
-  std::vector<CommonRowBatch> piece_rows_;     // what each holds
   std::string error_;
   bool failed_ = false;
   bool error_is_usage_ = false;

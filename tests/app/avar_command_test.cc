@@ -274,9 +274,8 @@ TEST_F(AvarCommandTest, StreamAgreesWithInMemory) {
   }
 }
 
-// A text record large enough to be parsed by two threads, its xz copy (decompressed ahead in a
-// second thread) and --stream folds shared by two threads: the table and the JSON points are the
-// same, to the bit, with OpenMP limited to one thread.
+// An xz record (decompressed ahead in a second thread) and --stream folds shared by two threads:
+// the table and the JSON points are the same, to the bit, with OpenMP limited to one thread.
 TEST_F(AvarCommandTest, OneThreadOrTwoGiveTheSameOutput) {
   const std::vector<double> y = Rate(300000, 9);
   Write("big.csv", Csv(y, 100));

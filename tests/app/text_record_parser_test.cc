@@ -278,7 +278,7 @@ TEST(ParseNumberFieldTest, AgreesWithStrtod) {
 }
 
 
-// Rows as a large record's parse gives them, in one thread or two, in chunks of `chunk` bytes.
+// Rows as a large record's parse gives them, in chunks of `chunk` bytes.
 struct LargeParse {
   bool ok = false;
   std::string error;
@@ -286,7 +286,7 @@ struct LargeParse {
   std::vector<double> values, times;
 };
 
-LargeParse ParseLarge(const std::string& text, std::size_t chunk, bool single_thread) {
+LargeParse ParseLarge(const std::string& text, std::size_t chunk) {
   LargeParse r;
   TextRecordParser parser("gyro_x", [&](const TextRow& row) {
     r.lines.push_back(row.line);
@@ -294,7 +294,6 @@ LargeParse ParseLarge(const std::string& text, std::size_t chunk, bool single_th
     r.times.push_back(row.time);
     return true;
   });
-  if (single_thread) parser.set_single_thread();
   r.ok = true;
   for (std::size_t i = 0; r.ok && i < text.size(); i += chunk) r.ok = parser.Feed(std::string_view(text).substr(i, chunk));
   if (r.ok) r.ok = parser.Finish();
@@ -304,9 +303,8 @@ LargeParse ParseLarge(const std::string& text, std::size_t chunk, bool single_th
 
 // Many rows of every shape a data row takes after the first (CRLF, spaces around fields, quotes,
 // trailing comments, comment and blank lines, missing values, an unread column holding text), in
-// chunks that split lines anywhere: each row's value, time and line number are the ones written,
-// in one thread or two.
-TEST(TextRecordParserTest, LargeRecordsReadTheSameInOneOrTwoThreadsAndAnyChunks) {
+// chunks that split lines anywhere: each row's value, time and line number are the ones written.
+TEST(TextRecordParserTest, LargeRecordsReadTheSameInAnyChunks) {
   std::string text = "t_s,gyro_x,note\n";
   std::vector<std::int64_t> lines;
   std::vector<double> values, times;
@@ -343,25 +341,23 @@ TEST(TextRecordParserTest, LargeRecordsReadTheSameInOneOrTwoThreadsAndAnyChunks)
     times.push_back(std::strtod(time_text, nullptr));
   }
   for (const std::size_t chunk : {text.size(), std::size_t{1} << 16, (std::size_t{1} << 16) + 7, std::size_t{100003}, std::size_t{4093}}) {
-    for (const bool single : {false, true}) {
-      const LargeParse p = ParseLarge(text, chunk, single);
-      ASSERT_TRUE(p.ok) << p.error;
-      ASSERT_EQ(p.lines, lines) << "chunk " << chunk << (single ? ", one thread" : ", two threads");
-      ASSERT_EQ(p.times, times) << "chunk " << chunk;
-      ASSERT_EQ(p.values.size(), values.size());
-      for (std::size_t i = 0; i < values.size(); ++i) {
-        if (std::isnan(values[i])) {
-          ASSERT_TRUE(std::isnan(p.values[i])) << "line " << lines[i];
-        } else {
-          ASSERT_EQ(p.values[i], values[i]) << "line " << lines[i] << ", chunk " << chunk;
-        }
+    const LargeParse p = ParseLarge(text, chunk);
+    ASSERT_TRUE(p.ok) << p.error;
+    ASSERT_EQ(p.lines, lines) << "chunk " << chunk;
+    ASSERT_EQ(p.times, times) << "chunk " << chunk;
+    ASSERT_EQ(p.values.size(), values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (std::isnan(values[i])) {
+        ASSERT_TRUE(std::isnan(p.values[i])) << "line " << lines[i];
+      } else {
+        ASSERT_EQ(p.values[i], values[i]) << "line " << lines[i] << ", chunk " << chunk;
       }
     }
   }
 }
 
-// A bad token, a NUL byte or a short row deep inside a large chunk: the parse stops there, with
-// the message and line number the one-line-at-a-time reading gives, in one thread or two.
+// A bad token, a NUL byte, a short row or a bad time deep inside a large chunk: the parse stops
+// there, with the line's own number and the message of ErrorsNameTheLine.
 TEST(TextRecordParserTest, AnErrorDeepInsideAChunkNamesItsLine) {
   std::string rows;
   for (int k = 0; k < 50000; ++k) rows += std::to_string(k) + "," + std::to_string(k % 13) + ".5,x\n";
@@ -381,43 +377,39 @@ TEST(TextRecordParserTest, AnErrorDeepInsideAChunkNamesItsLine) {
     for (int k = 0; k < 40000; ++k) at = rows.find('\n', at) + 1;
     text += rows.substr(0, at) + c.bad_row + "\n" + rows.substr(at);
     for (const std::size_t chunk : {text.size(), std::size_t{1} << 18}) {
-      for (const bool single : {false, true}) {
-        const LargeParse p = ParseLarge(text, chunk, single);
-        EXPECT_FALSE(p.ok);
-        EXPECT_EQ(p.error, c.message) << "chunk " << chunk << (single ? ", one thread" : ", two threads");
-        EXPECT_EQ(p.lines.size(), 40000u) << c.message;  // every row before it, none after
-      }
+      const LargeParse p = ParseLarge(text, chunk);
+      EXPECT_FALSE(p.ok);
+      EXPECT_EQ(p.error, c.message) << "chunk " << chunk;
+      EXPECT_EQ(p.lines.size(), 40000u) << c.message;  // every row before it, none after
     }
   }
 }
 
-// Integer nanosecond stamps are given relative to the first, exactly, on either path; a first
-// stamp that is not an integer leaves later integer ones absolute, as read one line at a time.
-TEST(TextRecordParserTest, IntegerStampsKeepTheirOriginInTwoThreads) {
+// Integer nanosecond stamps are given relative to the first, exactly, in any chunks; when the
+// first stamps are not integers, the first integer one deep inside is the origin of the rest.
+TEST(TextRecordParserTest, IntegerStampsKeepTheirOriginInAnyChunks) {
   std::string text = "t_ns,gyro_x\n";
   const std::int64_t first = 1700000000123456789;
   for (int k = 0; k < 30000; ++k) text += std::to_string(first + 10000000LL * k) + "," + std::to_string(k) + "\n";
-  for (const bool single : {false, true}) {
-    const LargeParse p = ParseLarge(text, 1 << 17, single);
+  for (const std::size_t chunk : {text.size(), std::size_t{1} << 17}) {
+    const LargeParse p = ParseLarge(text, chunk);
     ASSERT_TRUE(p.ok) << p.error;
     ASSERT_EQ(p.times.size(), 30000u);
     for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[k], 1e7 * k) << k;
   }
-  // "0.5" first: no origin yet, so the first integer stamp, at the start of a chunk's second
-  // piece, sets it; the times after it, in that piece and the later ones, are relative to it.
+  // "0.5" first: no origin yet, so the first integer stamp, 1000 rows in, sets it; the times
+  // after it are relative to it.
   std::string late = "t,gyro_x\n0.5,1\n";
   for (int k = 0; k < 1000; ++k) late += "0." + std::to_string(600000 + k) + ",2\n";
   late += "7,3\n";
   for (int k = 0; k < 30000; ++k) late += std::to_string(k + 8) + ".5,4\n";
   for (const std::size_t chunk : {late.size(), std::size_t{1} << 16}) {
-    for (const bool single : {false, true}) {
-      const LargeParse p = ParseLarge(late, chunk, single);
-      ASSERT_TRUE(p.ok) << p.error;
-      ASSERT_EQ(p.times.size(), 31002u);
-      EXPECT_EQ(p.times[1000], 0.6 + 0.000999);  // no origin yet: as written
-      EXPECT_EQ(p.times[1001], 0.0);             // 7: the origin
-      for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[1002 + k], k + 1.5) << k << (single ? ", one thread" : ", two threads");
-    }
+    const LargeParse p = ParseLarge(late, chunk);
+    ASSERT_TRUE(p.ok) << p.error;
+    ASSERT_EQ(p.times.size(), 31002u);
+    EXPECT_EQ(p.times[1000], 0.6 + 0.000999);  // no origin yet: as written
+    EXPECT_EQ(p.times[1001], 0.0);             // 7: the origin
+    for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[1002 + k], k + 1.5) << k;
   }
 }
 
