@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/piece_sharing.h"
+
 namespace allanlab::estimators {
 namespace {
 
@@ -109,6 +111,7 @@ StreamingAvar::StreamingAvar(StreamingAvarOptions options) : options_(options) {
   lo_.reserve(reserved);
   hi_.push_back(0.0);  // S_0
   lo_.push_back(0.0);
+  if (PieceSharing::Useful()) sharing_ = std::make_shared<PieceSharing>();
 }
 
 const StreamingAvar::DoubleDouble& StreamingAvar::Octave::Back(std::int64_t k) const {
@@ -133,6 +136,46 @@ void StreamingAvar::Push(Octave* o, const DoubleDouble& s, std::int64_t n) {
     CompensatedAdd(&o->sums.n_sum, &o->sums.n_comp, d * d);
     ++o->sums.n_terms;
   }
+}
+
+void StreamingAvar::PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last) {
+  const std::int64_t stride = o->stride;
+  std::int64_t t = t_first;
+  // Until the ring is full a push makes no term: these go one at a time (once per octave).
+  for (; t <= t_last && o->pushed + 1 < 2 * o->span + 1; t += stride) Push(o, PrefixAt(t), t);
+  if (t > t_last) return;
+  // The ring holds 2 span + 1 values, so with the new one written at h, Back(span) is at h - span
+  // and Back(2 span) at h + 1 (mod its size): three positions that each advance by one per push,
+  // and the same terms, in the same order, as Push.
+  const std::int64_t size = static_cast<std::int64_t>(o->ring.size());
+  DoubleDouble* const ring = o->ring.data();
+  std::int64_t h = o->head;
+  std::int64_t b = h - o->span < 0 ? h - o->span + size : h - o->span;
+  std::int64_t c = h + 1 == size ? 0 : h + 1;
+  const std::int64_t m_mask = o->m - 1;  // m is a power of two
+  Sums sums = o->sums;
+  const double* const hi = hi_.data();
+  const double* const lo = lo_.data();
+  std::int64_t pushes = 0;
+  for (; t <= t_last; t += stride, ++pushes) {
+    const auto i = static_cast<std::size_t>(t - first_);
+    const double a_hi = hi[i], a_lo = lo[i];
+    ring[h] = {a_hi, a_lo};
+    const double d = SecondDifference(a_hi, a_lo, ring[b].hi, ring[b].lo, ring[c].hi, ring[c].lo);
+    CompensatedAdd(&sums.o_sum, &sums.o_comp, d * d);
+    if ((t & m_mask) == 0) {
+      CompensatedAdd(&sums.n_sum, &sums.n_comp, d * d);
+      ++sums.n_terms;
+    }
+    if (++h == size) h = 0;
+    if (++b == size) b = 0;
+    if (++c == size) c = 0;
+  }
+  sums.o_terms += pushes;
+  o->sums = sums;
+  o->head = h;
+  o->pushed += pushes;
+  o->last_index = t - stride;
 }
 
 StreamingAvar::DoubleDouble StreamingAvar::PrefixAt(std::int64_t n) const {
@@ -166,32 +209,31 @@ void StreamingAvar::StartNextOctave() {
   octaves_.push_back(std::move(next));
 }
 
-void StreamingAvar::Fold() {
-  const std::int64_t from = folded_ + 1;
-  const std::int64_t to = n_;
-  if (from > to) return;
+void StreamingAvar::FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const {
   const double* hi = hi_.data();
   const double* lo = lo_.data();
-  const SquaresFn squares = BlockSquares();
-  for (ExactOctave& o : exact_) {
-    const std::int64_t m = o.m;
-    if (2 * m > to) break;  // this octave and every longer one: no term yet
-    const std::int64_t begin = std::max(from, 2 * m);
-    // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
-    const std::int64_t first = begin - first_;
-    const std::int64_t last = to - first_;
-    // Partial sums over the block (vectorised), then one compensated addition per block.
-    const double block = squares(hi, lo, first, last, m);
-    CompensatedAdd(&o.sums.o_sum, &o.sums.o_comp, block);
-    o.sums.o_terms += to - begin + 1;
-    for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
-      const std::int64_t a = t - first_;
-      const double d =
-          SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
-      CompensatedAdd(&o.sums.n_sum, &o.sums.n_comp, d * d);
-      ++o.sums.n_terms;
-    }
+  const std::int64_t m = o->m;
+  const std::int64_t begin = std::max(from, 2 * m);
+  // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
+  const std::int64_t first = begin - first_;
+  const std::int64_t last = to - first_;
+  // The sums in a local: another thread may be writing the next octave's, beside them in memory.
+  Sums sums = o->sums;
+  // Partial sums over the block (vectorised), then one compensated addition per block.
+  const double block = BlockSquares()(hi, lo, first, last, m);
+  CompensatedAdd(&sums.o_sum, &sums.o_comp, block);
+  sums.o_terms += to - begin + 1;
+  for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
+    const std::int64_t a = t - first_;
+    const double d =
+        SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
+    CompensatedAdd(&sums.n_sum, &sums.n_comp, d * d);
+    ++sums.n_terms;
   }
+  o->sums = sums;
+}
+
+void StreamingAvar::FoldStrided(std::int64_t from, std::int64_t to) {
   const std::int64_t first_strided_start = 2 * exact_.back().m;
   if (octaves_.empty() && exact_.back().m <= std::numeric_limits<std::int64_t>::max() / 4 &&
       first_strided_start >= from && first_strided_start <= to) {
@@ -199,11 +241,38 @@ void StreamingAvar::Fold() {
   }
   // Octaves may be added inside the loop: index, not iterators or references.
   for (std::size_t j = 0; j < octaves_.size(); ++j) {
-    const std::int64_t stride = octaves_[j].stride;
-    for (std::int64_t t = octaves_[j].last_index + stride; t <= to; t += stride) {
-      Push(&octaves_[j], PrefixAt(t), t);
-      if (j + 1 == octaves_.size() && t == 2 * octaves_[j].m) StartNextOctave();
+    const std::int64_t first = octaves_[j].last_index + octaves_[j].stride;
+    const std::int64_t seed_at = 2 * octaves_[j].m;  // the next octave starts from this ring
+    if (j + 1 == octaves_.size() && first <= seed_at && seed_at <= to) {
+      PushRun(&octaves_[j], first, seed_at);
+      StartNextOctave();
     }
+    PushRun(&octaves_[j], octaves_[j].last_index + octaves_[j].stride, to);
+  }
+}
+
+void StreamingAvar::Fold() {
+  const std::int64_t from = folded_ + 1;
+  const std::int64_t to = n_;
+  if (from > to) return;
+  // Each exact octave with a term (2m <= to) is a piece, and the strided octaves together are
+  // one more (each starts from the one before it): pieces with sums of their own, which read the
+  // block and write nothing else, so two threads may share them.
+  std::size_t active = 0;
+  while (active < exact_.size() && 2 * exact_[active].m <= to) ++active;
+  const auto fold_piece = [&](int piece) {
+    const auto p = static_cast<std::size_t>(piece);
+    if (p < active) {
+      FoldExact(&exact_[p], from, to);
+    } else {
+      FoldStrided(from, to);
+    }
+  };
+  const int pieces = static_cast<int>(active) + 1;
+  if (sharing_ && to - from + 1 >= kSharedFoldValues) {
+    sharing_->Run(pieces, fold_piece);
+  } else {
+    for (int p = 0; p < pieces; ++p) fold_piece(p);
   }
   folded_ = to;
   // Keep S_{to - 2 largest} .. S_to for the next block's lags.
@@ -219,24 +288,43 @@ void StreamingAvar::Fold() {
   }
 }
 
-void StreamingAvar::Add(double y) {
-  if (n_ == 0) reference_ = y;
-  const double x = y - reference_;
-  // prefix_ += x in double-double (TwoSum, then renormalise).
-  const double t = prefix_.hi + x;
-  const double bp = t - prefix_.hi;
-  const double err = (prefix_.hi - (t - bp)) + (x - bp);
-  const double lo = prefix_.lo + err;
-  prefix_.hi = t + lo;
-  prefix_.lo = lo - (prefix_.hi - t);
-  ++n_;
-  hi_.push_back(prefix_.hi);
-  lo_.push_back(prefix_.lo);
-  if (hi_.size() == capacity_) Fold();
-}
+void StreamingAvar::Add(double y) { Add(std::span<const double>(&y, 1)); }
 
 void StreamingAvar::Add(std::span<const double> y) {
-  for (const double v : y) Add(v);
+  if (y.empty()) return;
+  if (n_ == 0) reference_ = y.front();
+  // The prefix sum in locals, so that the chain of dependent additions each sample waits on stays
+  // in registers (a member would be stored and loaded again on every sample).
+  double hi = prefix_.hi, lo = prefix_.lo;
+  const double reference = reference_;
+  std::size_t i = 0;
+  while (i < y.size()) {
+    const std::size_t run = std::min(capacity_ - hi_.size(), y.size() - i);
+    for (std::size_t k = i; k < i + run; ++k) {
+      const double x = y[k] - reference;
+      // (hi, lo) += x in double-double: the exact error of hi + x, then renormalise. When
+      // |hi| >= |x|, as for nearly every sample once the sum has grown, Dekker's FastTwoSum
+      // gives that error in two operations; Knuth's TwoSum, for the rest, in five. Both give it
+      // exactly, so the same bits: the branch only shortens the chain.
+      const double t = hi + x;
+      double err;
+      if (__builtin_expect(std::abs(hi) >= std::abs(x), 1)) {
+        err = x - (t - hi);
+      } else {
+        const double bp = t - hi;
+        err = (hi - (t - bp)) + (x - bp);
+      }
+      const double sum_lo = lo + err;
+      hi = t + sum_lo;
+      lo = sum_lo - (hi - t);
+      hi_.push_back(hi);
+      lo_.push_back(lo);
+    }
+    i += run;
+    n_ += static_cast<std::int64_t>(run);
+    prefix_ = {hi, lo};
+    if (hi_.size() == capacity_) Fold();
+  }
 }
 
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {

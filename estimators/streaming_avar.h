@@ -32,9 +32,14 @@
 // squared differences are summed with Neumaier compensation.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
+
+namespace allanlab {
+class PieceSharing;
+}
 
 namespace allanlab::estimators {
 
@@ -101,10 +106,18 @@ class StreamingAvar {
     const DoubleDouble& Back(std::int64_t k) const;  // k-th latest pushed value (0 = latest)
   };
   void Push(Octave* o, const DoubleDouble& s, std::int64_t n);
+  // Push of S_t for t = t_first, t_first + stride, ... <= t_last (held in the block).
+  void PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last);
   void StartNextOctave();
   // Folds the prefix sums S_{folded_ + 1} .. S_{n_} into every octave and keeps the last
-  // 2 exact_overlap_max_m + 1 of them for the next block.
+  // 2 exact_overlap_max_m + 1 of them for the next block. A block of at least
+  // kSharedFoldValues new values is folded by two threads (common/piece_sharing.h): the octaves'
+  // sums are the same either way.
   void Fold();
+  static constexpr std::int64_t kSharedFoldValues = 4096;
+  // Fold's pieces: one exact octave, and the strided octaves (from their rings, in order).
+  void FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const;
+  void FoldStrided(std::int64_t from, std::int64_t to);
   DoubleDouble PrefixAt(std::int64_t n) const;  // S_n, held in the block
 
   StreamingAvarOptions options_;
@@ -119,6 +132,8 @@ class StreamingAvar {
   std::size_t capacity_ = 0;  // kept_ and a block
   std::vector<ExactOctave> exact_;
   std::vector<Octave> octaves_;  // strided, ascending m
+  // Fold's second thread, when one is useful; a copy of the state (Points) shares it.
+  std::shared_ptr<PieceSharing> sharing_;
 };
 
 }  // namespace allanlab::estimators

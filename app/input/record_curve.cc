@@ -175,6 +175,10 @@ class InputScale {
       ParseRateUnit(unit, &rate_, &ignored);  // canonical: always parses
     }
   }
+  // rad/s or rad in: the values are SI as they are.
+  bool identity() const {
+    return kind_ == InputKind::kAngle ? angle_to_si_ == 1.0 : rate_ == RateUnit::kRadPerSecond;
+  }
   double operator()(double v) const {
     return kind_ == InputKind::kAngle ? v * angle_to_si_ : ToRadPerSecond(rate_, v);
   }
@@ -355,6 +359,18 @@ std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_
   RecordError error;
   // The units are known once the header is read, before the first value (record_reader.h).
   std::optional<InputScale> scale_to_si;
+  // A raw rate record's values come a block at a time: one call per block, not per value.
+  std::vector<double> scaled;
+  const BlockSink rate_blocks = [&](std::span<const double> block) {
+    if (!scale_to_si) scale_to_si.emplace(plan.input, report->record.units);
+    if (scale_to_si->identity()) {
+      stream.Add(block);
+      return;
+    }
+    scaled.resize(block.size());
+    for (std::size_t k = 0; k < block.size(); ++k) scaled[k] = (*scale_to_si)(block[k]);
+    stream.Add(scaled);
+  };
   const bool ok = ReadRecord(
       plan.read,
       [&](double v) {
@@ -368,7 +384,7 @@ std::optional<Failure> ComputeStreamed(const Plan& plan, std::int64_t exact_max_
         previous = a;
         have_previous = true;
       },
-      &report->record, &error);
+      &report->record, &error, angle ? nullptr : &rate_blocks);
   if (!ok) return Failure{error.exit_code, error.message};
   report->input_units = report->record.units;
   return StreamedCurve(plan, stream, angle, exact_max_m, report);

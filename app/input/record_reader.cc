@@ -18,6 +18,7 @@
 #include "app/reports/provenance.h"
 #include "app/input/raw_sample_decoder.h"
 #include "app/input/raw_sidecar.h"
+#include "app/input/read_ahead_source.h"
 #include "app/input/ros_bag.h"
 #include "app/input/stated_units.h"
 #include "app/failure.h"
@@ -157,6 +158,9 @@ class Reader {
       return Usage(error, In() + "--topic reads a ROS bag (MCAP, ROS 2 .db3 or ROS 1 .bag), and this file is none");
     }
     if (!OpenByteSource(o_.path, source, &why)) return Runtime(error, why);
+    // Decompression is the slowest step of a compressed record: it runs ahead in its own thread
+    // while this one parses (the same bytes and errors, app/input/read_ahead_source.h).
+    if ((*source)->compression() != Compression::kNone) *source = ReadAhead(std::move(*source));
     return true;
   }
 
@@ -614,8 +618,8 @@ std::string_view RecordFormatName(RecordFormat format) {
 }
 
 bool ReadRecord(const RecordReaderOptions& options, const std::function<void(double)>& sink,
-                RecordInfo* info, RecordError* error) {
-  return Reader(options, sink, info).Run(error);
+                RecordInfo* info, RecordError* error, const BlockSink* block_sink) {
+  return Reader(options, sink, info, block_sink).Run(error);
 }
 
 namespace {

@@ -129,8 +129,11 @@ struct RecordError {
 
 // Streams every kept value to `sink`, in order. The sink never sees a non-finite value. On
 // failure the sink may already have received values; the caller discards its state.
+// `block_sink` (optional) takes runs of a raw record's values at once instead of `sink` (the
+// same values in the same order: a call per block, not per value).
+using BlockSink = std::function<void(std::span<const double>)>;
 bool ReadRecord(const RecordReaderOptions& options, const std::function<void(double)>& sink,
-                RecordInfo* info, RecordError* error);
+                RecordInfo* info, RecordError* error, const BlockSink* block_sink = nullptr);
 
 // ReadRecord into a vector: `leading_zeros` zeros, then the kept values. A leading spare slot
 // (kSpareSlot) lets estimators::ComputeAvarOnStorage integrate the record where it lies.

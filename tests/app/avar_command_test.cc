@@ -274,6 +274,24 @@ TEST_F(AvarCommandTest, StreamAgreesWithInMemory) {
   }
 }
 
+// An xz record (decompressed ahead in a second thread) and --stream folds shared by two threads:
+// the table and the JSON points are the same, to the bit, with OpenMP limited to one thread.
+TEST_F(AvarCommandTest, OneThreadOrTwoGiveTheSameOutput) {
+  const std::vector<double> y = Rate(300000, 9);
+  Write("big.csv", Csv(y, 100));
+  ASSERT_EQ(std::system(("xz -kf -1 " + Quote(Path("big.csv"))).c_str()), 0);
+  for (const std::string args : {"big.csv", "big.csv.xz", "big.csv --stream --stream-exact-m 4096"}) {
+    const RunResult two = Run("avar " + args + " --json two.json");
+    ::setenv("OMP_NUM_THREADS", "1", 1);  // inherited by the command
+    const RunResult one = Run("avar " + args + " --json one.json");
+    ::unsetenv("OMP_NUM_THREADS");
+    ASSERT_EQ(two.exit_code, 0) << two.err;
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    EXPECT_EQ(two.out, one.out) << args;
+    EXPECT_EQ(Json("two.json")["points"].dump(), Json("one.json")["points"].dump()) << args;
+  }
+}
+
 TEST_F(AvarCommandTest, IrregularStepsAndDroppedValuesAreReported) {
   std::string text = "t,x\n";
   for (int k = 0; k < 200; ++k) {
@@ -416,6 +434,15 @@ TEST_F(AvarCommandTest, BadInputsFailWithOneLineAndNoFiles) {
   const RunResult input = Run("avar rate.csv --json rate.csv");
   EXPECT_EQ(input.exit_code, 2);
   EXPECT_EQ(input.err, "allanlab avar: error: FILE and --json both name rate.csv\n");
+}
+
+// The decoder runs ahead of the parser in its own thread: a cut-off xz file still fails once,
+// with the decoder's reason, after the rows before the cut were read.
+TEST_F(AvarCommandTest, ATruncatedXzFileFailsWithOneLine) {
+  ASSERT_EQ(std::system(("xz -kf " + Quote(Path("rate.csv"))).c_str()), 0);
+  fs::resize_file(Path("rate.csv.xz"), fs::file_size(Path("rate.csv.xz")) * 2 / 3);
+  ExpectError("avar rate.csv.xz", 1, "rate.csv.xz: truncated xz data");
+  ExpectError("avar rate.csv.xz --stream", 1, "rate.csv.xz: truncated xz data");
 }
 
 TEST_F(AvarCommandTest, AFailedRunLeavesExistingOutputsAlone) {

@@ -277,5 +277,141 @@ TEST(ParseNumberFieldTest, AgreesWithStrtod) {
   }
 }
 
+
+// Rows as a large record's parse gives them, in chunks of `chunk` bytes.
+struct LargeParse {
+  bool ok = false;
+  std::string error;
+  std::vector<std::int64_t> lines;
+  std::vector<double> values, times;
+};
+
+LargeParse ParseLarge(const std::string& text, std::size_t chunk) {
+  LargeParse r;
+  TextRecordParser parser("gyro_x", [&](const TextRow& row) {
+    r.lines.push_back(row.line);
+    r.values.push_back(row.value);
+    r.times.push_back(row.time);
+    return true;
+  });
+  r.ok = true;
+  for (std::size_t i = 0; r.ok && i < text.size(); i += chunk) r.ok = parser.Feed(std::string_view(text).substr(i, chunk));
+  if (r.ok) r.ok = parser.Finish();
+  r.error = parser.error();
+  return r;
+}
+
+// Many rows of every shape a data row takes after the first (CRLF, spaces around fields, quotes,
+// trailing comments, comment and blank lines, missing values, an unread column holding text), in
+// chunks that split lines anywhere: each row's value, time and line number are the ones written.
+TEST(TextRecordParserTest, LargeRecordsReadTheSameInAnyChunks) {
+  std::string text = "t_s,gyro_x,note\n";
+  std::vector<std::int64_t> lines;
+  std::vector<double> values, times;
+  std::mt19937_64 engine(7);
+  std::normal_distribution<double> normal;
+  std::int64_t line = 1;
+  for (int k = 0; k < 60000; ++k) {
+    if (k % 997 == 5) {
+      text += "# a comment line, 1,2\n";
+      ++line;
+    }
+    if (k % 1499 == 9) {
+      text += " \t\n";
+      ++line;
+    }
+    const double value = 0.01 + 1e-4 * normal(engine);
+    char time_text[32], value_text[40];
+    std::snprintf(time_text, sizeof time_text, "%.2f", k / 100.0);
+    std::snprintf(value_text, sizeof value_text, k % 3 == 0 ? "%.17g" : "%.9e", value);
+    // Each row as a format: the time and the value in the same place in every shape.
+    const bool missing = k % 3001 == 7;
+    const char* shape = "%s,%s,x";
+    if (k % 101 == 3) shape = " %s , %s ,x";
+    if (k % 211 == 4) shape = "%s,\"%s\",x";
+    if (k % 307 == 6) shape = "%s,%s,x # trailing comment";
+    if (missing) shape = "%s,NA%.0s,x";
+    char row[128];
+    std::snprintf(row, sizeof row, shape, time_text, value_text);
+    text.append(row);
+    text.append(k % 7 == 0 ? "\r\n" : "\n");
+    ++line;
+    lines.push_back(line);
+    values.push_back(missing ? std::nan("") : std::strtod(value_text, nullptr));
+    times.push_back(std::strtod(time_text, nullptr));
+  }
+  for (const std::size_t chunk : {text.size(), std::size_t{1} << 16, (std::size_t{1} << 16) + 7, std::size_t{100003}, std::size_t{4093}}) {
+    const LargeParse p = ParseLarge(text, chunk);
+    ASSERT_TRUE(p.ok) << p.error;
+    ASSERT_EQ(p.lines, lines) << "chunk " << chunk;
+    ASSERT_EQ(p.times, times) << "chunk " << chunk;
+    ASSERT_EQ(p.values.size(), values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (std::isnan(values[i])) {
+        ASSERT_TRUE(std::isnan(p.values[i])) << "line " << lines[i];
+      } else {
+        ASSERT_EQ(p.values[i], values[i]) << "line " << lines[i] << ", chunk " << chunk;
+      }
+    }
+  }
+}
+
+// A bad token, a NUL byte, a short row or a bad time deep inside a large chunk: the parse stops
+// there, with the line's own number and the message of ErrorsNameTheLine.
+TEST(TextRecordParserTest, AnErrorDeepInsideAChunkNamesItsLine) {
+  std::string rows;
+  for (int k = 0; k < 50000; ++k) rows += std::to_string(k) + "," + std::to_string(k % 13) + ".5,x\n";
+  const std::string header = "t,gyro_x,note\n";
+  struct Case {
+    std::string bad_row, message;
+  };
+  const Case cases[] = {
+      {"40000,1.2.3,x", "line 40002: column gyro_x: '1.2.3' is not a number"},
+      {std::string("40000,1.5,\0x", 11), "line 40002 has a NUL byte: not a text record (raw samples? use --format f32|f64)"},
+      {"40000", "line 40002 has 1 field(s); column gyro_x and time column t need 2"},
+      {"4e4x,1", "line 40002: time column t: '4e4x' is not a number"},
+  };
+  for (const Case& c : cases) {
+    std::string text = header;
+    std::size_t at = 0;
+    for (int k = 0; k < 40000; ++k) at = rows.find('\n', at) + 1;
+    text += rows.substr(0, at) + c.bad_row + "\n" + rows.substr(at);
+    for (const std::size_t chunk : {text.size(), std::size_t{1} << 18}) {
+      const LargeParse p = ParseLarge(text, chunk);
+      EXPECT_FALSE(p.ok);
+      EXPECT_EQ(p.error, c.message) << "chunk " << chunk;
+      EXPECT_EQ(p.lines.size(), 40000u) << c.message;  // every row before it, none after
+    }
+  }
+}
+
+// Integer nanosecond stamps are given relative to the first, exactly, in any chunks; when the
+// first stamps are not integers, the first integer one deep inside is the origin of the rest.
+TEST(TextRecordParserTest, IntegerStampsKeepTheirOriginInAnyChunks) {
+  std::string text = "t_ns,gyro_x\n";
+  const std::int64_t first = 1700000000123456789;
+  for (int k = 0; k < 30000; ++k) text += std::to_string(first + 10000000LL * k) + "," + std::to_string(k) + "\n";
+  for (const std::size_t chunk : {text.size(), std::size_t{1} << 17}) {
+    const LargeParse p = ParseLarge(text, chunk);
+    ASSERT_TRUE(p.ok) << p.error;
+    ASSERT_EQ(p.times.size(), 30000u);
+    for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[k], 1e7 * k) << k;
+  }
+  // "0.5" first: no origin yet, so the first integer stamp, 1000 rows in, sets it; the times
+  // after it are relative to it.
+  std::string late = "t,gyro_x\n0.5,1\n";
+  for (int k = 0; k < 1000; ++k) late += "0." + std::to_string(600000 + k) + ",2\n";
+  late += "7,3\n";
+  for (int k = 0; k < 30000; ++k) late += std::to_string(k + 8) + ".5,4\n";
+  for (const std::size_t chunk : {late.size(), std::size_t{1} << 16}) {
+    const LargeParse p = ParseLarge(late, chunk);
+    ASSERT_TRUE(p.ok) << p.error;
+    ASSERT_EQ(p.times.size(), 31002u);
+    EXPECT_EQ(p.times[1000], 0.6 + 0.000999);  // no origin yet: as written
+    EXPECT_EQ(p.times[1001], 0.0);             // 7: the origin
+    for (int k = 0; k < 30000; ++k) ASSERT_EQ(p.times[1002 + k], k + 1.5) << k;
+  }
+}
+
 }  // namespace
 }  // namespace allanlab::app

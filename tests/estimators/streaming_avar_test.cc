@@ -4,7 +4,9 @@
 #include "estimators/streaming_avar.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -139,6 +141,30 @@ TEST(StreamingAvarTest, FewSamplesAndInvalidOptions) {
   EXPECT_FALSE(StreamingAvarOptions{3}.IsValid(&why));
   EXPECT_EQ(why, "exact_overlap_max_m must be a power of two >= 1, got 3");
   EXPECT_FALSE(StreamingAvarOptions{0}.IsValid(&why));
+}
+
+// Blocks folded by two threads, one thread, in spans of any length or a value at a time: the
+// same bits (the octaves' sums do not depend on who computed them, FastTwoSum's errors are
+// TwoSum's), checked against the one-value-at-a-time run with OpenMP limited to one thread.
+TEST(StreamingAvarTest, ThreadsAndSpansNeverChangeTheBits) {
+  const std::vector<double> y = Record(300000, 11);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<StreamingAvarPoint> one = Stream(y, 4096).Points();
+  omp_set_num_threads(std::max(threads, 2));
+  StreamingAvar spans(StreamingAvarOptions{4096});  // blocks of 8192: shared
+  for (std::size_t i = 0; i < y.size(); i += 4099) {
+    spans.Add(std::span<const double>(y).subspan(i, std::min<std::size_t>(4099, y.size() - i)));
+  }
+  omp_set_num_threads(threads);
+  const std::vector<StreamingAvarPoint> two = spans.Points();
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].overlapping), std::bit_cast<std::uint64_t>(two[k].overlapping)) << one[k].m;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].nonoverlapping), std::bit_cast<std::uint64_t>(two[k].nonoverlapping)) << one[k].m;
+    EXPECT_EQ(one[k].overlapping_terms, two[k].overlapping_terms);
+    EXPECT_EQ(one[k].nonoverlapping_terms, two[k].nonoverlapping_terms);
+  }
 }
 
 }  // namespace
