@@ -287,9 +287,6 @@ std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCu
 
 namespace {
 
-// The linear part of a fit as its profile ranges and term selection read it (linear_profile.h):
-// the cost's expansion at the fit in the listed terms' squared coefficients (scaled: c^2 =
-// scale[j] x_j), the parametric parameters free to first order.
 // Where a fit ended: the scaled linear terms, the parametric parameters (internal u) and the
 // final stage's weight (GLS: its covariance model too).
 struct FitEnd {
@@ -297,6 +294,9 @@ struct FitEnd {
   Eigen::MatrixXd w;
   std::shared_ptr<const AvarCovarianceModel> covariance;
 };
+// The linear part of a fit as its profile ranges and term selection read it (linear_profile.h):
+// the cost's expansion at the fit in the listed terms' squared coefficients (scaled: c^2 =
+// scale[j] x_j), the parametric parameters free to first order; and where the fit ended.
 struct LinearPart {
   LinearProblem problem;
   std::vector<int> linear;  // Coefficient indices, ascending: the columns of problem
@@ -403,7 +403,14 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
   bool stopped = false;
   for (const ParametricEstimate& e : summary->extra) stopped = stopped || !e.fitted;
   stopped = stopped && options.stop_without_start;
-  if (stopped) return true;
+  auto keep_covariance_sigmas = [summary] {
+    for (CoefficientEstimate& e : summary->base.coefficients) e.covariance_sigma_si = e.sigma_si;
+    for (ParametricEstimate& e : summary->extra) e.covariance_sigma_si = e.sigma_si;
+  };
+  if (stopped) {
+    keep_covariance_sigmas();
+    return true;
+  }
   const unsigned every = (1u << part.linear.size()) - 1u;
   std::vector<unsigned> masks = {every};
   unsigned held_zero = 0;
@@ -437,8 +444,7 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
     }
   }
   SetFitProfileRanges(part.problem, masks, part.linear, part.scale, &summary->base);
-  for (CoefficientEstimate& e : summary->base.coefficients) e.covariance_sigma_si = e.sigma_si;
-  for (ParametricEstimate& e : summary->extra) e.covariance_sigma_si = e.sigma_si;
+  keep_covariance_sigmas();
   if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, held_zero, summary);
   return true;
 }
