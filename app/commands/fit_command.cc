@@ -694,7 +694,7 @@ Subcommand AddFitCommand(CLI::App* parent) {
       ->type_name("gls|wls|logwls|slope");
   cmd->add_option("--terms", options->terms, "terms to fit, a comma list of Q,N,B,K,R (default all) and parametric terms H "
                   "(harmonic Omega0, f0), GM (Gauss-Markov sigma, Tc), BW or BW2 (band-limit fc, "
-                  "first order or 2nd-order Butterworth; no term selection with these)")
+                  "first order or 2nd-order Butterworth; these are always kept, the subset choice is among Q,N,B,K,R)")
       ->type_name("LIST");
   cmd->add_option("--band-limit", options->band_limit,
                   "auto (default): when the short taus show a band-limit, fit it (BW or BW2, the "

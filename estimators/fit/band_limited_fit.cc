@@ -127,7 +127,10 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
      << "); threshold " << critical << " at " << options.detection_level;
   if (!(drop > critical)) return finish("none detected: " + os.str() + notes);
 
-  if (bootstrap) {
+  // The reported fit chooses its terms as the plain fit does (parametric_fit.h); the detection
+  // above compared the fits of every term.
+  best_options.select_terms = options.fit.select_terms;
+  if (bootstrap || best_options.select_terms) {
     best_options.uncertainty = options.fit.uncertainty;
     best_options.bootstrap = options.fit.bootstrap;
     if (!FitAvarModelWithTerms(best_options, curve, &best)) {
@@ -143,7 +146,8 @@ bool FitWithBandLimit(const BandLimitedFitOptions& options, const AvarCurve& cur
   std::ostringstream decision;
   decision << "fitted " << best.extra[0].short_name << " ("
            << (best.extra[0].short_name == "BW2" ? "2nd-order Butterworth" : "first order") << ", "
-           << ChainText(options) << "; no term selection): " << os.str();
+           << ChainText(options) << (best_options.select_terms ? "; terms chosen by AIC" : "; every term kept")
+           << "): " << os.str();
   return finish(decision.str());
 }
 

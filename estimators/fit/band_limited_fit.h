@@ -15,8 +15,10 @@
 //      fit's selection dropped), and its cutoff is not at a bound; otherwise the plain fit.
 // The chi2 of the two fits come from different pilot weights (fit_avar_model.h), so the test is a
 // screening rule, not an exact likelihood-ratio test; detection_level is small to keep it from
-// firing on curves without a band-limit. The band-limited fit does no term selection: terms the
-// data do not support sit at zero with their 95 % profile upper limit.
+// firing on curves without a band-limit. The candidates keep every term; the reported
+// band-limited fit then chooses its terms as the plain fit does when the options ask it
+// (parametric_fit.h): a term the data do not support is left out and reported by its 95 %
+// profile upper limit, never as a point with an interval.
 // The chain assumed (averaged or point-sampled output, oversampling L) is an option: averaging
 // keeps N the long-tau white level (parametric_term.h); the seed presets average with L = 8.
 // With FitUncertainty::kBootstrap the candidates are compared on covariance fits and only the

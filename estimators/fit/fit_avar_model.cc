@@ -297,8 +297,8 @@ void Bootstrap(const FitOptions& options, const AvarCurve& curve, CurveCache* ca
 
 // Fills the summary's coefficients, chi2 and dof from the chosen subset masks.front() (bits:
 // asked terms) of the problem: values and covariance sigmas of the terms it keeps above zero,
-// upper limits of the others, and every term's profile ranges over all of `masks` (the choice and
-// its competitive subsets, linear_profile.h).
+// upper limits of the others (their profile ranges: SetFitProfileRanges over all of `masks`, the
+// choice and its competitive subsets, once chi2 and p are known).
 void ReportSubset(const FixedFitProblem& fp, const std::vector<unsigned>& masks, bool selected,
                   FitSummary* summary) {
   const unsigned keep = masks.front();
@@ -332,7 +332,6 @@ void ReportSubset(const FixedFitProblem& fp, const std::vector<unsigned>& masks,
       e.note = e.dropped ? "left out by the subset choice (AIC): the data do not determine it; 95 % upper limit given"
                          : "at zero: the data do not determine it; 95 % upper limit given";
     }
-    SetProfileRanges(p, masks, static_cast<int>(j), fp.scale[j], &e);
   }
   summary->chi2 = p.Chi2(x);
   summary->dof = summary->taus_used - static_cast<int>(positive.size());
@@ -359,6 +358,7 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
     summary->p_value =
         boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), summary->chi2));
   }
+  SetFitProfileRanges(fp.problem, masks, fp.asked, fp.scale, summary);
   std::string message = summary->converged ? "converged" : "weights did not settle within max_reweightings";
   if (options.select_terms && keep != every) {
     std::ostringstream os;

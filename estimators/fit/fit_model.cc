@@ -35,6 +35,7 @@ bool FitRoute(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
     p.uncertainty = options.uncertainty;
     p.bootstrap = options.bootstrap;
     p.covariance = options.covariance;
+    p.select_terms = options.select_terms;  // the linear terms; the parametric ones are kept
     ParametricFitSummary s;
     if (!FitAvarModelWithTerms(p, curve, &s)) {
       summary->fit = s.base;

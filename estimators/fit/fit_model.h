@@ -11,7 +11,9 @@
 //   * no parametric term, band_limit kAuto: that fit and, when the short taus show a band-limit,
 //     the same terms plus BW or BW2 (band_limited_fit.h decides and says why);
 //   * parametric terms listed: one joint fit of them with the linear terms (parametric_fit.h),
-//     every listed term kept (the nonlinear terms have no nested NNLS to select by).
+//     every parametric term kept (they have no nested NNLS to select by), the linear terms
+//     chosen as in the linear fit when select_terms is set (the extended models tried on a poor
+//     fit too).
 // FitAvarModel, FitWithBandLimit and FitAvarModelWithTerms stay public: they are the routes above,
 // and the sim-to-real diagnosis calls them stage by stage.
 #include <memory>
@@ -31,15 +33,15 @@ struct ModelFitOptions {
   FitMethod method = FitMethod::kGls;
   std::vector<Coefficient> terms = {Coefficient::kQ, Coefficient::kN, Coefficient::kB,
                                     Coefficient::kK, Coefficient::kR};
-  // Parametric terms fitted jointly with `terms` (at most one band-limit). Non-empty: no term
-  // selection and no band-limit detection (a BW/BW2 listed here is the band-limit).
+  // Parametric terms fitted jointly with `terms` (at most one band-limit). Non-empty: every one
+  // of them kept, no band-limit detection (a BW/BW2 listed here is the band-limit).
   std::vector<std::shared_ptr<const ParametricTerm>> extra;
   // Band-limit detection when `extra` is empty (band_limited_fit.h).
   BandLimitPolicy band_limit = BandLimitPolicy::kOff;
   sim::OutputSampling bw_sampling = sim::OutputSampling::kAverage;
   int bw_oversampling = 8;
   double bw_detection_level = 1e-3;
-  bool select_terms = true;  // every subset scored by AIC (fit_avar_model.h, linear_profile.h)
+  bool select_terms = true;  // every subset of `terms` scored by AIC (fit_avar_model.h, linear_profile.h)
   FitUncertainty uncertainty = FitUncertainty::kCovariance;
   BootstrapOptions bootstrap;
   // Optional, GLS: the covariance model of this curve built with every term of `terms`.

@@ -9,6 +9,8 @@
 #include <limits>
 #include <vector>
 
+#include <boost/math/distributions/chi_squared.hpp>
+
 namespace allanlab::estimators {
 
 Eigen::VectorXd NonNegativeLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {
@@ -155,21 +157,24 @@ Eigen::VectorXd SolveHeld(const LinearProblem& p, unsigned free_mask, int j, dou
   return SolveMasked(p, free_mask, j, t);
 }
 
+bool WhitenedAt(const LinearProblem& p, const Eigen::VectorXd& x, LinearProblem* q) {
+  Eigen::MatrixXd w;
+  if (!p.whitening_at || !p.whitening_at(x, &w)) return false;
+  q->a = w * p.design;
+  q->y = w * p.target;
+  if (p.free_directions.cols() > 0) {
+    const Eigen::MatrixXd f = w * p.free_directions;
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(f);
+    q->a -= f * cod.solve(q->a);
+    q->y -= f * cod.solve(q->y);
+  }
+  return true;
+}
+
 double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, double t) {
-  if (p.whitening_at) {
-    Eigen::MatrixXd w;
-    if (p.whitening_at(SolveMasked(p, free_mask, j, t), &w)) {
-      LinearProblem q;
-      q.a = w * p.design;
-      q.y = w * p.target;
-      if (p.free_directions.cols() > 0) {
-        const Eigen::MatrixXd f = w * p.free_directions;
-        const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(f);
-        q.a -= f * cod.solve(q.a);
-        q.y -= f * cod.solve(q.y);
-      }
-      return q.Chi2(SolveMasked(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
-    }
+  LinearProblem q;
+  if (WhitenedAt(p, SolveMasked(p, free_mask, j, t), &q)) {
+    return q.Chi2(SolveMasked(q, free_mask, j, t)) - q.Chi2(SolveSubset(q, free_mask));
   }
   return p.Chi2(SolveMasked(p, free_mask, j, t)) - p.Chi2(SolveSubset(p, free_mask));
 }
@@ -268,6 +273,27 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
   if (!e->fitted) {
     e->has_upper_limit = true;
     e->upper_limit_si = root(upper);
+  }
+}
+
+void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_masks, const std::vector<int>& terms,
+                         const std::vector<double>& scale, FitSummary* summary) {
+  if (p.whitening_at) {
+    // The fit's chi2 under its own model's covariance: the misfit this rule is about stays under
+    // every covariance, while a chi2 that is large only under the weight the fit held is not one
+    // (header).
+    LinearProblem own;
+    const unsigned chosen = free_masks.empty() ? (1u << p.a.cols()) - 1u : free_masks.front();
+    FitSummary judged;
+    judged.dof = summary->dof;
+    if (WhitenedAt(p, SolveSubset(p, chosen), &own) && judged.dof > 0) {
+      judged.chi2 = own.Chi2(SolveSubset(own, chosen));
+      judged.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(judged.dof), judged.chi2));
+    }
+    if (IsPoorFit(judged)) p.whitening_at = nullptr;
+  }
+  for (std::size_t j = 0; j < terms.size(); ++j) {
+    SetProfileRanges(p, free_masks, static_cast<int>(j), scale[j], &summary->coefficients[terms[j]]);
   }
 }
 

@@ -139,4 +139,24 @@ Eigen::MatrixXd FreeColumns(const LinearProblem& p, unsigned free_mask, int j, E
 void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_masks, int j,
                       double scale, CoefficientEstimate* e);
 
+// The problem whitened by the covariance of the model x (p.whitening_at), with p.free_directions
+// projected out: what ProfileStatistic tests a held value under. False (q untouched) when
+// p.whitening_at is unset or fails.
+bool WhitenedAt(const LinearProblem& p, const Eigen::VectorXd& x, LinearProblem* q);
+
+// The profile ranges of every term of a fit: SetProfileRanges for each column j of p into
+// summary->coefficients[terms[j]] (c^2 = scale[j] x_j), over the subsets `free_masks`. The one
+// place where a fit's profile chooses its weight, for the linear fit and the parametric one alike:
+// each held value's own covariance (p.whitening_at) where the model describes the curve; the
+// weight the fit held (W0) where it does not, judged by IsPoorFit on the chi2 of the chosen subset
+// (free_masks.front()) under the covariance of its own fit, on summary->dof. Where the model does
+// not describe the curve the misfit, not the noise, sets chi2 under every covariance, the minimum
+// under each held value's covariance moves with it, and the held-value test collapsed N's interval
+// to its value (ADIS16405 Gyro_Z, chi2 4.3e5 on 50 dof; docs/theory.md §4.7). The fit's own chi2
+// (under W0) does not tell the two apart: on 2 h records of white noise and a rate random walk,
+// 25 of 200 had p < 1e-3 under the pilot's weight, whose small K made the long taus' variances
+// too small, and the fallback moved K's 95 % coverage there from 191 to 177 of 200.
+void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_masks, const std::vector<int>& terms,
+                         const std::vector<double>& scale, FitSummary* summary);
+
 }  // namespace allanlab::estimators

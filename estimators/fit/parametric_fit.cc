@@ -287,12 +287,35 @@ std::vector<double> ModelAvarOnCurve(const sim::SensorModel& model, const AvarCu
 
 namespace {
 
-// One fit with covariance uncertainties (the body of FitAvarModelWithTerms).
-bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
-             ParametricFitSummary* summary);
+// Where a fit ended: the scaled linear terms, the parametric parameters (internal u) and the
+// final stage's weight (GLS: its covariance model too).
+struct FitEnd {
+  std::vector<double> theta, u;
+  Eigen::MatrixXd w;
+  std::shared_ptr<const AvarCovarianceModel> covariance;
+};
+// The linear part of a fit as its profile ranges and term selection read it (linear_profile.h):
+// the cost's expansion at the fit in the listed terms' squared coefficients (scaled: c^2 =
+// scale[j] x_j), the parametric parameters free to first order; and where the fit ended.
+struct LinearPart {
+  LinearProblem problem;
+  std::vector<int> linear;  // Coefficient indices, ascending: the columns of problem
+  std::vector<double> scale;
+  FitEnd end;
+};
 
-// Replaces every fitted parameter's sigma by the bootstrap spread (parametric_bootstrap.h).
-void Bootstrap(const ParametricFitOptions& options, const AvarCurve& curve,
+// One fit with covariance uncertainties and without profile ranges (the body of
+// FitAvarModelWithTerms), the linear terms of `held_zero` (bit j: linear[j]) held at zero; their
+// columns stay in *part, so that their upper limits can be profiled. With `from` (the fit of
+// every term of the same curve and options) the fit starts at its end and holds its weight, as
+// FitAvarModel fits a subset with the weights of its fit of all terms held: terms already at zero
+// there leave the fit where it was (a fresh pilot could settle elsewhere and move the weight).
+bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsigned held_zero,
+             ParametricFitSummary* summary, LinearPart* part = nullptr, const FitEnd* from = nullptr);
+
+// Replaces every fitted parameter's sigma by the bootstrap spread (parametric_bootstrap.h); the
+// replicates refit the same model (the terms of held_zero held at zero).
+void Bootstrap(const ParametricFitOptions& options, const AvarCurve& curve, unsigned held_zero,
                ParametricFitSummary* summary) {
   FitSummary& base = summary->base;
   ParametricFitOptions refit = options;
@@ -318,7 +341,7 @@ void Bootstrap(const ParametricFitOptions& options, const AvarCurve& curve,
       model, curve, options.bootstrap, parameters,
       [&](const AvarCurve& replicate, std::vector<double>* values, std::string* message) {
         ParametricFitSummary s;
-        if (!FitOnce(refit, replicate, &s)) {
+        if (!FitOnce(refit, replicate, held_zero, &s)) {
           *message = s.base.message;
           return false;
         }
@@ -375,20 +398,61 @@ void Bootstrap(const ParametricFitOptions& options, const AvarCurve& curve,
 
 bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve& curve,
                            ParametricFitSummary* summary) {
-  if (!FitOnce(options, curve, summary)) return false;
-  for (CoefficientEstimate& e : summary->base.coefficients) e.covariance_sigma_si = e.sigma_si;
-  for (ParametricEstimate& e : summary->extra) e.covariance_sigma_si = e.sigma_si;
+  LinearPart part;
+  if (!FitOnce(options, curve, 0u, summary, &part)) return false;
   bool stopped = false;
   for (const ParametricEstimate& e : summary->extra) stopped = stopped || !e.fitted;
   stopped = stopped && options.stop_without_start;
-  if (options.uncertainty == FitUncertainty::kBootstrap && !stopped) Bootstrap(options, curve, summary);
+  auto keep_covariance_sigmas = [summary] {
+    for (CoefficientEstimate& e : summary->base.coefficients) e.covariance_sigma_si = e.sigma_si;
+    for (ParametricEstimate& e : summary->extra) e.covariance_sigma_si = e.sigma_si;
+  };
+  if (stopped) {
+    keep_covariance_sigmas();
+    return true;
+  }
+  const unsigned every = (1u << part.linear.size()) - 1u;
+  std::vector<unsigned> masks = {every};
+  unsigned held_zero = 0;
+  if (options.select_terms && !part.linear.empty()) {
+    // The subsets scored on the fit of all terms (header), as FitAvarModel scores them with the
+    // weights of its fit of all terms held; the choice refitted exactly.
+    const SubsetChoice choice = SelectSubsetByAic(part.problem);
+    masks = choice.competitive;
+    if (choice.mask != every) {
+      ParametricFitSummary chosen;
+      LinearPart chosen_part;
+      bool usable = FitOnce(options, curve, every & ~choice.mask, &chosen, &chosen_part, &part.end);
+      for (const ParametricEstimate& e : chosen.extra) usable = usable && e.fitted;
+      if (usable) {
+        *summary = chosen;
+        part = chosen_part;
+        held_zero = every & ~choice.mask;
+        std::ostringstream os;
+        os << "; terms chosen by AIC over all " << (every + 1u)
+           << " subsets on the fit of all terms (its weights held, the parametric parameters free)";
+        summary->base.message += os.str();
+      } else {
+        masks = {every};  // the chosen subset cannot be fitted: every term kept, as without selection
+      }
+    }
+    for (std::size_t j = 0; j < part.linear.size(); ++j) {
+      CoefficientEstimate& e = summary->base.coefficients[part.linear[j]];
+      if (!((held_zero >> j) & 1u)) continue;
+      e.dropped = true;
+      e.note = "left out by the subset choice (AIC): the data do not determine it; 95 % upper limit given";
+    }
+  }
+  SetFitProfileRanges(part.problem, masks, part.linear, part.scale, &summary->base);
+  keep_covariance_sigmas();
+  if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, held_zero, summary);
   return true;
 }
 
 namespace {
 
-bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
-             ParametricFitSummary* summary) {
+bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsigned held_zero,
+             ParametricFitSummary* summary, LinearPart* part, const FitEnd* from) {
   *summary = ParametricFitSummary{};
   FitSummary& base = summary->base;
   base.method = options.method;
@@ -492,11 +556,28 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   ModelAvarFunction function;
   function.linear = static_cast<int>(linear.size());
   function.nonlinear = pieces.nonlinear();
-  function.evaluate = [&pieces](const double* u, Eigen::MatrixXd* s, Eigen::VectorXd* e) {
+  // The model the fit sees: the terms held at zero have no shape (their theta' stays at 0).
+  // `every_term`, the same with every shape, gives the expansion their profiles read.
+  ModelAvarFunction every_term = function;
+  every_term.evaluate = [&pieces](const double* u, Eigen::MatrixXd* s, Eigen::VectorXd* e) {
     pieces.Evaluate(u, s, e);
   };
+  function.evaluate = [&pieces, held_zero](const double* u, Eigen::MatrixXd* s, Eigen::VectorXd* e) {
+    pieces.Evaluate(u, s, e);
+    for (Eigen::Index j = 0; j < s->cols(); ++j) {
+      if ((held_zero >> j) & 1u) s->col(j).setZero();
+    }
+  };
   std::vector<double> theta(linear.size()), u = u0;
-  for (std::size_t j = 0; j < linear.size(); ++j) theta[j] = std::max(baseline_si[linear[j]] / scale[j], 1e-3);
+  for (std::size_t j = 0; j < linear.size(); ++j) {
+    theta[j] = (held_zero >> j) & 1u ? 0.0 : std::max(baseline_si[linear[j]] / scale[j], 1e-3);
+  }
+  // The same terms have started (same baseline), so `from` has their sizes; checked all the same.
+  if (from && (from->theta.size() != theta.size() || from->u.size() != u.size())) from = nullptr;
+  if (from) {
+    u = from->u;
+    for (std::size_t j = 0; j < linear.size(); ++j) theta[j] = (held_zero >> j) & 1u ? 0.0 : from->theta[j];
+  }
 
   // 2. Pilot on log residuals.
   const auto n = static_cast<Eigen::Index>(taus);
@@ -508,12 +589,18 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
     sqrt_half_nu(kk) = std::sqrt(half_nu);
     a(kk) = curve.avar[k];
   }
-  auto* log_cost = new ModelAvarResiduals(function, ModelAvarResiduals::Domain::kLog, log_target,
-                                          sqrt_half_nu.asDiagonal().toDenseMatrix());
-  Stage stage = SolveStage(log_cost, &theta, &u, u_lo, u_hi, options.max_iterations);
-  if (!stage.usable) {
-    base.message = "fit failed (pilot): Ceres: " + stage.message;
-    return false;
+  // From a fit's end with its weight held (linear domain), the pilot is that fit's.
+  const bool pilot = !from || options.method == FitMethod::kLogWls;
+  Stage stage;
+  stage.usable = stage.converged = true;
+  if (pilot) {
+    auto* log_cost = new ModelAvarResiduals(function, ModelAvarResiduals::Domain::kLog, log_target,
+                                            sqrt_half_nu.asDiagonal().toDenseMatrix());
+    stage = SolveStage(log_cost, &theta, &u, u_lo, u_hi, options.max_iterations);
+    if (!stage.usable) {
+      base.message = "fit failed (pilot): Ceres: " + stage.message;
+      return false;
+    }
   }
   int iterations = stage.iterations;
   Eigen::MatrixXd w = sqrt_half_nu.asDiagonal().toDenseMatrix();
@@ -528,7 +615,10 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
     pieces.Evaluate(u.empty() ? nullptr : u.data(), &s, &e);
     for (std::size_t j = 0; j < linear.size(); ++j) e += s.col(static_cast<Eigen::Index>(j)) * theta[j];
     const Eigen::Map<const Eigen::VectorXd> x(theta.data(), static_cast<Eigen::Index>(theta.size()));
-    if (options.method == FitMethod::kWls) {
+    if (!pilot) {
+      w = from->w;
+      covariance = from->covariance;
+    } else if (options.method == FitMethod::kWls) {
       w = (e.cwiseMax(1e-300).cwiseQuotient(sqrt_half_nu)).cwiseInverse().asDiagonal().toDenseMatrix();
     } else {
       covariance = options.covariance ? options.covariance
@@ -555,14 +645,14 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
     if (!linear.empty()) {
       Eigen::MatrixXd s;
       Eigen::VectorXd extra;
-      pieces.Evaluate(u.empty() ? nullptr : u.data(), &s, &extra);
+      function.evaluate(u.empty() ? nullptr : u.data(), &s, &extra);
       const Eigen::VectorXd x = NonNegativeLeastSquares(w * s, w * (a - extra));
       for (std::size_t j = 0; j < linear.size(); ++j) theta[j] = x(static_cast<Eigen::Index>(j));
     }
   }
 
   // Residuals and Jacobian at the solution; covariance (J'J)^-1.
-  ModelAvarResiduals final_cost(function, domain, target, w);
+  ModelAvarResiduals final_cost(every_term, domain, target, w);
   const int blocks = (linear.empty() ? 0 : 1) + (u.empty() ? 0 : 1);
   std::vector<const double*> params;
   if (!linear.empty()) params.push_back(theta.data());
@@ -583,6 +673,10 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   Eigen::MatrixXd j(n, p_all);
   if (!linear.empty()) j.leftCols(static_cast<Eigen::Index>(linear.size())) = jl;
   if (!u.empty()) j.rightCols(static_cast<Eigen::Index>(u.size())) = ju;
+  // The covariance of the model fitted: the terms held at zero are not in it.
+  for (std::size_t q = 0; q < linear.size(); ++q) {
+    if ((held_zero >> q) & 1u) j.col(static_cast<Eigen::Index>(q)).setZero();
+  }
   const Eigen::MatrixXd cov = (j.transpose() * j).completeOrthogonalDecomposition().pseudoInverse();
 
   int fitted = 0;
@@ -657,13 +751,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve,
   if (base.dof > 0) {
     base.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(base.dof), base.chi2));
   }
-  // On a poor fit the misfit, not the noise, sets chi2 under every covariance: the minimum under
-  // each held value's covariance moves with it, and the held-value test collapsed N's interval
-  // to its value (ADIS16405 Gyro_Z, chi2 4.3e5 on 50 dof). The profile then keeps the pilot's.
-  if (IsPoorFit(base)) lp.whitening_at = nullptr;
-  for (std::size_t q = 0; q < linear.size(); ++q) {
-    SetProfileRanges(lp, {(1u << linear.size()) - 1u}, static_cast<int>(q), scale[q], &base.coefficients[linear[q]]);
-  }
+  if (part) *part = {std::move(lp), linear, scale, {theta, u, w, covariance}};
   base.ok = summary->ok = true;
   std::ostringstream os;
   os << (stage.converged ? "converged" : "Ceres did not converge: " + stage.message);

@@ -22,7 +22,12 @@
 // Jacobian: analytic in the linear terms, central differences in the parametric parameters
 // (ln scale); the residual functor passes Ceres' gradient check (tests). Uncertainties:
 // (J' J)^{-1} of the whitened problem at the solution, mapped back to SI.
-// No term selection here: the caller compares chi2 of nested fits (the diagnosis does, docs/theory.md §6.4).
+// Term selection (select_terms) is that of the linear fit (linear_profile.h): every subset of the
+// linear terms scored by AIC on the cost's expansion at the fit of all terms, the parametric
+// parameters free to first order; the choice refitted with the other terms held at zero, those
+// reported by their 95 % upper limit, every term's ranges the hull over the competitive subsets.
+// The parametric terms are always kept: the caller compares chi2 of nested fits for them (the
+// band-limit detection, band_limited_fit.h; the diagnosis, docs/theory.md §6.4).
 // With the band-limit, each term's AVAR is its own exact AVAR plus the band-limit's change
 // (sim/band_limited_avar.h: exact for all but Kasdin flicker, whose start-up x band-limit product
 // is left out), so the linear terms' own shapes are computed once and a new cutoff costs
@@ -58,6 +63,8 @@ struct ParametricFitOptions {
   // caller that discards such fits anyway saves their cost (on a 1e7-sample record without a
   // band-limit, ~0.5 s of CPU for BW and BW2).
   bool stop_without_start = false;
+  // Choose the linear terms by AIC (header); false: every listed term is fitted.
+  bool select_terms = false;
   bool IsValid(std::string* why) const;
 };
 
