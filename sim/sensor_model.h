@@ -27,6 +27,15 @@ enum class FlickerBandLimit {
   kStationaryChange,
 };
 
+// Choices in how Generate draws a record that change its random stream but not its law.
+struct GenerateOptions {
+  // White rate noise behind an impulse-invariant first-order band-limit without harmonics: drawn
+  // one output period at a time (first_order_period.h), 2 Gaussian draws per output sample instead
+  // of the oversampling L. Exact in distribution; for Monte Carlo envelopes, where only the law
+  // matters.
+  bool white_per_output_period = false;
+};
+
 struct SensorModel {
   std::string name;
   std::string description;
@@ -46,6 +55,9 @@ struct SensorModel {
   // kRateQuantizerStream. Bit-identical for the same arguments whatever
   // the thread. Precondition: IsValid().
   std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n) const;
+  // The same with `options` (the first white term's stream then feeds the period draws).
+  std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n,
+                               const GenerateOptions& options) const;
 
   // Exact E[AVAR_hat(m)] of Generate()'s records (rad/s)^2, band-limit and finite record
   // included. The quantizers' shares come from their error autocovariances on the Gaussian

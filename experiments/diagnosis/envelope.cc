@@ -5,6 +5,13 @@
 #include "estimators/exact_edf.h"
 
 namespace allanlab::experiments {
+namespace {
+
+// Only the law of the simulated records matters to an envelope: the band-limited white noise is
+// drawn per output period where that is exact (sim/first_order_period.h).
+constexpr sim::GenerateOptions kEnvelopeGeneration{.white_per_output_period = true};
+
+}  // namespace
 
 OavarTheory ExactOavar(const sim::SensorModel& model, std::span<const std::int64_t> ms,
                        std::int64_t num_samples) {
@@ -30,7 +37,8 @@ bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, i
   std::vector<char> ok(trials, 0);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int t = 0; t < trials; ++t) {
-    const std::vector<double> record = model.Generate(seed, static_cast<std::uint64_t>(t), layout.num_samples);
+    const std::vector<double> record =
+        model.Generate(seed, static_cast<std::uint64_t>(t), layout.num_samples, kEnvelopeGeneration);
     std::string ignored;
     ok[t] = ComputeViews(layout, record, &per_trial[t], &ignored, wanted) ? 1 : 0;
   }

@@ -6,7 +6,8 @@
 //     (estimators/exact_edf.h): cheap, O(N) per tau.
 //   Other views: Monte Carlo of the model (fixed seed, `trials` records, OpenMP across trials;
 //     deterministic for any thread count: trial t always uses (seed, t) and the moments are summed
-//     in trial order).
+//     in trial order). The records are drawn with sim::GenerateOptions that keep their law and
+//     cut their cost (white noise behind a first-order band-limit per output period).
 #include <cstdint>
 #include <span>
 #include <string>
