@@ -237,8 +237,11 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     if (const auto* f = std::get_if<FlickerNoise>(&terms[i])) {
       const auto samples = static_cast<std::size_t>(n);
       out.resize(std::max(FlickerNoise::WorkSize(samples), static_cast<std::size_t>(total)));
-      Engine engine = engine_for(i);
-      f->SynthesizeInPlace(engine, samples, out);
+      const std::uint64_t stream_seed = options.flicker_cache != nullptr
+                                            ? StreamSeed(options.flicker_seed, trial, kSharedFlickerStream)
+                                            : StreamSeed(seed, trial, i);
+      Engine engine(stream_seed);
+      f->SynthesizeInPlace(engine, samples, out, options.flicker_cache, stream_seed);
       std::copy_backward(out.begin(), out.begin() + n, out.begin() + total);
       std::fill(out.begin(), out.begin() + burn_in, 0.0);
       in_place_term = i;

@@ -10,6 +10,7 @@
 #include "common/sample_clock.h"
 #include "sim/avar_theory.h"
 #include "sim/band_limit.h"
+#include "sim/flicker_stream_cache.h"
 #include "sim/noise_term.h"
 #include "sim/output_quantizer.h"
 
@@ -34,6 +35,13 @@ struct GenerateOptions {
   // of the oversampling L. Exact in distribution; for Monte Carlo envelopes, where only the law
   // matters.
   bool white_per_output_period = false;
+  // With a cache: the first Kasdin flicker term draws from stream kSharedFlickerStream of
+  // (flicker_seed, trial) instead of its own stream of (seed, trial), so the models generated with
+  // one flicker_seed share a flicker record per trial (B times the same unit record), which is
+  // synthesised once and then taken from the cache (the same bits either way). nullptr: the term's
+  // own stream, synthesised every time.
+  FlickerStreamCache* flicker_cache = nullptr;
+  std::uint64_t flicker_seed = 0;
 };
 
 struct SensorModel {
@@ -84,6 +92,7 @@ struct SensorModel {
 
   static constexpr std::uint64_t kQuantizerStream = 1000;
   static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset
+  static constexpr std::uint64_t kSharedFlickerStream = 1002;  // GenerateOptions::flicker_cache
 
  private:
   // GaussianAutocovariance before the rate quantizer.
