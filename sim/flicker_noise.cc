@@ -71,15 +71,27 @@ bool FlickerNoise::IsValid(std::string* why) const {
 std::size_t FlickerNoise::WorkSize(std::size_t n) { return 2 * GoodFftSize(n) + 2; }
 
 void FlickerNoise::SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work) const {
+  SynthesizeInPlace(engine, n, work, nullptr, 0);
+}
+
+void FlickerNoise::SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work, FlickerStreamCache* cache,
+                                     std::uint64_t stream_seed) const {
   if (n == 0) return;
   if (bias_instability_rad_per_s == 0.0) {
     std::fill(work.begin(), work.begin() + static_cast<std::ptrdiff_t>(n), 0.0);
     return;
   }
   const std::size_t fft_length = WorkSize(n) - 2;
+  const double scale = bias_instability_rad_per_s / static_cast<double>(fft_length);
+  double* x = work.data();
+  if (cache != nullptr) {
+    if (const auto unit = cache->Find(stream_seed, n)) {
+      for (std::size_t i = 0; i < n; ++i) x[i] = (*unit)[i] * scale;
+      return;
+    }
+  }
   const auto spectrum = KasdinSpectrum(n, fft_length);
   boost::random::normal_distribution<double> normal(0.0, 1.0);
-  double* x = work.data();
   for (std::size_t i = 0; i < n; ++i) x[i] = normal(engine);
   std::fill(x + n, x + fft_length + 2, 0.0);
   ForwardRealFft(fft_length, x);
@@ -87,7 +99,7 @@ void FlickerNoise::SynthesizeInPlace(Engine& engine, std::size_t n, std::span<do
   const std::complex<double>* h = spectrum->complex_data();
   for (std::size_t k = 0; k <= fft_length / 2; ++k) w[k] = MulFinite(w[k], h[k]);
   InverseRealFft(fft_length, x);
-  const double scale = bias_instability_rad_per_s / static_cast<double>(fft_length);
+  if (cache != nullptr) cache->Keep(stream_seed, std::vector<double>(x, x + n));
   for (std::size_t i = 0; i < n; ++i) x[i] *= scale;
 }
 

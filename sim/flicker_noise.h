@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sim/avar_theory.h"
+#include "sim/flicker_stream_cache.h"
 #include "sim/term_common.h"
 
 namespace allanlab::sim {
@@ -31,6 +32,10 @@ struct FlickerNoise {
   // (size >= WorkSize(n)) as FFT space: a caller that keeps the record in `work` needs no second
   // record-sized buffer (this halves simulate's peak memory).
   void SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work) const;
+  // The same, the unit record taken from (or kept in) `cache` under `stream_seed`, the seed word
+  // `engine` was made from: the same bits whether it was kept or not.
+  void SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work, FlickerStreamCache* cache,
+                         std::uint64_t stream_seed) const;
   // Generalised autocovariance R(k) = -(2 B^2 / pi) sum_{i=1}^{k} 1/(2i - 1) (stationary
   // increments, i.e. without the start-up transient).
   void FillAutocovariance(double tau0_s, std::span<double> r) const;

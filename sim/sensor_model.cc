@@ -9,9 +9,11 @@
 #include <tuple>
 #include <type_traits>
 
+#include <boost/random/normal_distribution.hpp>
 #include <boost/random/uniform_real_distribution.hpp>
 
 #include "sim/band_limited_avar.h"
+#include "sim/first_order_period.h"
 #include "sim/kasdin_finite_record.h"
 
 namespace allanlab::sim {
@@ -214,6 +216,11 @@ bool SensorModel::IsValid(std::string* why) const {
 
 std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t trial,
                                           std::int64_t n) const {
+  return Generate(seed, trial, n, GenerateOptions{});
+}
+
+std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n,
+                                          const GenerateOptions& options) const {
   const double tau0 = sample_clock.period_s();
   auto engine_for = [&](std::size_t i) { return MakeEngine(seed, trial, i); };
   std::shared_ptr<const BandLimitChain> chain;
@@ -230,8 +237,11 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     if (const auto* f = std::get_if<FlickerNoise>(&terms[i])) {
       const auto samples = static_cast<std::size_t>(n);
       out.resize(std::max(FlickerNoise::WorkSize(samples), static_cast<std::size_t>(total)));
-      Engine engine = engine_for(i);
-      f->SynthesizeInPlace(engine, samples, out);
+      const std::uint64_t stream_seed = options.flicker_cache != nullptr
+                                            ? StreamSeed(options.flicker_seed, trial, kSharedFlickerStream)
+                                            : StreamSeed(seed, trial, i);
+      Engine engine(stream_seed);
+      f->SynthesizeInPlace(engine, samples, out, options.flicker_cache, stream_seed);
       std::copy_backward(out.begin(), out.begin() + n, out.begin() + total);
       std::fill(out.begin(), out.begin() + burn_in, 0.0);
       in_place_term = i;
@@ -295,9 +305,25 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     const std::vector<double>& boxes = chain->box_lengths();
     for (double w : boxes) cascade.stages.emplace_back(w);
     constexpr std::int64_t kChunk = 4096;
-    std::vector<double> wide(static_cast<std::size_t>(kChunk * l));
     const bool average = band_limit.sampling == OutputSampling::kAverage;
-    for (std::int64_t k0 = 0; k0 < total; k0 += kChunk) {
+    const bool per_period = options.white_per_output_period && first_order && boxes.empty() && harmonics.empty();
+    if (per_period) {
+      double internal_variance = 0.0;
+      for (const WhiteRateNoise* w : whites) {
+        internal_variance += w->arw_rad_per_sqrt_s * w->arw_rad_per_sqrt_s / tau_internal;
+      }
+      FirstOrderPeriod period(filter, l, internal_variance, average);
+      boost::random::normal_distribution<double> normal(0.0, 1.0);
+      Engine* engine = wide_engines.empty() ? nullptr : &wide_engines.front();
+      for (std::int64_t k = 0; k < total; ++k) {
+        const double z1 = period.draws() > 0 ? normal(*engine) : 0.0;
+        const double z2 = period.draws() > 1 ? normal(*engine) : 0.0;
+        const double y = period.Step(out[k], z1, z2);
+        if (k >= burn_in) out[k - burn_in] = y;
+      }
+    }
+    std::vector<double> wide(per_period ? 0 : static_cast<std::size_t>(kChunk * l));
+    for (std::int64_t k0 = 0; k0 < (per_period ? 0 : total); k0 += kChunk) {
       const std::int64_t k1 = std::min(total, k0 + kChunk);
       std::span<double> chunk(wide.data(), static_cast<std::size_t>((k1 - k0) * l));
       std::fill(chunk.begin(), chunk.end(), 0.0);

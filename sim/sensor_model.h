@@ -10,6 +10,7 @@
 #include "common/sample_clock.h"
 #include "sim/avar_theory.h"
 #include "sim/band_limit.h"
+#include "sim/flicker_stream_cache.h"
 #include "sim/noise_term.h"
 #include "sim/output_quantizer.h"
 
@@ -25,6 +26,22 @@ enum class FlickerBandLimit {
   // (band_limited_avar.h): O(len(q)) per m at any cutoff, off by a start-up term below
   // 0.5 (tc + 1)/T of the flicker AVAR (docs/theory.md §2.9). For fits that try many cutoffs.
   kStationaryChange,
+};
+
+// Choices in how Generate draws a record that change its random stream but not its law.
+struct GenerateOptions {
+  // White rate noise behind an impulse-invariant first-order band-limit without harmonics: drawn
+  // one output period at a time (first_order_period.h), 2 Gaussian draws per output sample instead
+  // of the oversampling L. Exact in distribution; for Monte Carlo envelopes, where only the law
+  // matters.
+  bool white_per_output_period = false;
+  // With a cache: the first Kasdin flicker term draws from stream kSharedFlickerStream of
+  // (flicker_seed, trial) instead of its own stream of (seed, trial), so the models generated with
+  // one flicker_seed share a flicker record per trial (B times the same unit record), which is
+  // synthesised once and then taken from the cache (the same bits either way). nullptr: the term's
+  // own stream, synthesised every time.
+  FlickerStreamCache* flicker_cache = nullptr;
+  std::uint64_t flicker_seed = 0;
 };
 
 struct SensorModel {
@@ -46,6 +63,9 @@ struct SensorModel {
   // kRateQuantizerStream. Bit-identical for the same arguments whatever
   // the thread. Precondition: IsValid().
   std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n) const;
+  // The same with `options` (the first white term's stream then feeds the period draws).
+  std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n,
+                               const GenerateOptions& options) const;
 
   // Exact E[AVAR_hat(m)] of Generate()'s records (rad/s)^2, band-limit and finite record
   // included. The quantizers' shares come from their error autocovariances on the Gaussian
@@ -72,6 +92,7 @@ struct SensorModel {
 
   static constexpr std::uint64_t kQuantizerStream = 1000;
   static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset
+  static constexpr std::uint64_t kSharedFlickerStream = 1002;  // GenerateOptions::flicker_cache
 
  private:
   // GaussianAutocovariance before the rate quantizer.

@@ -16,6 +16,10 @@
 namespace allanlab::experiments {
 namespace detail {
 
+SharedFlicker RecordFlicker(const Context& ctx, int h) {
+  return {&ctx.flicker_streams, ctx.options->seed + (h < 0 ? 0 : 500 + static_cast<std::uint64_t>(h))};
+}
+
 void ReportProgress(const Context& ctx, std::string_view stage, int done, int total) {
   if (ctx.options->progress && std::this_thread::get_id() == ctx.caller) ctx.options->progress(stage, done, total);
 }
@@ -23,7 +27,8 @@ void ReportProgress(const Context& ctx, std::string_view stage, int done, int to
 std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
                                            const ViewValues& observed, const sim::SensorModel& model,
                                            bool monte_carlo, int trials, std::uint64_t seed,
-                                           std::string* note, const ViewSet& wanted) {
+                                           std::string* note, const ViewSet& wanted,
+                                           const SharedFlicker* shared_flicker) {
   const OavarTheory theory = wanted.test(static_cast<int>(View::kOavar))
                                  ? ExactOavar(model, layout.oavar_m, layout.num_samples)
                                  : OavarTheory{};
@@ -31,7 +36,7 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
   ViewEnvelope envelope;
   const ViewSet simulated = wanted & MonteCarloViews();
   const bool have_envelope = monte_carlo && trials >= 3 && simulated.any() &&
-                             SimulateEnvelope(model, layout, trials, seed, &envelope, note, simulated);
+                             SimulateEnvelope(model, layout, trials, seed, &envelope, note, simulated, shared_flicker);
   std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr, wanted);
   const bool block_means = wanted.test(static_cast<int>(View::kChangePoint)) || wanted.test(static_cast<int>(View::kTrend));
   if (block_means && !layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
@@ -48,7 +53,9 @@ ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_ca
                 std::uint64_t seed, std::string* note) {
   ModelGap gap;
   if (ctx.have_record) {
-    gap.views = RecordResiduals(ctx.rate, ctx.layout, ctx.observed, model, monte_carlo, ctx.options->trials, seed, note);
+    const SharedFlicker flicker = RecordFlicker(ctx);
+    gap.views = RecordResiduals(ctx.rate, ctx.layout, ctx.observed, model, monte_carlo, ctx.options->trials, seed, note,
+                                EveryView(), &flicker);
   } else {
     const OavarTheory theory = ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
     ViewValues observed(kNumViews);

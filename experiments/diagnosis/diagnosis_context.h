@@ -11,7 +11,9 @@
 #include "estimators/fit/avar_curve.h"
 #include "experiments/diagnosis/baseline.h"
 #include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/envelope.h"
 #include "experiments/diagnosis/record_views.h"
+#include "sim/flicker_stream_cache.h"
 
 namespace allanlab::experiments::detail {
 
@@ -52,7 +54,15 @@ struct Context {
   double half_length_s = 0.0;
   // Each half against the other half's baseline (computed once, when a candidate needs it).
   mutable std::optional<HeldoutBefore> heldout_before[2];
+  // The flicker records the envelopes share (RecordFlicker): 480 MB for the whole record and its
+  // halves at 1e6 samples and 30 trials; longer records keep what fits.
+  mutable sim::FlickerStreamCache flicker_streams{std::size_t{1} << 30};
 };
+
+// The flicker record every model's envelope on the whole record (h < 0) or on half h shares per
+// trial (docs/theory.md §6.1): the Kasdin synthesis, the dearest part of a simulated record, is
+// done once per trial and record, not once per model. The other terms keep each envelope's seed.
+SharedFlicker RecordFlicker(const Context& ctx, int h = -1);
 
 // Tells options->progress (when set) that `stage` has `done` of `total` steps behind it; a no-op
 // off the calling thread.
@@ -64,7 +74,8 @@ void ReportProgress(const Context& ctx, std::string_view stage, int done, int to
 std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const ViewLayout& layout,
                                            const ViewValues& observed, const sim::SensorModel& model,
                                            bool monte_carlo, int trials, std::uint64_t seed,
-                                           std::string* note, const ViewSet& wanted = EveryView());
+                                           std::string* note, const ViewSet& wanted = EveryView(),
+                                           const SharedFlicker* shared_flicker = nullptr);
 
 // The record (or in curve mode the curve) against a model.
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,

@@ -5,6 +5,21 @@
 #include "estimators/exact_edf.h"
 
 namespace allanlab::experiments {
+namespace {
+
+// Only the law of the simulated records matters to an envelope: the band-limited white noise is
+// drawn per output period where that is exact (sim/first_order_period.h), and the flicker record
+// is shared when asked (docs/theory.md §6.1).
+sim::GenerateOptions EnvelopeGeneration(const SharedFlicker* shared_flicker) {
+  sim::GenerateOptions options{.white_per_output_period = true};
+  if (shared_flicker != nullptr) {
+    options.flicker_cache = shared_flicker->cache;
+    options.flicker_seed = shared_flicker->seed;
+  }
+  return options;
+}
+
+}  // namespace
 
 OavarTheory ExactOavar(const sim::SensorModel& model, std::span<const std::int64_t> ms,
                        std::int64_t num_samples) {
@@ -24,13 +39,16 @@ OavarTheory ExactOavar(const sim::SensorModel& model, std::span<const std::int64
 }
 
 bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, int trials,
-                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why, const ViewSet& wanted) {
+                      std::uint64_t seed, ViewEnvelope* envelope, std::string* why, const ViewSet& wanted,
+                      const SharedFlicker* shared_flicker) {
   if (!model.IsValid(why)) return false;
+  const sim::GenerateOptions generation = EnvelopeGeneration(shared_flicker);
   std::vector<ViewValues> per_trial(trials);
   std::vector<char> ok(trials, 0);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int t = 0; t < trials; ++t) {
-    const std::vector<double> record = model.Generate(seed, static_cast<std::uint64_t>(t), layout.num_samples);
+    const std::vector<double> record =
+        model.Generate(seed, static_cast<std::uint64_t>(t), layout.num_samples, generation);
     std::string ignored;
     ok[t] = ComputeViews(layout, record, &per_trial[t], &ignored, wanted) ? 1 : 0;
   }

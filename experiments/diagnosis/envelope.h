@@ -6,7 +6,9 @@
 //     (estimators/exact_edf.h): cheap, O(N) per tau.
 //   Other views: Monte Carlo of the model (fixed seed, `trials` records, OpenMP across trials;
 //     deterministic for any thread count: trial t always uses (seed, t) and the moments are summed
-//     in trial order).
+//     in trial order). The records are drawn with sim::GenerateOptions that keep their law and
+//     cut their cost (white noise behind a first-order band-limit per output period; one flicker
+//     record per trial shared by the models of one record).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -32,9 +34,17 @@ struct ViewEnvelope {
 };
 // Returns false with *why when the model is invalid or no simulated record gave values. Views
 // not in `wanted` are left NaN; the others do not depend on which are wanted.
+// The flicker record every model's envelope on one record shares per trial (docs/theory.md §6.1):
+// drawn from `seed`'s stream, synthesised once and kept in `cache`.
+struct SharedFlicker {
+  sim::FlickerStreamCache* cache = nullptr;
+  std::uint64_t seed = 0;
+};
+
+// `shared_flicker` (may be null: each model its own flicker stream from `seed`).
 bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, int trials,
                       std::uint64_t seed, ViewEnvelope* envelope, std::string* why,
-                      const ViewSet& wanted = EveryView());
+                      const ViewSet& wanted = EveryView(), const SharedFlicker* shared_flicker = nullptr);
 
 // Residuals of `observed` (ComputeViews of the record) against the model: the OAVAR view from
 // `theory`, the others from `envelope` (views absent from the envelope, or with fewer than 3

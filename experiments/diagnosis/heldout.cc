@@ -28,9 +28,10 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
     const HalfRecord& scored = ctx.halves[h];
     HeldoutBefore b;
     std::string ignored;
+    const SharedFlicker flicker = RecordFlicker(ctx, h);
     b.residuals = RecordResiduals(scored.rate, scored.layout, scored.observed,
                                   ctx.spec.Model(ctx.halves[1 - h].baseline, ctx.curve.sample_clock), true,
-                                  ctx.options->trials, ctx.options->seed + 500 + h, &ignored);
+                                  ctx.options->trials, ctx.options->seed + 500 + h, &ignored, EveryView(), &flicker);
     for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
       if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
     }
@@ -101,9 +102,11 @@ void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std:
   const HeldoutBefore& before = HeldoutBaseline(ctx, h, threshold);
   if (before.gap_views.empty()) return;
   std::string ignored;
+  const SharedFlicker flicker = RecordFlicker(ctx, h);
   c->heldout_before = MetricsOf(before.residuals, before.gap_views);
   c->after.heldout = MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, c->heldout_model, true,
-                                               ctx.options->trials, seed, &ignored, ViewSetOf(before.gap_views)),
+                                               ctx.options->trials, seed, &ignored, ViewSetOf(before.gap_views),
+                                               &flicker),
                                before.gap_views);
   c->heldout_in_gap_views = true;
 }
@@ -114,8 +117,9 @@ GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorM
   if (!gap_views) return CurveMetrics(model, scored.curve);
   std::string ignored;
   const std::vector<View>& gap = HeldoutBaseline(ctx, h, threshold).gap_views;
+  const SharedFlicker flicker = RecordFlicker(ctx, h);
   return MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, model, true, ctx.options->trials, seed,
-                                   &ignored, ViewSetOf(gap)),
+                                   &ignored, ViewSetOf(gap), &flicker),
                    gap);
 }
 

@@ -55,8 +55,9 @@ void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* 
   if (ctx.have_record) {
     // The exact views are those TryCandidate assessed the same model on: only the Monte Carlo
     // ones are new. Kept in View order, as Assess gives them.
+    const SharedFlicker flicker = RecordFlicker(ctx);
     full.views = RecordResiduals(ctx.rate, ctx.layout, ctx.observed, c->model, true, ctx.options->trials,
-                                 ctx.options->seed + salt, &note, MonteCarloViews());
+                                 ctx.options->seed + salt, &note, MonteCarloViews(), &flicker);
     for (const ViewResiduals& r : c->after.views) {
       if (!MonteCarloViews().test(static_cast<int>(r.view))) full.views.push_back(r);
     }

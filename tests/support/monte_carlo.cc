@@ -11,7 +11,7 @@ namespace allanlab::testing_support {
 
 AvarSample SimulateAvar(const sim::SensorModel& model, std::uint64_t seed, int trials,
                         std::int64_t n, std::span<const std::int64_t> ms,
-                        sim::AvarEstimatorKind kind) {
+                        sim::AvarEstimatorKind kind, const sim::GenerateOptions& options) {
   AvarSample s;
   s.trials = trials;
   s.mean.assign(ms.size(), 0.0);
@@ -19,7 +19,7 @@ AvarSample SimulateAvar(const sim::SensorModel& model, std::uint64_t seed, int t
   std::vector<std::vector<double>> values(static_cast<std::size_t>(trials));
 #pragma omp parallel for schedule(dynamic)
   for (int t = 0; t < trials; ++t) {
-    const std::vector<double> y = model.Generate(seed, static_cast<std::uint64_t>(t), n);
+    const std::vector<double> y = model.Generate(seed, static_cast<std::uint64_t>(t), n, options);
     values[t] = estimators::AllanVariance(y, ms, kind);
   }
   for (std::size_t k = 0; k < ms.size(); ++k) {

@@ -23,10 +23,11 @@ struct AvarSample {
   int trials = 0;
 };
 
-// AVAR_hat at each m for trials 0..trials-1 of `model` under `seed` (records of n samples).
+// AVAR_hat at each m for trials 0..trials-1 of `model` under `seed` (records of n samples, drawn
+// with `options`).
 AvarSample SimulateAvar(const sim::SensorModel& model, std::uint64_t seed, int trials,
                         std::int64_t n, std::span<const std::int64_t> ms,
-                        sim::AvarEstimatorKind kind);
+                        sim::AvarEstimatorKind kind, const sim::GenerateOptions& options = {});
 
 // Exact SD of one AVAR estimate at each m for the model's Gaussian part (docs/theory.md §3.1).
 std::vector<double> ExactAvarStdDev(const sim::SensorModel& model, std::int64_t n,
