@@ -2,8 +2,8 @@
 // band-limit, averaged output at L = 8): the overlapping curve on the command's default grid
 // (dense:10, Greenhall-Riley EDFs) and FitWithBandLimit (GLS, all five terms, kAuto). With fixed
 // seeds, every coefficient is within 3 reported sigmas of the preset's value (0 if absent; compared
-// in c^2, see below) or, left out by the subset choice, under its 95 % upper limit, the band-limit is detected and its fitted cutoff within 3 sigmas of
-// 100 Hz. Before the band-limit was fitted, GLS on such a record gave B = 1.9 deg/h (true 0.18)
+// in c^2, see below) or, left out by the subset choice, has the value under its 95 % upper limit;
+// the band-limit is detected and its fitted cutoff within 3 sigmas of 100 Hz. Before the band-limit was fitted, GLS on such a record gave B = 1.9 deg/h (true 0.18)
 // and N = 0.021 (true 0.0267). Also: on the same preset without its band-limit nothing is detected.
 // Records: 30 min at 400 Hz (720 000 samples), long enough for the floor, short enough for speed.
 #include <gtest/gtest.h>
