@@ -149,7 +149,8 @@ Json CoefficientsJson(const estimators::FitSummary& fit, const DiagnoseUnits& un
         {"value", e.fitted ? CoefficientValue(units, c, e.value_si) : 0.0},
         {"sigma", CoefficientValue(units, c, e.sigma_si)},
         {"unit", CoefficientUnit(units, c)},
-        {"fitted", e.fitted}};
+        {"fitted", e.fitted},
+        {"upper_limit", !e.fitted && e.has_upper_limit ? Json(CoefficientValue(units, c, e.upper_limit_si)) : Json(nullptr)}};
   }
   return j;
 }
@@ -289,7 +290,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
                   {"sampling", b.sampling == sim::OutputSampling::kAverage ? "average" : "point"}};
   }
   j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline, unit)}, {"band_limit", band_limit},
-                   {"fit", {{"chi2", s.baseline.chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
+                   {"fit", {{"chi2", s.baseline.gof_chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
   if (!validation.is_null()) j["validation"] = validation;
   j["notes"] = s.notes;
   j["provenance"] = ProvenanceJson(p);

@@ -117,7 +117,7 @@ std::string PoorFitLine(const estimators::ModelFitSummary& m, ImuSensor sensor) 
       first = false;
     }
   }
-  os << "), chi2 " << SignificantDigits(x.fit.chi2, 4) << " on " << x.fit.dof << " dof (p = " << SignificantDigits(x.fit.p_value, 4) << "): "
+  os << "), chi2 " << SignificantDigits(x.fit.gof_chi2, 4) << " on " << x.fit.dof << " dof (p = " << SignificantDigits(x.fit.gof_p_value, 4) << "): "
      << (x.fits ? std::string("that model fits and is the one reported above")
                 : std::string("it does not fit either; the coefficients above are those of the closest wrong model"));
   return os.str();
@@ -173,7 +173,7 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
     if (!e.note.empty()) os << "             (" << e.note << ")\n";
   }
   os << "uncertainty: " << UncertaintyText(s, o) << "\n";
-  os << "fit: chi2 " << SignificantDigits(s.chi2, 4) << " on " << s.dof << " dof (p = " << SignificantDigits(s.p_value, 4) << "), "
+  os << "fit: chi2 " << SignificantDigits(s.gof_chi2, 4) << " on " << s.dof << " dof (p = " << SignificantDigits(s.gof_p_value, 4) << "), "
      << s.taus_used << " taus; " << s.message << "\n";
   if (m.poor_fit) os << PoorFitLine(m, sensor) << "\n";
   if (!m.method_disagreement.empty()) {
@@ -291,9 +291,9 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
     bandwidth["fitted"] = nullptr;
   }
   j["bandwidth_hz"] = bandwidth;
-  j["fit"] = {{"chi2", s.chi2},
+  j["fit"] = {{"chi2", s.gof_chi2},
               {"dof", s.dof},
-              {"p_value", s.p_value},
+              {"p_value", s.gof_p_value},
               {"converged", s.converged},
               {"taus_used", s.taus_used},
               {"tau_min_s", s.tau_min_s},
@@ -306,8 +306,8 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
     nlohmann::ordered_json tried = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < m.extended.size(); ++i) {
       const estimators::ExtendedFit& x = m.extended[i];
-      nlohmann::ordered_json t = {{"terms", x.name}, {"chi2", x.fit.chi2}, {"dof", x.fit.dof},
-                                  {"p_value", x.fit.p_value}, {"fits", x.fits},
+      nlohmann::ordered_json t = {{"terms", x.name}, {"chi2", x.fit.gof_chi2}, {"dof", x.fit.dof},
+                                  {"p_value", x.fit.gof_p_value}, {"fits", x.fits},
                                   {"best", static_cast<int>(i) == m.best_extended}};
       for (const auto& e : x.extra) {
         for (std::size_t q = 0; q < e.parameters.size(); ++q) {

@@ -159,8 +159,18 @@ std::string ShrinkText(const PlainShrink& v) {
          (factor > 0.0 ? " (" + PlainNumber(factor) + "x)" : "");
 }
 
-std::string CoefficientText(bool fitted, double value, double sigma) {
-  return fitted ? PlainNumber(value) + " +- " + PlainNumber(sigma) : "not fitted";
+std::string CoefficientText(bool fitted, double value, double sigma, double upper) {
+  if (fitted) return PlainNumber(value) + " +- " + PlainNumber(sigma);
+  return upper > 0.0 ? "< " + PlainNumber(upper) + " (95 % upper limit)" : "not fitted";
+}
+
+Json CoefficientJson(bool fitted, double value, double sigma, double upper) {
+  if (fitted) return Json{{"value", value}, {"sigma", sigma}};
+  return upper > 0.0 ? Json{{"upper_limit", upper}} : Json(nullptr);
+}
+
+double UpperLimit(const DiagnoseUnits& units, estimators::Coefficient k, const estimators::CoefficientEstimate& e) {
+  return !e.fitted && e.has_upper_limit ? CoefficientValue(units, k, e.upper_limit_si) : 0.0;
 }
 
 }  // namespace
@@ -240,18 +250,20 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
   }
   for (estimators::Coefficient k : estimators::kAllCoefficients) {
     const auto& b = s.baseline.at(k);
-    if (!b.asked || (!b.fitted && (c == nullptr || !c->fit.at(k).fitted))) continue;  // in neither model
+    if (!b.asked || (!b.fitted && !b.has_upper_limit && (c == nullptr || !c->fit.at(k).fitted))) continue;  // in neither model
     PlainCoefficient pc;
     pc.id = std::string(estimators::CoefficientId(k));
     pc.unit = CoefficientUnit(units, k);
     pc.baseline_fitted = b.fitted;
     pc.baseline = CoefficientValue(units, k, b.value_si);
     pc.baseline_sigma = CoefficientValue(units, k, b.sigma_si);
+    pc.baseline_upper = UpperLimit(units, k, b);
     if (c != nullptr) {
       const auto& m = c->fit.at(k);
       pc.model_fitted = m.fitted;
       pc.model = CoefficientValue(units, k, m.value_si);
       pc.model_sigma = CoefficientValue(units, k, m.sigma_si);
+      pc.model_upper = UpperLimit(units, k, m);
     }
     p.coefficients.push_back(pc);
   }
@@ -297,8 +309,8 @@ void WritePlainText(std::ostream& os, const PlainSummary& p) {
   }
   os << "  coefficients (baseline" << (p.model_label.empty() ? "" : " -> " + p.model_label) << "):\n";
   for (const PlainCoefficient& c : p.coefficients) {
-    os << "    " << c.id << " " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma);
-    if (!p.model_label.empty()) os << " -> " << CoefficientText(c.model_fitted, c.model, c.model_sigma);
+    os << "    " << c.id << " " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma, c.baseline_upper);
+    if (!p.model_label.empty()) os << " -> " << CoefficientText(c.model_fitted, c.model, c.model_sigma, c.model_upper);
     os << " " << c.unit << "\n";
   }
 }
@@ -313,9 +325,9 @@ void WritePlainMarkdown(std::ostream& os, const PlainSummary& p) {
   os << "\n| coefficient | unit | baseline |" << (p.model_label.empty() ? "" : " " + p.model_label + " |")
      << "\n|---|---|---|" << (p.model_label.empty() ? "" : "---|") << "\n";
   for (const PlainCoefficient& c : p.coefficients) {
-    os << "| " << c.id << " | " << c.unit << " | " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma)
+    os << "| " << c.id << " | " << c.unit << " | " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma, c.baseline_upper)
        << " |";
-    if (!p.model_label.empty()) os << " " << CoefficientText(c.model_fitted, c.model, c.model_sigma) << " |";
+    if (!p.model_label.empty()) os << " " << CoefficientText(c.model_fitted, c.model, c.model_sigma, c.model_upper) << " |";
     os << "\n";
   }
   os << "\n";
@@ -342,10 +354,8 @@ Json PlainJson(const PlainSummary& p) {
   Json coefficients = Json::array();
   for (const PlainCoefficient& c : p.coefficients) {
     Json one{{"id", c.id}, {"unit", c.unit},
-             {"baseline", c.baseline_fitted ? Json{{"value", c.baseline}, {"sigma", c.baseline_sigma}} : Json(nullptr)}};
-    if (!p.model_label.empty()) {
-      one["model"] = c.model_fitted ? Json{{"value", c.model}, {"sigma", c.model_sigma}} : Json(nullptr);
-    }
+             {"baseline", CoefficientJson(c.baseline_fitted, c.baseline, c.baseline_sigma, c.baseline_upper)}};
+    if (!p.model_label.empty()) one["model"] = CoefficientJson(c.model_fitted, c.model, c.model_sigma, c.model_upper);
     coefficients.push_back(one);
   }
   j["coefficients"] = coefficients;

@@ -47,6 +47,9 @@ struct PlainCoefficient {
   std::string id, unit;  // "N", "deg/sqrt(h)"
   bool baseline_fitted = false, model_fitted = false;
   double baseline = 0.0, baseline_sigma = 0.0, model = 0.0, model_sigma = 0.0;
+  // Not fitted (left out by the term choice, or at zero): the one-sided 95 % upper limit, as
+  // `allanlab fit` reports it; 0 when there is none.
+  double baseline_upper = 0.0, model_upper = 0.0;
 };
 
 struct PlainSummary {

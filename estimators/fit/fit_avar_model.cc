@@ -136,7 +136,24 @@ bool FitOptions::IsValid(std::string* why) const {
   return true;
 }
 
-bool IsPoorFit(const FitSummary& s) { return s.dof > 0 && s.p_value < kPoorFitP; }
+bool IsPoorFit(const FitSummary& s) { return s.dof > 0 && s.gof_p_value < kPoorFitP; }
+
+namespace {
+double ChiSquareTail(double chi2, int dof) {
+  return dof > 0 ? boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), chi2)) : 1.0;
+}
+}  // namespace
+
+void SetGoodnessOfFit(double chi2, FitSummary* summary) {
+  summary->gof_chi2 = chi2;
+  summary->gof_p_value = ChiSquareTail(chi2, summary->dof);
+}
+
+void SetFitCost(double chi2, FitSummary* summary) {
+  summary->chi2 = chi2;
+  summary->p_value = ChiSquareTail(chi2, summary->dof);
+  SetGoodnessOfFit(chi2, summary);
+}
 
 std::string PoorFitRule() {
   std::ostringstream os;
@@ -352,12 +369,7 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
   ReportSubset(fp, masks, options.select_terms, summary);
   // The fit of all terms keeps its own chi2 (exact for log-WLS, whose problem here is the
   // expansion at that fit).
-  if (keep == every) summary->chi2 = full_chi2;
-  summary->p_value = 1.0;
-  if (summary->dof > 0) {
-    summary->p_value =
-        boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), summary->chi2));
-  }
+  SetFitCost(keep == every ? full_chi2 : summary->chi2, summary);
   SetFitProfileRanges(fp.problem, masks, fp.asked, fp.scale, summary);
   std::string message = summary->converged ? "converged" : "weights did not settle within max_reweightings";
   if (options.select_terms && keep != every) {
@@ -591,15 +603,11 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
     e.value_si = std::sqrt(theta_si);
     e.sigma_si = sigma_theta / (2.0 * e.value_si);
   }
-  summary->chi2 = chi2;
   summary->dof = static_cast<int>(taus) - fitted;
+  SetFitCost(chi2, summary);
   summary->ok = true;
   summary->message = (settled ? "converged" : "weights did not settle within max_reweightings") +
                      edf_note;
-  if (summary->dof > 0) {
-    summary->p_value =
-        boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), chi2));
-  }
   return true;
 }
 

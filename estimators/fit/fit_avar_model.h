@@ -105,12 +105,21 @@ struct FitSummary {
   std::string band_limit;
   int iterations = 0;
   bool converged = false;
-  double chi2 = 0.0;  // sum of squared weighted (GLS: whitened) residuals at the solution
-  int dof = 0;        // taus - fitted coefficients
-  // P(chi2_dof >= chi2): the goodness of fit. Below kPoorFitP (POOR FIT in the message) when the
-  // model does not describe the curve; then coefficients and sigmas are those of the closest
-  // wrong model.
+  // The fit's cost: the sum of squared weighted (GLS: whitened by the weight the fit held)
+  // residuals at the solution, and P(chi2_dof >= chi2). What nested fits of one curve are compared
+  // by (band-limit detection, AIC).
+  double chi2 = 0.0;
+  int dof = 0;  // taus - fitted coefficients
   double p_value = 1.0;
+  // The goodness of fit, what IsPoorFit judges and the outputs print: GLS, the chosen model's
+  // chi2 under its own covariance with chi-square marginals (GoodnessOfFitChi2,
+  // linear_profile.h), and P(chi2_dof >= gof_chi2); the cost above for WLS and log-WLS. GLS
+  // holds the weight of a pilot fit, whose small K made the long taus' variances too small:
+  // judged by the cost, 25 of 200 records of white noise and a rate random walk had p < 1e-3
+  // (docs/theory.md §4.8). Below kPoorFitP (POOR FIT in the message) the model does not describe
+  // the curve; then coefficients and sigmas are those of the closest wrong model.
+  double gof_chi2 = 0.0;
+  double gof_p_value = 1.0;
   // The uncertainty actually reported: kBootstrap only if the bootstrap ran with >= 2 usable
   // replicates (otherwise the covariance sigmas stay and the message says why).
   FitUncertainty uncertainty = FitUncertainty::kCovariance;
@@ -124,7 +133,11 @@ struct FitSummary {
 // its dof (a right model is called poor in 1 record of 1000). The one threshold of every fit's
 // POOR FIT message, ModelFitSummary::poor_fit (fit_model.h) and `allanlab fit`.
 inline constexpr double kPoorFitP = 1e-3;
-bool IsPoorFit(const FitSummary& s);  // dof > 0 and p_value < kPoorFitP
+bool IsPoorFit(const FitSummary& s);  // dof > 0 and gof_p_value < kPoorFitP
+// Sets chi2 and p_value from `chi2` on summary->dof, and the goodness of fit to the same.
+void SetFitCost(double chi2, FitSummary* summary);
+// Sets gof_chi2 and gof_p_value from `chi2` on summary->dof.
+void SetGoodnessOfFit(double chi2, FitSummary* summary);
 // The rule in words, for outputs: "chi2 above the 99.9 % quantile of chi2 on its dof (p < 0.001)".
 std::string PoorFitRule();
 

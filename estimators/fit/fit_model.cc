@@ -161,7 +161,7 @@ bool FitModel(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
   if (options.method == FitMethod::kSlope) return true;
   summary->poor_fit = IsPoorFit(summary->fit);
   if (summary->poor_fit) {
-    summary->poor_chi2 = summary->fit.chi2;
+    summary->poor_chi2 = summary->fit.gof_chi2;
     summary->poor_dof = summary->fit.dof;
   }
   if (summary->poor_fit && options.try_extended_on_poor_fit && options.extra.empty()) {

@@ -92,16 +92,29 @@ Eigen::VectorXd SolveSubset(const LinearProblem& p, unsigned free_mask) {
 
 SubsetChoice SelectSubsetByAic(const LinearProblem& p) {
   const auto n = static_cast<unsigned>(p.a.cols());
+  std::vector<Eigen::VectorXd> xs(1u << n);
+  std::vector<double> costs(1u << n);
+  bool any_likelihood = false;
+  for (unsigned mask = 0; mask < (1u << n); ++mask) {
+    xs[mask] = SolveSubset(p, mask);
+    costs[mask] = LikelihoodCost(p, xs[mask]);
+    any_likelihood = any_likelihood || std::isfinite(costs[mask]);
+  }
+  // No subset's covariance could be formed: the weight held (W0) scores them all.
+  if (!any_likelihood) {
+    for (unsigned mask = 0; mask < (1u << n); ++mask) costs[mask] = p.Chi2(xs[mask]);
+  }
   SubsetChoice best;
   bool have = false;
   std::vector<double> scores(1u << n);
   for (unsigned mask = 0; mask < (1u << n); ++mask) {
     SubsetChoice c;
     c.mask = mask;
-    c.x = SolveSubset(p, mask);
+    c.x = xs[mask];
     c.chi2 = p.Chi2(c.x);
-    c.score = c.chi2 + 2.0 * std::popcount(mask);
+    c.score = costs[mask] + 2.0 * std::popcount(mask);
     scores[mask] = c.score;
+    if (!std::isfinite(c.score)) continue;
     const bool better = !have || c.score < best.score - 1e-9 * std::max(1.0, best.score) ||
                         (std::abs(c.score - best.score) <= 1e-9 * std::max(1.0, best.score) &&
                          std::popcount(mask) < std::popcount(best.mask));
@@ -157,9 +170,10 @@ Eigen::VectorXd SolveHeld(const LinearProblem& p, unsigned free_mask, int j, dou
   return SolveMasked(p, free_mask, j, t);
 }
 
-bool WhitenedAt(const LinearProblem& p, const Eigen::VectorXd& x, LinearProblem* q) {
-  Eigen::MatrixXd w;
-  if (!p.whitening_at || !p.whitening_at(x, &w)) return false;
+namespace {
+
+// q: p's design and target whitened by w, p.free_directions projected out.
+void WhitenBy(const LinearProblem& p, const Eigen::MatrixXd& w, LinearProblem* q) {
   q->a = w * p.design;
   q->y = w * p.target;
   if (p.free_directions.cols() > 0) {
@@ -168,7 +182,65 @@ bool WhitenedAt(const LinearProblem& p, const Eigen::VectorXd& x, LinearProblem*
     q->a -= f * cod.solve(q->a);
     q->y -= f * cod.solve(q->y);
   }
+}
+
+// log |det w|.
+double LogAbsDeterminant(const Eigen::MatrixXd& w) {
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(w);
+  return lu.matrixLU().diagonal().cwiseAbs().array().log().sum();
+}
+
+}  // namespace
+
+bool WhitenedAt(const LinearProblem& p, const Eigen::VectorXd& x, LinearProblem* q) {
+  Eigen::MatrixXd w;
+  if (!p.whitening_at || !p.whitening_at(x, &w)) return false;
+  WhitenBy(p, w, q);
   return true;
+}
+
+bool GoodnessOfFitChi2(const LinearProblem& p, unsigned mask, double* chi2) {
+  LinearProblem own;
+  if (!WhitenedAt(p, SolveSubset(p, mask), &own)) return false;
+  const Eigen::VectorXd x = SolveSubset(own, mask);
+  Eigen::MatrixXd w;
+  if (!p.whitening_at(x, &w)) return false;
+  const Eigen::Index n = w.rows();
+  const Eigen::VectorXd offset = p.offset.size() == n ? p.offset : Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd mean = p.design * x + offset;
+  const Eigen::VectorXd curve = p.target + offset;
+  // Omega = W^-1 W^-T: its diagonal from the rows of W^-1.
+  const Eigen::MatrixXd root = w.partialPivLu().solve(Eigen::MatrixXd::Identity(n, n));
+  Eigen::VectorXd r(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double sd = root.row(k).norm();
+    const double mu = std::max(mean(k), 1e-300 * sd);
+    const double nu = 2.0 * mu * mu / (sd * sd);
+    const double v = 2.0 / (9.0 * nu);
+    const double ratio = std::max(curve(k), 0.0) / mu;
+    const double z = (std::cbrt(ratio) - (1.0 - v)) / std::sqrt(v);
+    r(k) = sd * std::clamp(z, -1e6, 1e6);
+  }
+  Eigen::VectorXd v = w * r;
+  if (p.free_directions.cols() > 0) {
+    const Eigen::MatrixXd f = w * p.free_directions;
+    v -= f * Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(f).solve(v);
+  }
+  *chi2 = v.squaredNorm();
+  return true;
+}
+
+double LikelihoodCost(const LinearProblem& p, const Eigen::VectorXd& x) {
+  if (!p.whitening_at) return p.Chi2(x);
+  // A model of no terms has no covariance, and one whose covariance cannot be formed no likelihood.
+  Eigen::MatrixXd w;
+  if (!(x.array() > 0.0).any() || !p.whitening_at(x, &w)) return std::numeric_limits<double>::infinity();
+  LinearProblem q;
+  WhitenBy(p, w, &q);
+  // log det Omega(x) = -2 log |det W(x)|, taken relative to W0's so that the cost stays on chi2's
+  // scale.
+  const double w0 = p.whitening.size() > 0 ? LogAbsDeterminant(p.whitening) : 0.0;
+  return q.Chi2(x) - 2.0 * (LogAbsDeterminant(w) - w0);
 }
 
 double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, double t) {
@@ -282,15 +354,10 @@ void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_mask
     // The fit's chi2 under its own model's covariance: the misfit this rule is about stays under
     // every covariance, while a chi2 that is large only under the weight the fit held is not one
     // (header).
-    LinearProblem own;
     const unsigned chosen = free_masks.empty() ? (1u << p.a.cols()) - 1u : free_masks.front();
-    FitSummary judged;
-    judged.dof = summary->dof;
-    if (WhitenedAt(p, SolveSubset(p, chosen), &own) && judged.dof > 0) {
-      judged.chi2 = own.Chi2(SolveSubset(own, chosen));
-      judged.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(judged.dof), judged.chi2));
-    }
-    if (IsPoorFit(judged)) p.whitening_at = nullptr;
+    double chi2 = 0.0;
+    if (GoodnessOfFitChi2(p, chosen, &chi2)) SetGoodnessOfFit(chi2, summary);
+    if (IsPoorFit(*summary)) p.whitening_at = nullptr;
   }
   for (std::size_t j = 0; j < terms.size(); ++j) {
     SetProfileRanges(p, free_masks, static_cast<int>(j), scale[j], &summary->coefficients[terms[j]]);

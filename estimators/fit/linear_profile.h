@@ -9,8 +9,9 @@
 // at the solution: y = r + A x_hat with r the whitened residuals and A = -dr/dx.
 //
 // Term selection: every subset of the terms is fitted (2^p small NNLS, 32 for Q,N,B,K,R) and
-// scored by Akaike's criterion chi2 + 2 (terms in the subset); the lowest score wins, ties to the
-// smaller subset. Scoring all subsets cannot lose a term because another took its place first, as
+// scored by Akaike's criterion -2 log L + 2 (terms in the subset), L the Gaussian likelihood of
+// the curve (LikelihoodCost: chi2 under W0 where the covariance does not depend on the model);
+// the lowest score wins, ties to the smaller subset. Scoring all subsets cannot lose a term because another took its place first, as
 // backward elimination did (with Q,N,B,K,R on 2 h of N + B + K the ramp R absorbed K, K went to
 // the boundary and was dropped, then R too). AIC rather than a likelihood-ratio test at 5 %: the
 // subsets are not nested in one chain, and AIC scores them all on one scale; between two nested
@@ -52,6 +53,10 @@ struct LinearProblem {
   // curve's derivatives in a band-limit's cutoff, ...), projected out of the problem whitened at
   // each held value as a and y were projected out under W0.
   Eigen::MatrixXd free_directions;
+  // Optional, with whitening_at: the part of the model's expected AVAR outside design x (the
+  // additive parametric terms of a parametric fit), so that design x + offset is the expectation
+  // and target + offset the curve; empty: none.
+  Eigen::VectorXd offset;
 };
 
 // min |A x - y|^2 over x >= 0 (Lawson-Hanson active set on column-normalised A: exact for these
@@ -65,7 +70,7 @@ struct SubsetChoice {
   unsigned mask = 0;  // the terms kept
   Eigen::VectorXd x;  // their NNLS solution (0 outside the mask)
   double chi2 = 0.0;
-  double score = 0.0;  // chi2 + 2 popcount(mask)
+  double score = 0.0;  // LikelihoodCost + 2 popcount(mask)
   // `mask` first, then every subset that is not a superset of it and scores within
   // kCompetitiveAic of it: the alternatives the data do not tell apart from the choice (Burnham &
   // Anderson's confidence set of models). Supersets are left out: one more term never costs more
@@ -79,8 +84,24 @@ struct SubsetChoice {
 };
 inline constexpr double kCompetitiveAic = 2.0;
 inline constexpr double kSupportedTermAic = 1.0;
-// Every subset of the columns, scored by AIC (header). Precondition: a.cols() <= 16.
+// Every subset of the columns, scored by AIC (header) on LikelihoodCost. Precondition:
+// a.cols() <= 16.
 SubsetChoice SelectSubsetByAic(const LinearProblem& p);
+
+// -2 log of the Gaussian likelihood of the curve under the model x, up to a constant: with
+// p.whitening_at, chi2 under the model's own covariance Omega(x) plus log det Omega(x) (relative
+// to W0's); without, p.Chi2(x). Why not p.Chi2(x) under W0 alone: W0 is the covariance of a
+// pilot fit, whose small K made the long taus' variances too small, so a subset that put a ramp R
+// or a flicker floor B where K belonged scored best under W0 while its own covariance called it a
+// poor fit: on 2 h records of white noise and a rate random walk from independent/ (10 Hz), AIC
+// under W0 chose such a subset and the fit was called poor in 6 of 200 (8 of 160 with a flicker
+// floor); scored on the likelihood, in 1 of 200 and 1 of 160 (profile_coverage_stat_test.cc,
+// docs/theory.md §4.8).
+// log det Omega(x) is what keeps a subset from explaining a misfit by inflating its own variance.
+// x is each subset's fit under W0, not its maximum-likelihood fit: the score ranks subsets, it
+// does not refit them. Infinite where whitening_at cannot form the covariance (x = 0 included);
+// SelectSubsetByAic scores by W0 only when no subset's can be formed.
+double LikelihoodCost(const LinearProblem& p, const Eigen::VectorXd& x);
 
 // The interval levels, and the Delta chi2 of the chi2_1 ranges at those levels.
 inline constexpr double kProfileLevel68 = 0.6826894921370859;  // +- 1 sigma of a Gaussian
@@ -143,6 +164,16 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
 // projected out: what ProfileStatistic tests a held value under. False (q untouched) when
 // p.whitening_at is unset or fails.
 bool WhitenedAt(const LinearProblem& p, const Eigen::VectorXd& x, LinearProblem* q);
+
+// The goodness of fit of the subset `mask` (GLS, p.whitening_at set): the subset refitted under
+// the covariance Omega of its fit, and the curve's departure from that model's expectation mu
+// measured with chi-square marginals in a Gaussian copula: each estimate's z from its ratio to mu
+// on nu_k = 2 mu_k^2 / Omega_kk degrees of freedom (Wilson-Hilferty), correlated as Omega says.
+// Gaussian residuals under Omega (chi2 = r' Omega^-1 r) make a curve 5x below its model at the
+// long taus, where nu is ~10, a 1.8 sigma event where chi-square gives 2.7: the MTi-G record's
+// IEEE fit (B 46 deg/h over a 6 deg/h floor) then passed at p = 0.004. Returns false (chi2
+// untouched) where the covariance cannot be formed.
+bool GoodnessOfFitChi2(const LinearProblem& p, unsigned mask, double* chi2);
 
 // The profile ranges of every term of a fit: SetProfileRanges for each column j of p into
 // summary->coefficients[terms[j]] (c^2 = scale[j] x_j), over the subsets `free_masks`. The one

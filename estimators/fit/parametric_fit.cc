@@ -697,6 +697,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsign
     pieces.Evaluate(u.empty() ? nullptr : u.data(), &shapes, &extra);
     lp.design = shapes;
     lp.target = a - extra;
+    lp.offset = extra;
     std::vector<Eigen::Index> free;
     for (std::size_t g = 0; g < u.size(); ++g) {
       if (u[g] > u_lo[g] + 1e-6 && u[g] < u_hi[g] - 1e-6) free.push_back(static_cast<Eigen::Index>(g));
@@ -744,13 +745,10 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsign
       ++fitted;
     }
   }
-  base.chi2 = res.squaredNorm();
   base.dof = static_cast<int>(taus) - fitted;
+  SetFitCost(res.squaredNorm(), &base);
   base.iterations = iterations;
   base.converged = stage.converged;
-  if (base.dof > 0) {
-    base.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(base.dof), base.chi2));
-  }
   if (part) *part = {std::move(lp), linear, scale, {theta, u, w, covariance}};
   base.ok = summary->ok = true;
   std::ostringstream os;

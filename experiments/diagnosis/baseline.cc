@@ -66,6 +66,7 @@ bool FitWithHeld(const BaselineSpec& spec, estimators::FitMethod method, const e
   po.method = method;
   po.terms = spec.terms;
   po.extra = {band};
+  po.select_terms = true;  // as `allanlab fit` and the baseline without a held band-limit choose them
   estimators::ParametricFitSummary ps;
   const bool ok = estimators::FitAvarModelWithTerms(po, adjusted, &ps);
   *fit = ps.base;

@@ -50,6 +50,14 @@ bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, doubl
         os << "decay time " << decay_s << " s (damping " << p("damping") << ") is below the sample period " << tau0
            << " s: not a line";
         ok = false;
+      } else if (!(2.0 * p("damping") * p("frequency_hz") * record_length_s >= 1.0)) {
+        // A line narrower than the record's frequency resolution keeps its amplitude over the
+        // record: a sinusoid (the harmonic candidate), whose amplitude the Monte Carlo would
+        // instead draw anew per trial, widening the envelope the record is judged against.
+        os << "line width " << 2.0 * p("damping") * p("frequency_hz") << " Hz (damping " << p("damping")
+           << ") is narrower than the record's resolution " << 1.0 / record_length_s
+           << " Hz: over this record a sinusoid, the harmonic";
+        ok = false;
       }
       break;
     }

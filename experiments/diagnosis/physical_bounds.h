@@ -9,7 +9,10 @@
 //   random_telegraph    correlation time (mean dwell / 2) >= 1/fs
 //   harmonic            frequency below fs/2
 //   resonance           frequency below fs/2, damping < 1 and a decay time 1/(zeta w0) >= 1/fs
-//                       (a line narrower than the band it sits in)
+//                       (a line narrower than the band it sits in), and a line width
+//                       2 zeta f0 >= 1/T: a narrower line keeps its amplitude over the record, a
+//                       sinusoid that the harmonic describes (a 0.5 Hz sinusoid in 360 s was
+//                       fitted as a resonance at the damping's lower bound, 0.001)
 //   exponential_drift   time constant >= 1/fs
 //   bias_step           time inside the record (0, T)
 #include <span>

@@ -87,6 +87,21 @@ void ExpectPrinted(double printed, double exact, const std::string& what) {
   EXPECT_NEAR(printed, exact, 6e-4 * std::abs(exact) + 1e-12) << what;
 }
 
+// A coefficient as the plain summary prints it: "v +- s" for a fitted one, "< u (95 % upper limit)"
+// for one given by its limit, the numbers those of the summary's JSON.
+void ExpectCoefficientText(const std::string& text, const Json& value, const std::string& what) {
+  std::smatch m;
+  if (value.contains("upper_limit")) {
+    ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(< ([-+0-9.e]+) \(95 % upper limit\))"))) << what << ": " << text;
+    ExpectPrinted(std::stod(m[1]), value["upper_limit"], what);
+  } else if (value.contains("value")) {
+    ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(([-+0-9.e]+) \+- [-+0-9.e]+)"))) << what << ": " << text;
+    ExpectPrinted(std::stod(m[1]), value["value"], what);
+  } else {
+    EXPECT_NE(text.find("not fitted"), std::string::npos) << what << ": " << text;
+  }
+}
+
 // The first lines say what a sensor engineer asks: which effect (in words and by id), where (the
 // step's time in the record, from the change-point view), how large in deg/h and in the record's
 // deg/s, and no SI rad/s anywhere in a report given in deg/h. The step's size is the difference
@@ -263,20 +278,30 @@ TEST_F(DiagnoseReportTest, StdoutMarkdownAndJsonAgreeInTheSameUnits) {
     EXPECT_EQ(c["params_reported"].size(), static_cast<std::size_t>(std::count(id.begin(), id.end(), '+') + 1)) << id;
     EXPECT_EQ(c["params_reported"].dump().find("rad"), std::string::npos) << c["params_reported"].dump();
   }
-  // Coefficients side by side: the baseline's as the detail JSON gives them, in the same unit.
+  // Coefficients side by side: the baseline's as the detail JSON gives them, in the same unit; a
+  // term not fitted by its 95 % upper limit, as `allanlab fit` gives it, never as 0.
   for (const Json& c : summary["coefficients"]) {
     const std::string id = c["id"];
-    EXPECT_EQ(c["unit"], j["baseline"]["coefficients"][id]["unit"]);
-    if (c["baseline"].is_null()) continue;
-    EXPECT_EQ(c["baseline"]["value"], j["baseline"]["coefficients"][id]["value"]);
-    EXPECT_EQ(c["model"]["value"], candidate["coefficients"][id]["value"]);
+    const Json& detail = j["baseline"]["coefficients"][id];
+    EXPECT_EQ(c["unit"], detail["unit"]);
     const std::string line = LineWith(out, id + " ");
-    std::smatch m;
-    const std::regex re("^ *" + id + " ([-+0-9.e]+) \\+- [-+0-9.e]+ -> ([-+0-9.e]+) \\+- [-+0-9.e]+ (.*)$");
-    ASSERT_TRUE(std::regex_match(line, m, re)) << line;
-    ExpectPrinted(std::stod(m[1]), c["baseline"]["value"], id + " baseline, stdout");
-    ExpectPrinted(std::stod(m[2]), c["model"]["value"], id + " model, stdout");
-    EXPECT_EQ(m[3], c["unit"].get<std::string>()) << line;
+    const std::string unit = c["unit"];
+    ASSERT_GT(line.size(), unit.size()) << id;
+    EXPECT_EQ(line.substr(line.size() - unit.size()), unit) << line;
+    const auto arrow = line.find(" -> ");
+    ASSERT_NE(arrow, std::string::npos) << line;
+    ExpectCoefficientText(line.substr(0, arrow), c["baseline"], id + " baseline, stdout");
+    ExpectCoefficientText(line.substr(arrow + 4), c["model"], id + " model, stdout");
+    if (c["baseline"].contains("upper_limit")) {
+      EXPECT_FALSE(detail["fitted"].get<bool>()) << id;
+      EXPECT_EQ(c["baseline"]["upper_limit"], detail["upper_limit"]) << id;
+      EXPECT_GT(detail["upper_limit"].get<double>(), 0.0) << id;
+    } else if (c["baseline"].contains("value")) {
+      EXPECT_EQ(c["baseline"]["value"], detail["value"]) << id;
+    }
+    if (c["model"].contains("value")) {
+      EXPECT_EQ(c["model"]["value"], candidate["coefficients"][id]["value"]) << id;
+    }
   }
 }
 

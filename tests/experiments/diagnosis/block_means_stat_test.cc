@@ -212,8 +212,10 @@ TEST(BlockMeansStat, AStepAFreeKAbsorbedIsFlaggedWithKProfiled) {
 }
 
 // Controls (43 min, N 0.15 deg/sqrt(h), B 3 deg/h, K 10 deg/h/sqrt(h)) against the baseline
-// fitted to each (`--model N,B,K`): the fit leaves K out of most of them (183 of 200), and with K
-// held at 0 the change-point view read the random walk's wander as steps: 49 / 200 = 24.5 %
+// fitted to each (`--model N,B,K`): the fit leaves K out of many of them (183 of 200 when the
+// subsets were scored under the pilot's weight, about half since they are scored by the
+// likelihood, linear_profile.h), and with K held at 0 the change-point view read the random walk's
+// wander as steps: 49 / 200 = 24.5 %
 // [19.1, 30.9] % false alarms. With K profiled up to the fit's upper limit (the random walk the
 // record cannot exclude) and the statistic's null drawn there: 4 / 200 = 2.0 % [0.8, 5.0] %. The
 // change-point view on its own (Bonferroni over its 3 points, alpha 5 %); the Wilson 95 % upper
@@ -238,7 +240,7 @@ TEST(BlockMeansStat, ControlsWhoseFitLeavesKOutRaiseFewAlarms) {
   const RateInterval ci = WilsonInterval(static_cast<double>(alarms) / kTrials, kTrials);
   std::printf("fitted baseline, K left out on %d / %d: change_point %d false alarms, Wilson 95 %% [%.4f, %.4f]\n",
               k_left_out, kTrials, alarms, ci.low, ci.high);
-  EXPECT_GT(k_left_out, kTrials / 2);  // the case this test is about
+  EXPECT_GE(k_left_out, kTrials / 4);  // the case this test is about
   EXPECT_LE(ci.high, 0.08) << alarms << " / " << kTrials;
 }
 

@@ -63,6 +63,8 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
       {{Effect::kHarmonic, {{"amplitude_rad_per_s", 1e-3}, {"frequency_hz", 50.0}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 70.0}, {"damping", 0.05}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 40.0}, {"damping", 0.9}}}, "not a line"},
+      // Line width 2 zeta f0 = 1e-4 Hz against the record's resolution 1 / 3600 s.
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.05}, {"damping", 0.001}}}, "the harmonic"},
       {{Effect::kExponentialDrift, {{"amplitude_rad_per_s", 1e-3}, {"time_constant_s", 1e-3}}}, "below the sample period"},
       {{Effect::kBiasStep, {{"size_rad_per_s", 1e-3}, {"time_s", 4000.0}}}, "outside the record"},
   };
@@ -76,6 +78,7 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
       {Effect::kBandwidth, {{"cutoff_hz", 30.0}, {"order", 2.0}}},
       {Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.05}}},
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 20.0}, {"damping", 0.04}}},
+      {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.5}, {"damping", 0.001}}},  // 1e-3 Hz wide
       {Effect::kBiasStep, {{"size_rad_per_s", 1e-3}, {"time_s", 100.0}}},
   };
   for (const EffectInstance& e : fine) {
