@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "common/piece_sharing.h"
 #include "estimators/allan_family.h"
 #include "estimators/confidence.h"
 #include "estimators/estimate_distribution.h"
@@ -57,20 +59,67 @@ PointAlpha SteadyAlpha(const AvarOptions& options, const NoiseId& id, int previo
   return {id.alpha > std::max(previous, 0) ? previous : id.alpha, true};
 }
 
+// What each tau's point needs from the record, measured for every tau before the choices that
+// chain the taus (SteadyAlpha) are made in order: its noise identification and, for --ci auto,
+// the record's EDF where it is available (0 elsewhere). Each tau's measures depend neither on
+// the others nor on the thread, so on long records this thread and a helper share them
+// (common/piece_sharing.h), the costliest first: the record EDF at the longest lag windows.
+struct TauMeasures {
+  std::vector<NoiseId> ids;         // empty when alpha is fixed
+  std::vector<double> record_edfs;  // one per point
+};
+
+// Below this many samples the measures take well under a millisecond: no helper.
+constexpr std::size_t kSharedMeasuresSamples = std::size_t{1} << 20;
+
+TauMeasures MeasureEveryTau(const AvarOptions& options, std::span<const double> rate,
+                            std::span<const double> phase, const std::vector<AvarPoint>& points) {
+  TauMeasures t;
+  const auto n_rate = static_cast<std::int64_t>(rate.size());
+  t.record_edfs.assign(points.size(), 0.0);
+  if (!options.alpha_fixed) t.ids.resize(points.size());
+  std::vector<std::size_t> edf_points;  // longest m first
+  for (std::size_t k = points.size(); k-- > 0;) {
+    if (options.confidence_method == ConfidenceMethod::kAuto &&
+        RecordEdfAvailable(options.statistic, points[k].m, n_rate)) {
+      edf_points.push_back(k);
+    }
+  }
+  const auto edf_count = static_cast<int>(edf_points.size());
+  const std::function<void(int)> piece = [&](int p) {
+    if (p < edf_count) {
+      const std::size_t k = edf_points[static_cast<std::size_t>(p)];
+      t.record_edfs[k] = RecordEdf(options.statistic, phase, points[k].m);
+    } else {
+      const auto k = static_cast<std::size_t>(p - edf_count);
+      t.ids[k] = IdentifyAt(options, rate, phase, points[k].m);
+    }
+  };
+  const int count = edf_count + static_cast<int>(t.ids.size());
+  if (rate.size() >= kSharedMeasuresSamples && PieceSharing::Useful()) {
+    PieceSharing sharing;
+    sharing.Run(count, piece);
+  } else {
+    for (int p = 0; p < count; ++p) piece(p);
+  }
+  return t;
+}
+
 // Noise exponent of every point: fixed, or identified from the record. Where identification
 // cannot run (fewer than three m-averages, e.g. TOTVAR beyond n/3), the nearest shorter tau's
 // exponent stands in: noise type changes slowly with tau, and white FM (0) is the neutral start.
 // A point whose exponent was not read at its own tau says so (alpha_identified false).
-int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rate,
-                         std::span<const double> phase, std::vector<AvarPoint>* points) {
+int AssignNoiseExponents(const AvarOptions& options, const TauMeasures& measures,
+                         std::vector<AvarPoint>* points) {
   int unidentified = 0;
   int previous = 0;
-  for (AvarPoint& point : *points) {
+  for (std::size_t k = 0; k < points->size(); ++k) {
+    AvarPoint& point = (*points)[k];
     if (options.alpha_fixed) {
       point.alpha = options.alpha;
       continue;
     }
-    const NoiseId id = IdentifyAt(options, rate, phase, point.m);
+    const NoiseId& id = measures.ids[k];
     point.alpha_identified = id.identified;
     if (id.identified) {
       const PointAlpha steady = SteadyAlpha(options, id, previous, &point == &points->front());
@@ -84,8 +133,9 @@ int AssignNoiseExponents(const AvarOptions& options, std::span<const double> rat
   return unidentified;
 }
 
+// record_edf: RecordEdf(options.statistic, phase, m) where --ci auto uses it (TauMeasures).
 double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarPoint* point,
-                std::int64_t n_rate) {
+                std::int64_t n_rate, double record_edf) {
   switch (options.confidence_method) {
     case ConfidenceMethod::kNone:
       return 0.0;
@@ -96,7 +146,7 @@ double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarP
                           options.sample_clock.period_s());
     case ConfidenceMethod::kAuto:
       if (RecordEdfAvailable(options.statistic, point->m, n_rate)) {
-        const double edf = RecordEdf(options.statistic, phase, point->m);
+        const double edf = record_edf;
         if (edf > 0.0) {
           point->edf_from_record = true;
           return edf;
@@ -129,15 +179,17 @@ bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSumma
   if (!ComputeStatisticValues(options, rate, summary, workspace)) return false;
   const std::span<const double> phase = workspace->Phase(rate.size() + 1);
 
-  const int unidentified = AssignNoiseExponents(options, rate, phase, &summary->points);
+  const TauMeasures measures = MeasureEveryTau(options, rate, phase, summary->points);
+  const int unidentified = AssignNoiseExponents(options, measures, &summary->points);
   if (unidentified > 0) {
     AppendNote("noise type not identifiable at " + std::to_string(unidentified) +
                    " tau(s) (too few averages): the next shorter tau's alpha used",
                &summary->message);
   }
   const auto n_rate = static_cast<std::int64_t>(rate.size());
-  for (AvarPoint& point : summary->points) {
-    point.edf = PointEdf(options, phase, &point, n_rate);
+  for (std::size_t k = 0; k < summary->points.size(); ++k) {
+    AvarPoint& point = summary->points[k];
+    point.edf = PointEdf(options, phase, &point, n_rate, measures.record_edfs[k]);
     if (point.edf > 0.0) {
       // kAuto at few clusters: the estimate's own distribution at the point's alpha, where
       // chi-square(EDF) misses the nominal level (estimate_distribution.h).

@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include <Eigen/Dense>
@@ -12,6 +13,7 @@
 #include <boost/math/quadrature/ooura_fourier_integrals.hpp>
 #include <boost/math/tools/roots.hpp>
 
+#include "estimators/estimate_quantile_table.h"
 #include "estimators/exact_quadratic_moments.h"
 #include "sim/flicker_noise.h"
 #include "sim/quantization_noise.h"
@@ -60,6 +62,11 @@ bool NonOverlapping(Statistic s) {
 
 }  // namespace
 
+std::int64_t ReducedRecordLength(std::int64_t m, std::int64_t n_rate) {
+  return std::llround(static_cast<double>(n_rate) * static_cast<double>(kReducedAveragingFactor) /
+                      static_cast<double>(m));
+}
+
 std::vector<double> EstimateWeights(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
                                     std::int64_t max_terms) {
   std::int64_t m_used = m, n_used = n_rate;
@@ -68,8 +75,7 @@ std::vector<double> EstimateWeights(Statistic s, int alpha, std::int64_t m, std:
     // distribution depends on N itself, not on N/m, and a reduced record would misstate it.
     if (alpha > 0) return {};
     m_used = kReducedAveragingFactor;
-    n_used = std::llround(static_cast<double>(n_rate) * static_cast<double>(m_used) /
-                          static_cast<double>(m));
+    n_used = ReducedRecordLength(m, n_rate);
   }
   const std::vector<double> filter = DifferenceFilter(s, m_used);
   const std::int64_t count = TermCount(s, m_used, n_used);
@@ -203,12 +209,8 @@ double WeightedChiSquareQuantile(std::span<const double> weights, double p) {
   return ComponentQuantile(Components(weights), p);
 }
 
-EstimateQuantiles EstimateQuantilesAt(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
-                                      double confidence) {
-  using Key = std::tuple<Statistic, int, std::int64_t, std::int64_t, double>;
-  thread_local std::map<Key, EstimateQuantiles> remembered;
-  const Key key{s, alpha, m, n_rate, confidence};
-  if (const auto it = remembered.find(key); it != remembered.end()) return it->second;
+EstimateQuantiles ComputeEstimateQuantiles(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
+                                           double confidence) {
   EstimateQuantiles q;
   const std::vector<double> weights = EstimateWeights(s, alpha, m, n_rate);
   if (!weights.empty() && confidence > 0.0 && confidence < 1.0) {
@@ -216,6 +218,18 @@ EstimateQuantiles EstimateQuantilesAt(Statistic s, int alpha, std::int64_t m, st
     const std::vector<Component> lumped = Lumped(weights);
     q = {true, ComponentQuantile(lumped, p), ComponentQuantile(lumped, 1.0 - p)};
   }
+  return q;
+}
+
+EstimateQuantiles EstimateQuantilesAt(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
+                                      double confidence) {
+  using Key = std::tuple<Statistic, int, std::int64_t, std::int64_t, double>;
+  thread_local std::map<Key, EstimateQuantiles> remembered;
+  const Key key{s, alpha, m, n_rate, confidence};
+  if (const auto it = remembered.find(key); it != remembered.end()) return it->second;
+  const std::optional<EstimateQuantiles> tabulated = TabulatedEstimateQuantiles(s, alpha, m, n_rate, confidence);
+  const EstimateQuantiles q =
+      tabulated ? *tabulated : ComputeEstimateQuantiles(s, alpha, m, n_rate, confidence);
   if (remembered.size() >= 1024) remembered.clear();
   remembered.emplace(key, q);
   return q;

@@ -55,4 +55,13 @@ struct EstimateQuantiles {
 EstimateQuantiles EstimateQuantilesAt(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
                                       double confidence);
 
+// The same quantiles always computed (no table, estimators/estimate_quantile_table.h, and no
+// remembered results): what the table was made from and is checked against.
+EstimateQuantiles ComputeEstimateQuantiles(Statistic s, int alpha, std::int64_t m, std::int64_t n_rate,
+                                           double confidence);
+
+// The length of the reduced record EstimateWeights computes on when m > kReducedAveragingFactor:
+// round(n_rate m' / m).
+std::int64_t ReducedRecordLength(std::int64_t m, std::int64_t n_rate);
+
 }  // namespace allanlab::estimators

@@ -321,8 +321,7 @@ class Reader {
       return;
     }
     ++info_->samples;
-    stretch_.Add(value);
-    info_->longest_constant_stretch = stretch_.longest();
+    stretch_.Add(value);  // info_->longest_constant_stretch is set from it when the read ends
     if (nonfinite_.count() == 0) sink_(value);
   }
 
@@ -408,6 +407,8 @@ class Reader {
         info_->columns[k].longest_constant_stretch = stretches_[k].longest();
       }
       if (!info_->columns.empty()) info_->longest_constant_stretch = stretches_.front().longest();
+    } else {
+      info_->longest_constant_stretch = stretch_.longest();
     }
     info_->time_column = parser.time_column() + bag_stamps_;
     info_->time_column_guessed = parser.time_column_guessed();
@@ -461,6 +462,7 @@ class Reader {
       }
     }
     if (!decoder.Finish(&why)) return Runtime(error, In() + why);
+    info_->longest_constant_stretch = stretch_.longest();
     if (nonfinite_.count() > 0) {
       return Runtime(error, In() + nonfinite_.Describe("the samples", "0-based index(es)"));
     }

@@ -1,5 +1,7 @@
 #include "app/input/text_record_parser.h"
 
+#include "app/input/plain_decimal.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -50,47 +52,6 @@ std::string Shown(std::string_view text) {
 
 bool IsMissingMarker(std::string_view s) {
   return s.empty() || EqualsIgnoreCase(s, "na") || EqualsIgnoreCase(s, "n/a");
-}
-
-// A plain decimal "123.456e-7" whose digits fit 2^53 and whose power of ten is at most 22 in
-// size: the value is then one exactly-rounded multiplication or division of two exact doubles
-// (Clinger's fast path), the same double std::from_chars returns, at a fraction of its cost.
-// Returns false, leaving *value alone, for anything else (from_chars then decides).
-bool ParsePlainDecimal(std::string_view s, double* value) {
-  static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                            1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  const char* p = s.data();
-  const char* const end = p + s.size();
-  // At most 19 digits (leading zeros included) fit a uint64 without overflow.
-  std::uint64_t digits = 0;
-  const char* const first = p;
-  for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) digits = digits * 10 + (*p - '0');
-  std::ptrdiff_t count = p - first;
-  if (count == 0) return false;
-  int scale = 0;  // the power of ten the digits are multiplied by
-  if (p != end && *p == '.') {
-    const char* const fraction = ++p;
-    for (; p != end && static_cast<unsigned>(*p - '0') < 10; ++p) digits = digits * 10 + (*p - '0');
-    if (p == fraction) return false;
-    scale = static_cast<int>(fraction - p);
-    count += p - fraction;
-  }
-  if (count > 19) return false;
-  if (p != end && (*p == 'e' || *p == 'E')) {
-    ++p;
-    bool negative = false;
-    if (p != end && (*p == '+' || *p == '-')) negative = *p++ == '-';
-    int exponent = 0;
-    const char* start = p;
-    for (; p != end && *p >= '0' && *p <= '9' && p - start < 4; ++p) exponent = exponent * 10 + (*p - '0');
-    if (p == start) return false;
-    scale += negative ? -exponent : exponent;
-  }
-  if (p != end || digits > (std::uint64_t{1} << 53) || scale < -22 || scale > 22) return false;
-  const double mantissa = static_cast<double>(digits);
-  *value = scale < 0 ? mantissa / kPowersOfTen[-scale] : mantissa * kPowersOfTen[scale];
-  return true;
 }
 
 }  // namespace
@@ -158,7 +119,17 @@ bool TextRecordParser::Fail(std::string message) {
 
 bool TextRecordParser::Feed(std::string_view chunk) {
   if (failed_) return false;
+  // Checked again after every line ParseLine reads: it may choose the columns or set the
+  // integer time origin.
+  bool common_rows = CommonRowsPossible();
   while (!chunk.empty()) {
+    if (common_rows && pending_.empty()) {
+      if (const std::size_t used = ReadCommonRow(chunk); used > 0) {
+        if (failed_) return false;
+        chunk.remove_prefix(used);
+        continue;
+      }
+    }
     const std::size_t newline = chunk.find('\n');
     if (newline == std::string_view::npos) {
       if (pending_.size() + chunk.size() > kMaxLineBytes) {
@@ -190,6 +161,7 @@ bool TextRecordParser::Feed(std::string_view chunk) {
       failed_ = true;
       return false;
     }
+    common_rows = CommonRowsPossible();
   }
   return true;
 }

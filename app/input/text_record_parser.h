@@ -119,6 +119,13 @@ class TextRecordParser {
 
  private:
   bool ParseLine(std::string_view line);
+  // A data row of the common shape at the start of `chunk`, read in one pass and passed to the
+  // sink (app/input/text_common_row.cc): the bytes of its line, newline included; 0 when the line
+  // is not of that shape (or not whole in the chunk), which ParseLine then reads.
+  std::size_t ReadCommonRow(std::string_view chunk);
+  // Whether rows can be of the common shape now (the columns chosen, no held rows, a delimiter,
+  // no integer time origin); sets up field_roles_ the first time.
+  bool CommonRowsPossible();
   bool ParseDataRow(std::int64_t line);
   bool DecideHeaderlessTime();
   void KeepLeadingComment(std::string_view comment);
@@ -154,6 +161,11 @@ class TextRecordParser {
   std::int64_t line_ = 0;
   std::int64_t data_rows_ = 0;
   std::vector<std::string_view> fields_;  // reused per line
+  // ReadCommonRow: what each field up to the last one read is: a value column's slot in values_,
+  // the time, or skipped.
+  static constexpr int kTimeField = -1;
+  static constexpr int kSkippedField = -2;
+  std::vector<int> field_roles_;
   // Headerless time probe: the first rows (line number, text) held until the decision.
   bool probing_ = false;
   bool time_guessed_ = false;

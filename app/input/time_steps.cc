@@ -6,7 +6,7 @@
 
 namespace allanlab::app {
 
-bool TimeSteps::Add(double time_s, std::int64_t line, std::string* why) {
+bool TimeSteps::AddStep(double time_s, std::int64_t line, std::string* why) {
   line += line_offset_;
   if (!std::isfinite(time_s)) {
     if (why)

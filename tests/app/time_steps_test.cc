@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <string>
+#include <vector>
 
 namespace allanlab::app {
 namespace {
@@ -74,6 +77,84 @@ TEST(TimeStepsTest, WildTimestampsUseBoundedMemory) {
   const TimeSteps::Summary s = steps.Summarize();
   EXPECT_GT(s.irregular_steps, 9000);
   EXPECT_EQ(s.samples, 10000);
+}
+
+}  // namespace
+}  // namespace allanlab::app
+
+namespace allanlab::app {
+namespace {
+
+// The grouping rule written out once more, step by step (the reference for Add, whose common
+// step is taken inline): every field of the summary must match it exactly.
+struct ReferenceSteps {
+  struct Group {
+    double sum = 0.0;
+    std::int64_t count = 0;
+  };
+  std::vector<Group> groups;
+  std::int64_t samples = 0;
+  double previous = 0.0, largest = 0.0, smallest = 0.0;
+  std::int64_t largest_line = 0, smallest_line = 0;
+  void Add(double t, std::int64_t line) {
+    if (samples > 0) {
+      const double step = t - previous;
+      if (samples == 1 || step > largest) {
+        largest = step;
+        largest_line = line;
+      }
+      if (samples == 1 || step < smallest) {
+        smallest = step;
+        smallest_line = line;
+      }
+      bool placed = false;
+      for (Group& g : groups) {
+        if (std::abs(step * static_cast<double>(g.count) - g.sum) <= TimeSteps::kStepTolerance * g.sum) {
+          g.sum += step;
+          ++g.count;
+          placed = true;
+          break;
+        }
+      }
+      if (!placed && static_cast<int>(groups.size()) < TimeSteps::kMaxGroups) groups.push_back({step, 1});
+    }
+    previous = t;
+    ++samples;
+  }
+};
+
+TEST(TimeStepsTest, EveryStepCountsAsTheGroupingRuleSays) {
+  std::mt19937_64 rng(5);
+  for (int record = 0; record < 200; ++record) {
+    TimeSteps steps;
+    ReferenceSteps reference;
+    double t = 1000.0 * static_cast<double>(rng() % 7);
+    const double period = record % 3 == 0 ? 0.01 : record % 3 == 1 ? 1.0 / 3.0 : 0.005;
+    std::string why;
+    for (std::int64_t line = 2; line < 5000; ++line) {
+      const unsigned kind = static_cast<unsigned>(rng() % 1000);
+      double step = period * (1.0 + 1e-5 * (static_cast<double>(rng() % 201) - 100.0));  // jitter
+      if (kind < 3) step = period * static_cast<double>(2 + rng() % 5);                  // a gap
+      if (kind == 3) step = period * 0.5;                                               // a short step
+      if (kind == 4) step = period * (1.0 + 2e-3);                                      // just outside
+      if (record % 17 == 0 && kind < 600) step = period * static_cast<double>(1 + rng() % 3);
+      t += step;
+      ASSERT_TRUE(steps.Add(t, line, &why)) << why;
+      reference.Add(t, line);
+    }
+    const TimeSteps::Summary s = steps.Summarize();
+    const ReferenceSteps::Group* best = &reference.groups.front();
+    for (const auto& g : reference.groups) {
+      if (g.count > best->count) best = &g;
+    }
+    EXPECT_EQ(s.samples, reference.samples);
+    EXPECT_EQ(s.nominal_step_s, best->sum / static_cast<double>(best->count)) << record;
+    EXPECT_EQ(s.irregular_steps, reference.samples - 1 - best->count) << record;
+    EXPECT_EQ(s.largest_step_s, reference.largest) << record;
+    EXPECT_EQ(s.largest_step_line, reference.largest_line) << record;
+    EXPECT_EQ(s.smallest_step_s, reference.smallest) << record;
+    EXPECT_EQ(s.smallest_step_line, reference.smallest_line) << record;
+  }
 }
 
 }  // namespace
