@@ -358,7 +358,7 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
     summary->p_value =
         boost::math::cdf(boost::math::complement(boost::math::chi_squared(summary->dof), summary->chi2));
   }
-  SetFitProfileRanges(fp.problem, masks, fp.asked, fp.scale, summary);
+  if (options.profile_ranges) SetFitProfileRanges(fp.problem, masks, fp.asked, fp.scale, summary);
   std::string message = summary->converged ? "converged" : "weights did not settle within max_reweightings";
   if (options.select_terms && keep != every) {
     std::ostringstream os;

@@ -53,19 +53,21 @@ class HeldBandLimit final : public estimators::ParametricTerm {
 // next to a band-limit such a term left the fit far from the generating model (tactical_mems with
 // B and K held, N refitted: N 3 % high, chi2 1345 on 45 dof against 63 for the model itself).
 bool FitWithHeld(const BaselineSpec& spec, estimators::FitMethod method, const estimators::AvarCurve& curve,
-                 estimators::FitSummary* fit) {
+                 estimators::FitSummary* fit, bool profile_ranges) {
   const estimators::AvarCurve adjusted = spec.WithoutHeldAdditive(curve);
   const auto band = spec.HeldBandLimitTerm();
   if (!band) {
     estimators::FitOptions fo;
     fo.method = method;
     fo.terms = spec.terms;
+    fo.profile_ranges = profile_ranges;
     return estimators::FitAvarModel(fo, adjusted, fit);
   }
   estimators::ParametricFitOptions po;
   po.method = method;
   po.terms = spec.terms;
   po.extra = {band};
+  po.profile_ranges = profile_ranges;
   estimators::ParametricFitSummary ps;
   const bool ok = estimators::FitAvarModelWithTerms(po, adjusted, &ps);
   *fit = ps.base;
@@ -123,7 +125,7 @@ sim::SensorModel BaselineSpec::Model(const estimators::FitSummary& fit, SampleCl
 // a common yardstick (CurveChi2), a margin GLS never loses by on a curve it describes. The
 // fallback is named in *note.
 bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
-               estimators::FitSummary* fit, std::string* note) {
+               estimators::FitSummary* fit, std::string* note, bool profile_ranges) {
   if (spec.terms.empty()) {
     *fit = estimators::FitSummary{};
     fit->ok = true;
@@ -131,21 +133,29 @@ bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     return true;
   }
   if (spec.HoldsAnything()) {
-    if (FitWithHeld(spec, estimators::FitMethod::kGls, curve, fit)) return true;
+    if (FitWithHeld(spec, estimators::FitMethod::kGls, curve, fit, profile_ranges)) return true;
     const std::string gls_message = fit->message;
-    if (!FitWithHeld(spec, estimators::FitMethod::kWls, curve, fit)) return false;
+    if (!FitWithHeld(spec, estimators::FitMethod::kWls, curve, fit, profile_ranges)) return false;
     if (note != nullptr) *note = "GLS fit failed (" + gls_message + "); WLS used";
     return true;
   }
   estimators::FitOptions fo;
   fo.method = estimators::FitMethod::kGls;
   fo.terms = spec.terms;
+  fo.profile_ranges = profile_ranges;
   estimators::FitSummary wls;
   estimators::FitOptions wo = fo;
   wo.method = estimators::FitMethod::kWls;
+  // The WLS fit is a yardstick, its values alone compared: its profile ranges only if it is kept
+  // (the same fit again with them; the ranges do not move the values).
+  wo.profile_ranges = false;
   if (estimators::FitAvarModel(fo, curve, fit)) {
     const double gls_chi2 = CurveChi2(spec, *fit, curve);
     if (!estimators::FitAvarModel(wo, curve, &wls) || !(CurveChi2(spec, wls, curve) * 100.0 < gls_chi2)) return true;
+    if (profile_ranges) {
+      wo.profile_ranges = true;
+      if (!estimators::FitAvarModel(wo, curve, &wls)) return true;
+    }
     *fit = std::move(wls);
     if (note != nullptr) *note = "GLS settled on a degenerate model (chi2 on the curve's own EDFs 100 x WLS's); WLS used";
     return true;

@@ -39,8 +39,10 @@ struct BaselineSpec {
 
 // The spec's terms fitted to `curve` with its held part; false when neither GLS nor WLS fits. A
 // WLS fallback is named in *note (may be null). No terms to fit: *fit asks for none.
+// profile_ranges false: the coefficients' intervals and upper limits are left unset (the values
+// and sigmas are the same), for a fit of which only the values are read.
 bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
-               estimators::FitSummary* fit, std::string* note);
+               estimators::FitSummary* fit, std::string* note, bool profile_ranges = true);
 
 // The largest rate random walk K the fit allows when the spec fits K [rad/s/sqrt(s)]: the upper end
 // of its 95 % interval, or its 95 % upper limit when the fit left K out (at least the fitted

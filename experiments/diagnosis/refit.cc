@@ -48,7 +48,8 @@ bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve
       if (subtract) adjusted.avar[i] = std::max(curve.avar[i] - (e_full[i] - e_lin[i]), 0.1 * adjusted.avar[i]);
     }
     estimators::FitSummary next;
-    if (!FitLinear(spec, adjusted, &next, nullptr)) {
+    // The passes before the last are read for their values only (the next pass's ratio).
+    if (!FitLinear(spec, adjusted, &next, nullptr, /*profile_ranges=*/pass == 2)) {
       *why = "refit failed: " + next.message;
       return false;
     }
