@@ -61,6 +61,7 @@ bool FitWithHeld(const BaselineSpec& spec, estimators::FitMethod method, const e
     fo.method = method;
     fo.terms = spec.terms;
     fo.profile_ranges = profile_ranges;
+    if (method == estimators::FitMethod::kGls) fo.covariance = spec.Covariance(adjusted);
     return estimators::FitAvarModel(fo, adjusted, fit);
   }
   estimators::ParametricFitOptions po;
@@ -68,6 +69,7 @@ bool FitWithHeld(const BaselineSpec& spec, estimators::FitMethod method, const e
   po.terms = spec.terms;
   po.extra = {band};
   po.profile_ranges = profile_ranges;
+  if (method == estimators::FitMethod::kGls) po.covariance = spec.Covariance(adjusted);
   estimators::ParametricFitSummary ps;
   const bool ok = estimators::FitAvarModelWithTerms(po, adjusted, &ps);
   *fit = ps.base;
@@ -87,6 +89,11 @@ sim::SensorModel WithoutFloated(sim::SensorModel model, const std::vector<Coeffi
 }
 
 }  // namespace
+
+std::shared_ptr<const estimators::AvarCovarianceModel> BaselineSpec::Covariance(const estimators::AvarCurve& curve) const {
+  if (!covariances || terms.empty()) return nullptr;
+  return covariances->For(curve, terms);
+}
 
 bool BaselineSpec::HoldsAnything() const {
   return !held.terms.empty() || held.band_limit.enabled() || held.angle_quantizer || held.rate_quantizer;
@@ -146,6 +153,7 @@ bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
   estimators::FitSummary wls;
   estimators::FitOptions wo = fo;
   wo.method = estimators::FitMethod::kWls;
+  fo.covariance = spec.Covariance(curve);
   // The WLS fit is a yardstick, its values alone compared: its profile ranges only if it is kept
   // (the same fit again with them; the ranges do not move the values).
   wo.profile_ranges = false;
@@ -178,6 +186,7 @@ bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& cu
                  estimators::FitSummary* fit, std::string* note, std::string* why) {
   *spec = BaselineSpec{};
   spec->terms = options.terms;
+  spec->covariances = std::make_shared<CurveCovariances>();
   spec->held.sample_clock = curve.sample_clock;
   if (options.baseline == DiagnoseOptions::Baseline::kSensor) {
     spec->held = WithoutFloated(options.sensor, options.terms);
@@ -194,6 +203,7 @@ bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& cu
     estimators::BandLimitedFitOptions bo;
     bo.fit.method = estimators::FitMethod::kGls;
     bo.fit.terms = options.terms;
+    bo.fit.covariance = spec->Covariance(curve);
     estimators::BandLimitedFitSummary bs;
     if (estimators::FitWithBandLimit(bo, curve, &bs) && bs.band_limited) {
       spec->held.band_limit = estimators::FittedModel(bs.parametric, curve, {bs.fit, bs.extra}).band_limit;

@@ -10,6 +10,7 @@
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "estimators/fit/parametric_term.h"
+#include "experiments/diagnosis/curve_covariances.h"
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
 
@@ -23,7 +24,12 @@ inline constexpr std::size_t kMinTaus = 8;
 struct BaselineSpec {
   std::vector<estimators::Coefficient> terms;  // fitted (empty: the held part alone)
   sim::SensorModel held;  // band-limit, quantizers and terms held as given (empty: a plain fit)
+  // The GLS covariance models every fit with this spec shares (null: each fit builds its own).
+  std::shared_ptr<CurveCovariances> covariances;
   bool HoldsAnything() const;
+  // The shared GLS covariance model of curves shaped like `curve` with `terms` (null without
+  // `covariances` or terms).
+  std::shared_ptr<const estimators::AvarCovarianceModel> Covariance(const estimators::AvarCurve& curve) const;
   // The held part plus the fitted linear terms (those with a positive value) on `sample_clock`.
   sim::SensorModel Model(const estimators::FitSummary& fit, SampleClock sample_clock) const;
   // The held band-limit as a fit-library term without free parameters (it filters the fitted

@@ -202,6 +202,7 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     estimators::ParametricFitOptions po;
     po.method = estimators::FitMethod::kGls;
     po.terms = term_set;
+    po.covariance = spec.Covariance(fit_curve);
     for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
     // A band-limit candidate replaces the held one (AddBandwidth): not both in series.
     if (auto band = spec.HeldBandLimitTerm(); band && !replaces_band_limit) po.extra.push_back(std::move(band));
