@@ -103,6 +103,17 @@ void FlickerNoise::SynthesizeInPlace(Engine& engine, std::size_t n, std::span<do
   for (std::size_t i = 0; i < n; ++i) x[i] *= scale;
 }
 
+bool FlickerNoise::WriteKept(std::size_t n, std::span<double> out, const FlickerStreamCache& cache,
+                             std::uint64_t stream_seed) const {
+  if (n == 0 || bias_instability_rad_per_s == 0.0) return false;
+  const auto unit = cache.Find(stream_seed, n);
+  if (!unit) return false;
+  // SynthesizeInPlace's scale for a kept record.
+  const double scale = bias_instability_rad_per_s / static_cast<double>(WorkSize(n) - 2);
+  for (std::size_t i = 0; i < n; ++i) out[i] = (*unit)[i] * scale;
+  return true;
+}
+
 void FlickerNoise::AddTo(Engine& engine, double, std::span<double> rate) const {
   const std::size_t n = rate.size();
   if (n == 0 || bias_instability_rad_per_s == 0.0) return;

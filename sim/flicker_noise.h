@@ -36,6 +36,10 @@ struct FlickerNoise {
   // `engine` was made from: the same bits whether it was kept or not.
   void SynthesizeInPlace(Engine& engine, std::size_t n, std::span<double> work, FlickerStreamCache* cache,
                          std::uint64_t stream_seed) const;
+  // When `cache` keeps the unit record of (stream_seed, n): writes the n samples SynthesizeInPlace
+  // would into out[0..n) (the same bits) and returns true, with no FFT work space; else false
+  // (out untouched).
+  bool WriteKept(std::size_t n, std::span<double> out, const FlickerStreamCache& cache, std::uint64_t stream_seed) const;
   // Generalised autocovariance R(k) = -(2 B^2 / pi) sum_{i=1}^{k} 1/(2i - 1) (stationary
   // increments, i.e. without the start-up transient).
   void FillAutocovariance(double tau0_s, std::span<double> r) const;

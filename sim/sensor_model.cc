@@ -236,10 +236,20 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
   for (std::size_t i = 0; i < terms.size(); ++i) {
     if (const auto* f = std::get_if<FlickerNoise>(&terms[i])) {
       const auto samples = static_cast<std::size_t>(n);
-      out.resize(std::max(FlickerNoise::WorkSize(samples), static_cast<std::size_t>(total)));
       const std::uint64_t stream_seed = options.flicker_cache != nullptr
                                             ? StreamSeed(options.flicker_seed, trial, kSharedFlickerStream)
                                             : StreamSeed(seed, trial, i);
+      // A kept flicker record needs no FFT work space: the record alone (zeroing twice its size
+      // was a tenth of an envelope record's cost).
+      if (options.flicker_cache != nullptr) {
+        out.assign(static_cast<std::size_t>(total), 0.0);
+        if (f->WriteKept(samples, std::span<double>(out).subspan(static_cast<std::size_t>(burn_in)),
+                         *options.flicker_cache, stream_seed)) {
+          in_place_term = i;
+          break;
+        }
+      }
+      out.resize(std::max(FlickerNoise::WorkSize(samples), static_cast<std::size_t>(total)));
       Engine engine(stream_seed);
       f->SynthesizeInPlace(engine, samples, out, options.flicker_cache, stream_seed);
       std::copy_backward(out.begin(), out.begin() + n, out.begin() + total);

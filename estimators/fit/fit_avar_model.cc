@@ -370,7 +370,8 @@ bool FitSelected(const FitOptions& options, const AvarCurve& curve, CurveCache* 
   // The fit of all terms keeps its own chi2 (exact for log-WLS, whose problem here is the
   // expansion at that fit).
   SetFitCost(keep == every ? full_chi2 : summary->chi2, summary);
-  SetFitProfileRanges(fp.problem, masks, fp.asked, fp.scale, summary);
+  JudgeGoodnessOfFit(fp.problem, masks, summary);
+  if (options.profile_ranges) SetFitProfileRanges(fp.problem, masks, fp.asked, fp.scale, summary);
   std::string message = summary->converged ? "converged" : "weights did not settle within max_reweightings";
   if (options.select_terms && keep != every) {
     std::ostringstream os;

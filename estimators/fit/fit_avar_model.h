@@ -70,6 +70,9 @@ struct FitOptions {
   // detection's plain and band-limited fits) then share one instead of each building its own,
   // ~0.1 s of CPU at 1e7 samples. Null: built when needed.
   std::shared_ptr<const AvarCovarianceModel> covariance;
+  // false: no profile ranges (intervals and upper limits left unset; values and sigmas the same),
+  // for fits of which only the values are read (the passes of an iterated refit).
+  bool profile_ranges = true;
   bool IsValid(std::string* why) const;
 };
 

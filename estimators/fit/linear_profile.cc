@@ -348,17 +348,17 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
   }
 }
 
+void JudgeGoodnessOfFit(const LinearProblem& p, const std::vector<unsigned>& free_masks, FitSummary* summary) {
+  if (!p.whitening_at) return;
+  const unsigned chosen = free_masks.empty() ? (1u << p.a.cols()) - 1u : free_masks.front();
+  double chi2 = 0.0;
+  if (GoodnessOfFitChi2(p, chosen, &chi2)) SetGoodnessOfFit(chi2, summary);
+}
+
 void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_masks, const std::vector<int>& terms,
                          const std::vector<double>& scale, FitSummary* summary) {
-  if (p.whitening_at) {
-    // The fit's chi2 under its own model's covariance: the misfit this rule is about stays under
-    // every covariance, while a chi2 that is large only under the weight the fit held is not one
-    // (header).
-    const unsigned chosen = free_masks.empty() ? (1u << p.a.cols()) - 1u : free_masks.front();
-    double chi2 = 0.0;
-    if (GoodnessOfFitChi2(p, chosen, &chi2)) SetGoodnessOfFit(chi2, summary);
-    if (IsPoorFit(*summary)) p.whitening_at = nullptr;
-  }
+  // On a poor fit the misfit this rule is about stays under every covariance (header).
+  if (IsPoorFit(*summary)) p.whitening_at = nullptr;
   for (std::size_t j = 0; j < terms.size(); ++j) {
     SetProfileRanges(p, free_masks, static_cast<int>(j), scale[j], &summary->coefficients[terms[j]]);
   }

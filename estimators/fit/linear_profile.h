@@ -179,8 +179,8 @@ bool GoodnessOfFitChi2(const LinearProblem& p, unsigned mask, double* chi2);
 // summary->coefficients[terms[j]] (c^2 = scale[j] x_j), over the subsets `free_masks`. The one
 // place where a fit's profile chooses its weight, for the linear fit and the parametric one alike:
 // each held value's own covariance (p.whitening_at) where the model describes the curve; the
-// weight the fit held (W0) where it does not, judged by IsPoorFit on the chi2 of the chosen subset
-// (free_masks.front()) under the covariance of its own fit, on summary->dof. Where the model does
+// weight the fit held (W0) where it does not, judged by IsPoorFit on the summary's goodness of fit
+// (JudgeGoodnessOfFit below, called first). Where the model does
 // not describe the curve the misfit, not the noise, sets chi2 under every covariance, the minimum
 // under each held value's covariance moves with it, and the held-value test collapsed N's interval
 // to its value (ADIS16405 Gyro_Z, chi2 4.3e5 on 50 dof; docs/theory.md §4.7). The fit's own chi2
@@ -189,5 +189,11 @@ bool GoodnessOfFitChi2(const LinearProblem& p, unsigned mask, double* chi2);
 // too small, and the fallback moved K's 95 % coverage there from 191 to 177 of 200.
 void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_masks, const std::vector<int>& terms,
                          const std::vector<double>& scale, FitSummary* summary);
+
+// The fit's goodness of fit (FitSummary::gof_chi2, gof_p_value): GoodnessOfFitChi2 of the chosen
+// subset free_masks.front() (every term when empty) on summary->dof, where p.whitening_at is set
+// (GLS); otherwise the summary keeps its cost. Every linear and parametric fit calls it, with or
+// without profile ranges.
+void JudgeGoodnessOfFit(const LinearProblem& p, const std::vector<unsigned>& free_masks, FitSummary* summary);
 
 }  // namespace allanlab::estimators

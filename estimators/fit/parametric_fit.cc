@@ -443,7 +443,8 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
       e.note = "left out by the subset choice (AIC): the data do not determine it; 95 % upper limit given";
     }
   }
-  SetFitProfileRanges(part.problem, masks, part.linear, part.scale, &summary->base);
+  JudgeGoodnessOfFit(part.problem, masks, &summary->base);
+  if (options.profile_ranges) SetFitProfileRanges(part.problem, masks, part.linear, part.scale, &summary->base);
   keep_covariance_sigmas();
   if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, held_zero, summary);
   return true;

@@ -65,6 +65,8 @@ struct ParametricFitOptions {
   bool stop_without_start = false;
   // Choose the linear terms by AIC (header); false: every listed term is fitted.
   bool select_terms = false;
+  // false: no profile ranges of the linear terms (FitOptions::profile_ranges).
+  bool profile_ranges = true;
   bool IsValid(std::string* why) const;
 };
 

@@ -53,13 +53,15 @@ class HeldBandLimit final : public estimators::ParametricTerm {
 // next to a band-limit such a term left the fit far from the generating model (tactical_mems with
 // B and K held, N refitted: N 3 % high, chi2 1345 on 45 dof against 63 for the model itself).
 bool FitWithHeld(const BaselineSpec& spec, estimators::FitMethod method, const estimators::AvarCurve& curve,
-                 estimators::FitSummary* fit) {
+                 estimators::FitSummary* fit, bool profile_ranges) {
   const estimators::AvarCurve adjusted = spec.WithoutHeldAdditive(curve);
   const auto band = spec.HeldBandLimitTerm();
   if (!band) {
     estimators::FitOptions fo;
     fo.method = method;
     fo.terms = spec.terms;
+    fo.profile_ranges = profile_ranges;
+    if (method == estimators::FitMethod::kGls) fo.covariance = spec.Covariance(adjusted);
     return estimators::FitAvarModel(fo, adjusted, fit);
   }
   estimators::ParametricFitOptions po;
@@ -67,6 +69,8 @@ bool FitWithHeld(const BaselineSpec& spec, estimators::FitMethod method, const e
   po.terms = spec.terms;
   po.extra = {band};
   po.select_terms = true;  // as `allanlab fit` and the baseline without a held band-limit choose them
+  po.profile_ranges = profile_ranges;
+  if (method == estimators::FitMethod::kGls) po.covariance = spec.Covariance(adjusted);
   estimators::ParametricFitSummary ps;
   const bool ok = estimators::FitAvarModelWithTerms(po, adjusted, &ps);
   *fit = ps.base;
@@ -86,6 +90,11 @@ sim::SensorModel WithoutFloated(sim::SensorModel model, const std::vector<Coeffi
 }
 
 }  // namespace
+
+std::shared_ptr<const estimators::AvarCovarianceModel> BaselineSpec::Covariance(const estimators::AvarCurve& curve) const {
+  if (!covariances || terms.empty()) return nullptr;
+  return covariances->For(curve, terms);
+}
 
 bool BaselineSpec::HoldsAnything() const {
   return !held.terms.empty() || held.band_limit.enabled() || held.angle_quantizer || held.rate_quantizer;
@@ -124,7 +133,7 @@ sim::SensorModel BaselineSpec::Model(const estimators::FitSummary& fit, SampleCl
 // a common yardstick (CurveChi2), a margin GLS never loses by on a curve it describes. The
 // fallback is named in *note.
 bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
-               estimators::FitSummary* fit, std::string* note) {
+               estimators::FitSummary* fit, std::string* note, bool profile_ranges) {
   if (spec.terms.empty()) {
     *fit = estimators::FitSummary{};
     fit->ok = true;
@@ -132,21 +141,30 @@ bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     return true;
   }
   if (spec.HoldsAnything()) {
-    if (FitWithHeld(spec, estimators::FitMethod::kGls, curve, fit)) return true;
+    if (FitWithHeld(spec, estimators::FitMethod::kGls, curve, fit, profile_ranges)) return true;
     const std::string gls_message = fit->message;
-    if (!FitWithHeld(spec, estimators::FitMethod::kWls, curve, fit)) return false;
+    if (!FitWithHeld(spec, estimators::FitMethod::kWls, curve, fit, profile_ranges)) return false;
     if (note != nullptr) *note = "GLS fit failed (" + gls_message + "); WLS used";
     return true;
   }
   estimators::FitOptions fo;
   fo.method = estimators::FitMethod::kGls;
   fo.terms = spec.terms;
+  fo.profile_ranges = profile_ranges;
   estimators::FitSummary wls;
   estimators::FitOptions wo = fo;
   wo.method = estimators::FitMethod::kWls;
+  fo.covariance = spec.Covariance(curve);
+  // The WLS fit is a yardstick, its values alone compared: its profile ranges only if it is kept
+  // (the same fit again with them; the ranges do not move the values).
+  wo.profile_ranges = false;
   if (estimators::FitAvarModel(fo, curve, fit)) {
     const double gls_chi2 = CurveChi2(spec, *fit, curve);
     if (!estimators::FitAvarModel(wo, curve, &wls) || !(CurveChi2(spec, wls, curve) * 100.0 < gls_chi2)) return true;
+    if (profile_ranges) {
+      wo.profile_ranges = true;
+      if (!estimators::FitAvarModel(wo, curve, &wls)) return true;
+    }
     *fit = std::move(wls);
     if (note != nullptr) *note = "GLS settled on a degenerate model (chi2 on the curve's own EDFs 100 x WLS's); WLS used";
     return true;
@@ -169,6 +187,7 @@ bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& cu
                  estimators::FitSummary* fit, std::string* note, std::string* why) {
   *spec = BaselineSpec{};
   spec->terms = options.terms;
+  spec->covariances = std::make_shared<CurveCovariances>();
   spec->held.sample_clock = curve.sample_clock;
   if (options.baseline == DiagnoseOptions::Baseline::kSensor) {
     spec->held = WithoutFloated(options.sensor, options.terms);
@@ -185,6 +204,7 @@ bool FitBaseline(const DiagnoseOptions& options, const estimators::AvarCurve& cu
     estimators::BandLimitedFitOptions bo;
     bo.fit.method = estimators::FitMethod::kGls;
     bo.fit.terms = options.terms;
+    bo.fit.covariance = spec->Covariance(curve);
     estimators::BandLimitedFitSummary bs;
     if (estimators::FitWithBandLimit(bo, curve, &bs) && bs.band_limited) {
       spec->held.band_limit = estimators::FittedModel(bs.parametric, curve, {bs.fit, bs.extra}).band_limit;

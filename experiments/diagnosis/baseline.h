@@ -10,6 +10,7 @@
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "estimators/fit/parametric_term.h"
+#include "experiments/diagnosis/curve_covariances.h"
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
 
@@ -23,7 +24,12 @@ inline constexpr std::size_t kMinTaus = 8;
 struct BaselineSpec {
   std::vector<estimators::Coefficient> terms;  // fitted (empty: the held part alone)
   sim::SensorModel held;  // band-limit, quantizers and terms held as given (empty: a plain fit)
+  // The GLS covariance models every fit with this spec shares (null: each fit builds its own).
+  std::shared_ptr<CurveCovariances> covariances;
   bool HoldsAnything() const;
+  // The shared GLS covariance model of curves shaped like `curve` with `terms` (null without
+  // `covariances` or terms).
+  std::shared_ptr<const estimators::AvarCovarianceModel> Covariance(const estimators::AvarCurve& curve) const;
   // The held part plus the fitted linear terms (those with a positive value) on `sample_clock`.
   sim::SensorModel Model(const estimators::FitSummary& fit, SampleClock sample_clock) const;
   // The held band-limit as a fit-library term without free parameters (it filters the fitted
@@ -39,8 +45,10 @@ struct BaselineSpec {
 
 // The spec's terms fitted to `curve` with its held part; false when neither GLS nor WLS fits. A
 // WLS fallback is named in *note (may be null). No terms to fit: *fit asks for none.
+// profile_ranges false: the coefficients' intervals and upper limits are left unset (the values
+// and sigmas are the same), for a fit of which only the values are read.
 bool FitLinear(const BaselineSpec& spec, const estimators::AvarCurve& curve,
-               estimators::FitSummary* fit, std::string* note);
+               estimators::FitSummary* fit, std::string* note, bool profile_ranges = true);
 
 // The largest rate random walk K the fit allows when the spec fits K [rad/s/sqrt(s)]: the upper end
 // of its 95 % interval, or its 95 % upper limit when the fit left K out (at least the fitted

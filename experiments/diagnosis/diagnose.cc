@@ -28,10 +28,10 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
                                            const ViewValues& observed, const sim::SensorModel& model,
                                            bool monte_carlo, int trials, std::uint64_t seed,
                                            std::string* note, const ViewSet& wanted,
-                                           const SharedFlicker* shared_flicker) {
-  const OavarTheory theory = wanted.test(static_cast<int>(View::kOavar))
-                                 ? ExactOavar(model, layout.oavar_m, layout.num_samples)
-                                 : OavarTheory{};
+                                           const SharedFlicker* shared_flicker, const OavarTheory* known_theory) {
+  const OavarTheory theory = !wanted.test(static_cast<int>(View::kOavar)) ? OavarTheory{}
+                             : known_theory != nullptr                    ? *known_theory
+                                                      : ExactOavar(model, layout.oavar_m, layout.num_samples);
   // The simulated records give the Monte Carlo views only: OAVAR's distribution is exact.
   ViewEnvelope envelope;
   const ViewSet simulated = wanted & MonteCarloViews();
@@ -50,14 +50,15 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
 }
 
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
-                std::uint64_t seed, std::string* note) {
+                std::uint64_t seed, std::string* note, const OavarTheory* known_theory) {
   ModelGap gap;
   if (ctx.have_record) {
     const SharedFlicker flicker = RecordFlicker(ctx);
     gap.views = RecordResiduals(ctx.rate, ctx.layout, ctx.observed, model, monte_carlo, ctx.options->trials, seed, note,
-                                EveryView(), &flicker);
+                                EveryView(), &flicker, known_theory);
   } else {
-    const OavarTheory theory = ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
+    const OavarTheory theory =
+        known_theory != nullptr ? *known_theory : ExactOavar(model, ctx.layout.oavar_m, ctx.layout.num_samples);
     ViewValues observed(kNumViews);
     for (double a : ctx.curve.avar) observed[0].push_back(std::log(a));
     gap.views = Residuals(ctx.layout, observed, theory, nullptr);
@@ -68,7 +69,10 @@ ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_ca
 
 // A curve against a model's exact OAVAR distribution (the exact view's z, ExactOavar).
 GapMetrics CurveMetrics(const sim::SensorModel& model, const estimators::AvarCurve& second) {
-  const OavarTheory t = ExactOavar(model, second.m, second.num_samples);
+  return CurveMetrics(ExactOavar(model, second.m, second.num_samples), second);
+}
+
+GapMetrics CurveMetrics(const OavarTheory& t, const estimators::AvarCurve& second) {
   std::vector<double> z;
   for (std::size_t i = 0; i < second.size(); ++i) z.push_back(ZFromChiSquare(second.avar[i], t.mean[i], t.edf[i]));
   return Metrics(z);
@@ -240,31 +244,40 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
   // Held-out halves: each half's own baseline, curve and views (a candidate is fitted on one
   // and scored on the other).
   const std::size_t half = rate.size() / 2;
-  ctx.have_halves = true;
-  for (int h = 0; h < 2 && ctx.have_halves; ++h) {
+  // The halves are independent: one per thread (each half's own results, whichever thread).
+  bool half_ok[2] = {false, false};
+#pragma omp parallel for schedule(static, 1)
+  for (int h = 0; h < 2; ++h) {
     HalfRecord& r = ctx.halves[h];
+    std::string half_why;
     r.rate = rate.subspan(h * half, half);
-    ctx.have_halves = RecordCurve(r.rate, sample_clock, &r.curve, &why) && FitLinear(ctx.spec, r.curve, &r.baseline, nullptr);
-    if (!ctx.have_halves) break;
+    half_ok[h] = RecordCurve(r.rate, sample_clock, &r.curve, &half_why) && FitLinear(ctx.spec, r.curve, &r.baseline, nullptr);
+    if (!half_ok[h]) continue;
     r.edf = ExactOavar(ctx.spec.Model(r.baseline, sample_clock), r.curve.m, r.curve.num_samples).edf;
     r.layout = MakeViewLayout(sample_clock, static_cast<std::int64_t>(half), r.curve.m);
-    r.have_views = ComputeViews(r.layout, r.rate, &r.observed, &why);
+    r.have_views = ComputeViews(r.layout, r.rate, &r.observed, &half_why);
   }
+  ctx.have_halves = half_ok[0] && half_ok[1];
   if (ctx.have_halves) {
     ctx.half_length_s = static_cast<double>(half) * sample_clock.period_s();
     // A half is judged against models fitted on the other half: K up to what that half allows.
+#pragma omp parallel for schedule(static, 1)
     for (int h = 0; h < 2; ++h) {
       HalfRecord& r = ctx.halves[h];
       r.layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, ctx.halves[1 - h].baseline);
-      r.against_other_baseline = CurveMetrics(ctx.spec.Model(ctx.halves[1 - h].baseline, sample_clock), r.curve);
+      r.other_baseline_theory =
+          ExactOavar(ctx.spec.Model(ctx.halves[1 - h].baseline, sample_clock), r.curve.m, r.curve.num_samples);
+      r.against_other_baseline = CurveMetrics(r.other_baseline_theory, r.curve);
     }
   } else {
     s.notes.push_back("no held-out score: the halves are too short or their fit failed");
   }
-  ctx.curve_edf = ExactOavar(s.baseline_model, ctx.curve.m, ctx.curve.num_samples).edf;
+  // The baseline's exact OAVAR: the EDFs every refit weighs the curve with, and its OAVAR view.
+  const OavarTheory baseline_theory = ExactOavar(s.baseline_model, ctx.curve.m, ctx.curve.num_samples);
+  ctx.curve_edf = baseline_theory.edf;
   std::string note;
   ReportProgress(ctx, "views", 0, 0);
-  s.before = Assess(ctx, s.baseline_model, true, options.seed, &note);
+  s.before = Assess(ctx, s.baseline_model, true, options.seed, &note, &baseline_theory);
   if (!note.empty()) s.notes.push_back("envelope: " + note);
   if (ctx.have_halves) {
     s.before.heldout = ctx.halves[1].against_other_baseline;
@@ -308,9 +321,10 @@ bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& 
   ctx.layout.sample_clock = curve.sample_clock;
   ctx.layout.num_samples = curve.num_samples;
   ctx.layout.oavar_m = curve.m;
-  ctx.curve_edf = ExactOavar(s.baseline_model, curve.m, curve.num_samples).edf;
+  const OavarTheory baseline_theory = ExactOavar(s.baseline_model, curve.m, curve.num_samples);
+  ctx.curve_edf = baseline_theory.edf;
   std::string note;
-  s.before = Assess(ctx, s.baseline_model, false, options.seed, &note);
+  s.before = Assess(ctx, s.baseline_model, false, options.seed, &note, &baseline_theory);
   s.notes.push_back("curve mode: OAVAR view only (exact distribution), no held-out score");
   Finish(ctx, &s);
   s.ok = true;

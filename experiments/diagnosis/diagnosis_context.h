@@ -28,6 +28,7 @@ struct HalfRecord {
   ViewValues observed;
   bool have_views = false;
   GapMetrics against_other_baseline;  // `curve` against the other half's baseline (CurveMetrics)
+  OavarTheory other_baseline_theory;  // the other half's baseline's exact OAVAR on `curve`
 };
 
 
@@ -75,14 +76,18 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
                                            const ViewValues& observed, const sim::SensorModel& model,
                                            bool monte_carlo, int trials, std::uint64_t seed,
                                            std::string* note, const ViewSet& wanted = EveryView(),
-                                           const SharedFlicker* shared_flicker = nullptr);
+                                           const SharedFlicker* shared_flicker = nullptr,
+                                           const OavarTheory* known_theory = nullptr);
 
-// The record (or in curve mode the curve) against a model.
+// The record (or in curve mode the curve) against a model. `known_theory`: the model's
+// ExactOavar on the layout when the caller has it (not computed again: O(N) per tau).
 ModelGap Assess(const Context& ctx, const sim::SensorModel& model, bool monte_carlo,
-                std::uint64_t seed, std::string* note);
+                std::uint64_t seed, std::string* note, const OavarTheory* known_theory = nullptr);
 
 // A curve against a model's exact OAVAR distribution (the exact view's z, ExactOavar).
 GapMetrics CurveMetrics(const sim::SensorModel& model, const estimators::AvarCurve& curve);
+// The same from the model's ExactOavar on the curve's m.
+GapMetrics CurveMetrics(const OavarTheory& theory, const estimators::AvarCurve& curve);
 
 int ParameterCount(const std::vector<EffectInstance>& effects);
 bool ClosesGap(const ModelGap& gap, double threshold);

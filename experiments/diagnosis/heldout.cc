@@ -31,7 +31,8 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
     const SharedFlicker flicker = RecordFlicker(ctx, h);
     b.residuals = RecordResiduals(scored.rate, scored.layout, scored.observed,
                                   ctx.spec.Model(ctx.halves[1 - h].baseline, ctx.curve.sample_clock), true,
-                                  ctx.options->trials, ctx.options->seed + 500 + h, &ignored, EveryView(), &flicker);
+                                  ctx.options->trials, ctx.options->seed + 500 + h, &ignored, EveryView(), &flicker,
+                                  scored.other_baseline_theory.mean.empty() ? nullptr : &scored.other_baseline_theory);
     for (const GapRegion& r : FindGapRegions(b.residuals, threshold)) {
       if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
     }

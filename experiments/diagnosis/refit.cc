@@ -48,7 +48,8 @@ bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve
       if (subtract) adjusted.avar[i] = std::max(curve.avar[i] - (e_full[i] - e_lin[i]), 0.1 * adjusted.avar[i]);
     }
     estimators::FitSummary next;
-    if (!FitLinear(spec, adjusted, &next, nullptr)) {
+    // The passes before the last are read for their values only (the next pass's ratio).
+    if (!FitLinear(spec, adjusted, &next, nullptr, /*profile_ranges=*/pass == 2)) {
       *why = "refit failed: " + next.message;
       return false;
     }
@@ -201,6 +202,7 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     estimators::ParametricFitOptions po;
     po.method = estimators::FitMethod::kGls;
     po.terms = term_set;
+    po.covariance = spec.Covariance(fit_curve);
     for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
     // A band-limit candidate replaces the held one (AddBandwidth): not both in series.
     if (auto band = spec.HeldBandLimitTerm(); band && !replaces_band_limit) po.extra.push_back(std::move(band));

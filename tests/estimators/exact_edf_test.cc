@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "tests/support/monte_carlo.h"
 
@@ -103,6 +104,24 @@ TEST(ExactEdf, SharedVariogramGivesThePerMBits) {
         EXPECT_EQ(shared[i].variance, own.variance) << sim::TermId(term) << " m=" << ms[i];
       }
     }
+  }
+}
+
+// The m are shared across threads: the same bits with one thread as with two.
+TEST(ExactEdf, SameBitsForAnyThreadCount) {
+  sim::SensorModel model = SingleTermModel(sim::RandomWalkRate{0.01}, 100.0);
+  model.terms.push_back(sim::WhiteRateNoise{0.3});
+  const sim::RecordShape shape{20000, AvarEstimatorKind::kOverlapping};
+  const std::vector<std::int64_t> ms = {1, 3, 10, 33, 100, 333, 1000, 3333, 10000};
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<AvarMoments> one = ModelAvarMoments(model, ms, shape);
+  omp_set_num_threads(2);
+  const std::vector<AvarMoments> two = ModelAvarMoments(model, ms, shape);
+  omp_set_num_threads(threads);
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    EXPECT_EQ(one[i].mean, two[i].mean) << "m=" << ms[i];
+    EXPECT_EQ(one[i].variance, two[i].variance) << "m=" << ms[i];
   }
 }
 

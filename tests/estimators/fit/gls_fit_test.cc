@@ -10,6 +10,9 @@
 #include <vector>
 
 #include "estimators/allan_variance.h"
+#include "estimators/avar.h"
+#include "estimators/fit/avar_curve.h"
+#include "estimators/fit/noise_coefficient.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "sim/sensor_model.h"
 #include "sim/units.h"
@@ -122,6 +125,42 @@ TEST(GlsFit, TermSelectionDropsAbsentTerms) {
                     << s.at(Coefficient::kK).note << "; R " << s.at(Coefficient::kR).note;
   }
   EXPECT_EQ(correct, fits);
+}
+
+// Without profile ranges a fit gives the same values, sigmas and chi2 (the ranges are read from
+// the fitted problem, never fed back), and leaves the intervals and upper limits unset.
+TEST(GlsFit, ProfileRangesDoNotMoveTheFit) {
+  const double rate = 100.0;
+  const std::int64_t n = 1 << 16;
+  sim::SensorModel model;
+  model.sample_clock = SampleClock::FromRateHz(rate);
+  model.terms.push_back(TermFor(Coefficient::kN, FromDatasheetUnit(Coefficient::kN, 0.2)));
+  model.terms.push_back(TermFor(Coefficient::kK, FromDatasheetUnit(Coefficient::kK, 20.0)));
+  const auto record = model.Generate(5, 0, n);
+  AvarOptions ao;
+  ao.statistic = Statistic::kAllanOverlapping;
+  ao.sample_clock = model.sample_clock;
+  ao.taus.kind = TauGridKind::kLogDense;
+  AvarSummary summary;
+  ASSERT_TRUE(ComputeAvar(ao, record, &summary)) << summary.message;
+  const AvarCurve curve = CurveFromSummary(summary);
+  FitOptions with;
+  with.method = FitMethod::kGls;
+  FitOptions without = with;
+  without.profile_ranges = false;
+  FitSummary a, b;
+  ASSERT_TRUE(FitAvarModel(with, curve, &a)) << a.message;
+  ASSERT_TRUE(FitAvarModel(without, curve, &b)) << b.message;
+  EXPECT_EQ(a.chi2, b.chi2);
+  bool some_range = false;
+  for (Coefficient c : kAllCoefficients) {
+    EXPECT_EQ(a.at(c).fitted, b.at(c).fitted) << CoefficientId(c);
+    EXPECT_EQ(a.at(c).value_si, b.at(c).value_si) << CoefficientId(c);
+    EXPECT_EQ(a.at(c).sigma_si, b.at(c).sigma_si) << CoefficientId(c);
+    EXPECT_FALSE(b.at(c).has_intervals || b.at(c).has_upper_limit) << CoefficientId(c);
+    some_range = some_range || a.at(c).has_intervals;
+  }
+  EXPECT_TRUE(some_range);
 }
 
 }  // namespace
