@@ -22,6 +22,7 @@
 #include "independent/recipe.h"
 
 #include "tests/support/coverage_band.h"
+#include "tests/support/independent_recipes.h"
 #include "tests/support/fit_curves.h"
 
 namespace allanlab::estimators {
@@ -30,17 +31,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kN = 0.2 * kDeg / 60.0, kB = 3.0 * kDeg / 3600.0, kK = 4.0 * kDeg / 3600.0 / 60.0;
 
-independent::Recipe BandLimited() {
-  independent::Recipe r;
-  r.rate_hz = 100.0;
-  r.noise.arw_rad_per_sqrt_s = kN;
-  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(kB);
-  r.noise.rrw_rad_per_s_per_sqrt_s = kK;
-  r.low_pass.design = independent::LowPassDesign::kSecondOrderBilinear;
-  r.low_pass.cutoff_hz = 20.0;
-  r.low_pass.oversampling = 8;
-  return r;
-}
+independent::Recipe BandLimited() { return testing_support::BandLimitedMemsRecipe(); }
 
 TEST(BandLimitProfile, QuantizationRangeHoldsZeroOnABandLimitedRecordWithoutIt) {
   constexpr int kRecords = 24;

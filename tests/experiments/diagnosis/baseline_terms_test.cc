@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <numbers>
 #include <string>
 
 #include "estimators/fit/fit_model.h"
@@ -17,20 +16,13 @@
 #include "independent/generate.h"
 #include "independent/recipe.h"
 
+#include "tests/support/independent_recipes.h"
+
 namespace allanlab::experiments {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 TEST(DiagnoseBaseline, ChoosesItsTermsAsFitDoes) {
-  independent::Recipe r;
-  r.rate_hz = 100.0;
-  r.noise.arw_rad_per_sqrt_s = 0.2 * kDeg / 60.0;
-  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(3.0 * kDeg / 3600.0);
-  r.noise.rrw_rad_per_s_per_sqrt_s = 4.0 * kDeg / 3600.0 / 60.0;
-  r.low_pass.design = independent::LowPassDesign::kSecondOrderBilinear;
-  r.low_pass.cutoff_hz = 20.0;
-  r.low_pass.oversampling = 8;
+  const independent::Recipe r = testing_support::BandLimitedMemsRecipe();
   const SampleClock clock = SampleClock::FromRateHz(r.rate_hz);
   int band_limited = 0, limits = 0;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
