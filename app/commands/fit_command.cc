@@ -166,7 +166,12 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
       char line[256];
       std::snprintf(line, sizeof line, "%-12s %-14s %-13s %-21s %-15s %s\n", (e.short_name + " " + spec.name).c_str(),
                     e.fitted ? SignificantDigits(e.value_si[q] / u.si_per_unit, 4).c_str() : "-",
-                    e.fitted ? ("+- " + SignificantDigits(e.sigma_si[q] / u.si_per_unit, 4)).c_str() : "", "",
+                    e.fitted ? ("+- " + SignificantDigits(e.sigma_si[q] / u.si_per_unit, 4)).c_str() : "",
+                    e.fitted && q < e.interval95_si.size()
+                        ? ("[" + SignificantDigits(e.interval95_si[q][0] / u.si_per_unit, 4) + ", " +
+                           SignificantDigits(e.interval95_si[q][1] / u.si_per_unit, 4) + "]")
+                              .c_str()
+                        : "",
                     u.unit.c_str(), "-");
       os << line;
     }
@@ -184,7 +189,12 @@ void WriteTable(std::ostream& os, const FitCommandOptions& o, const estimators::
      << " s\n";
   if (!s.band_limit.empty()) os << "band-limit: " << s.band_limit << "\n";
   if (const auto* f = FittedBandLimit(extra)) {
-    os << "bandwidth: fitted fc " << SignificantDigits(f->value_si[0], 4) << " +- " << SignificantDigits(f->sigma_si[0], 4) << " Hz ("
+    os << "bandwidth: fitted fc " << SignificantDigits(f->value_si[0], 4) << " +- " << SignificantDigits(f->sigma_si[0], 4);
+    if (!f->interval95_si.empty()) {
+      os << " (95 % profile range " << SignificantDigits(f->interval95_si[0][0], 4) << " to "
+         << SignificantDigits(f->interval95_si[0][1], 4) << ")";
+    }
+    os << " Hz ("
        << (f->short_name == "BW2" ? "2nd-order Butterworth" : "first order") << "); ";
   } else {
     os << "bandwidth: ";
@@ -262,6 +272,9 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
       entry[spec.name] = {{"value", e.fitted ? e.value_si[q] / u.si_per_unit : 0.0},
                           {"sigma", e.fitted ? e.sigma_si[q] / u.si_per_unit : 0.0},
                           {"unit", u.unit}};
+      if (e.fitted && q < e.interval95_si.size()) {
+        entry[spec.name]["interval95"] = {e.interval95_si[q][0] / u.si_per_unit, e.interval95_si[q][1] / u.si_per_unit};
+      }
       if (bootstrapped && e.fitted && q < e.bootstrap_bias_si.size()) {
         entry[spec.name]["covariance_sigma"] = e.covariance_sigma_si[q] / u.si_per_unit;
         entry[spec.name]["bootstrap_bias"] = e.bootstrap_bias_si[q] / u.si_per_unit;
@@ -287,6 +300,7 @@ nlohmann::ordered_json FitJson(const FitCommandOptions& o, const estimators::Mod
                            {"sigma", f->sigma_si[0]},
                            {"sampling", o.bw_sampling},
                            {"oversampling", o.bw_oversampling}};
+    if (!f->interval95_si.empty()) bandwidth["fitted"]["interval95"] = {f->interval95_si[0][0], f->interval95_si[0][1]};
   } else {
     bandwidth["fitted"] = nullptr;
   }

@@ -159,10 +159,11 @@ double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j) {
   return std::sqrt(std::max(cov(at, at), 0.0));
 }
 
-ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level) {
+ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level,
+                                    double offset) {
   const double sigma = ProfileStandardError(p, free_mask, j);
-  return ProfileInterval(p, free_mask, j, [level, sigma](double t) {
-    return BoundedLikelihoodRatioThreshold(level, sigma > 0.0 ? std::max(t, 0.0) / sigma : 1e300);
+  return ProfileInterval(p, free_mask, j, [level, sigma, offset](double t) {
+    return BoundedLikelihoodRatioThreshold(level, sigma > 0.0 ? std::max(t, 0.0) / sigma : 1e300) - offset;
   });
 }
 
@@ -260,8 +261,10 @@ double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
   // The estimate is inside by construction: each end is bracketed from it outwards (with W0 held
   // the statistic is convex in t, so the end is its one root; with whitening_at it need not be,
   // and a held value beyond a rejected one is not reached: header).
+  const double at_estimate = delta(t_hat);
+  if (!(at_estimate >= 0.0)) return std::numeric_limits<double>::quiet_NaN();
   const double column = p.a.col(j).norm();
-  double step = column > 0.0 ? std::sqrt(delta(t_hat)) / column : 1.0;  // the end with the others fixed
+  double step = column > 0.0 ? std::sqrt(at_estimate) / column : 1.0;  // the end with the others fixed
   step = std::max(step, 1e-6 * t_hat);
   if (!upper) {
     if (t_hat <= 0.0) return 0.0;
@@ -310,11 +313,12 @@ ProfileRange ProfileInterval(const LinearProblem& p, unsigned free_mask, int j,
 }
 
 void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_masks, int j,
-                      double scale, CoefficientEstimate* e) {
+                      double scale, CoefficientEstimate* e, const std::vector<LinearProblem>& alternatives) {
   auto root = [scale](double x) { return std::sqrt(std::max(x * scale, 0.0)); };
   ProfileRange r68{std::numeric_limits<double>::infinity(), 0.0}, r95 = r68;
   double upper = 0.0;
   auto hull = [](ProfileRange* h, const ProfileRange& r) {
+    if (std::isnan(r.lower) || std::isnan(r.upper)) return;  // an alternative that adds nothing
     h->lower = std::min(h->lower, r.lower);
     h->upper = std::max(h->upper, r.upper);
   };
@@ -329,7 +333,28 @@ void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_
     hull(&r68, ranges.at68);
     hull(&r95, ranges.at95);
     if (!e->fitted) upper = std::max(upper, ProfileInterval(p, mask, j, kProfileDeltaUpper95).upper);
+    // The alternatives within the widest critical value of p's minimum (header) whose estimate of
+    // x_j differs from p's by more than kTradeShift of its standard error.
+    if (alternatives.empty()) continue;
+    const Eigen::VectorXd fit_x = SolveSubset(p, mask);
+    const double fit_chi2 = p.Chi2(fit_x);
+    const double sigma = ProfileStandardError(p, mask, j);
+    for (const LinearProblem& alternative : alternatives) {
+      const Eigen::VectorXd x = SolveSubset(alternative, mask);
+      const double offset = std::max(alternative.Chi2(x) - fit_chi2, 0.0);
+      if (!(offset < kProfileDelta95) || !(std::abs(x(j) - fit_x(j)) > kTradeShift * sigma)) continue;
+      const ProfileRanges more = CalibratedProfileIntervals(alternative, mask, j, offset);
+      hull(&r68, more.at68);
+      hull(&r95, more.at95);
+      if (!e->fitted && offset < kProfileDeltaUpper95) {
+        const double end = ProfileInterval(alternative, mask, j, kProfileDeltaUpper95 - offset).upper;
+        if (!std::isnan(end)) upper = std::max(upper, end);
+      }
+    }
   }
+  // Every range was rejected at its own estimate (cannot happen for p, whose offset is 0).
+  if (r68.lower > r68.upper) r68 = {0.0, 0.0};
+  if (r95.lower > r95.upper) r95 = {0.0, 0.0};
   e->has_intervals = true;
   e->interval68_si = {root(r68.lower), root(r68.upper)};
   e->interval95_si = {root(r95.lower), root(r95.upper)};
@@ -356,11 +381,15 @@ void JudgeGoodnessOfFit(const LinearProblem& p, const std::vector<unsigned>& fre
 }
 
 void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_masks, const std::vector<int>& terms,
-                         const std::vector<double>& scale, FitSummary* summary) {
+                         const std::vector<double>& scale, FitSummary* summary,
+                         std::vector<LinearProblem> alternatives) {
   // On a poor fit the misfit this rule is about stays under every covariance (header).
-  if (IsPoorFit(*summary)) p.whitening_at = nullptr;
+  if (IsPoorFit(*summary)) {
+    p.whitening_at = nullptr;
+    for (LinearProblem& a : alternatives) a.whitening_at = nullptr;
+  }
   for (std::size_t j = 0; j < terms.size(); ++j) {
-    SetProfileRanges(p, free_masks, static_cast<int>(j), scale[j], &summary->coefficients[terms[j]]);
+    SetProfileRanges(p, free_masks, static_cast<int>(j), scale[j], &summary->coefficients[terms[j]], alternatives);
   }
 }
 

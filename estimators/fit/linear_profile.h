@@ -135,19 +135,32 @@ Eigen::VectorXd SolveHeld(const LinearProblem& p, unsigned free_mask, int j, dou
 double ProfileStatistic(const LinearProblem& p, unsigned free_mask, int j, double t);
 // One end of the range, the first crossing from the estimate outwards (lower: 0 when no held value
 // from the estimate down to 0 is rejected), bisected
-// to `relative_tolerance` of the end (0: 1e-6 with p.whitening_at set, else 1e-9).
+// to `relative_tolerance` of the end (0: 1e-6 with p.whitening_at set, else 1e-9). NaN when the
+// estimate itself is rejected (delta below 0 there: an alternative problem too far above the fit).
 double ProfileEnd(const LinearProblem& p, unsigned free_mask, int j,
                   const std::function<double(double t)>& delta, bool upper, double relative_tolerance = 0.0);
-// The `level` interval with the bounded critical value (header): t is accepted when Delta(t) <=
-// BoundedLikelihoodRatioThreshold(level, t / sigma_j), sigma_j the standard error of x_j among
-// the free terms (from A, unconstrained).
-ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level);
+// The `level` interval with the bounded critical value (header): t is accepted when Delta(t) +
+// offset <= BoundedLikelihoodRatioThreshold(level, t / sigma_j), sigma_j the standard error of
+// x_j among the free terms (from A, unconstrained). offset: how far p's minimum lies above the
+// fit's (an alternative problem of SetProfileRanges); both ends NaN when the estimate itself is
+// then rejected.
+ProfileRange BoundedProfileInterval(const LinearProblem& p, unsigned free_mask, int j, double level,
+                                    double offset = 0.0);
 // sigma_j above: the standard error of x_j with the terms of free_mask free (unconstrained).
 double ProfileStandardError(const LinearProblem& p, unsigned free_mask, int j);
 // The whitened design's columns of the free terms (free_mask), in order, and *at_j the position of
 // term j among them.
 Eigen::MatrixXd FreeColumns(const LinearProblem& p, unsigned free_mask, int j, Eigen::Index* at_j);
 
+// Alternative problems: the same columns with a nonlinear parameter of the fit held at other
+// values (a band-limit's cutoff: CutoffAlternatives of parametric_fit.cc), which p lets move only
+// to first order. Where the curve does not pin that parameter, a term it trades with is pinned
+// only by the cutoff held at the fit's value: on a 1 h record of the tactical_mems sensor at
+// 100 Hz (a 131 Hz low-pass averaged to the output) the fit chose fc 72.7 Hz with Q 0.88 urad,
+// 95 % [0.66, 1.01], while fc 134 Hz with Q = 0 lay only 1.07 above it in chi2. The profile over
+// both is the minimum over the alternatives of each one's statistic plus its offset (its minimum's
+// chi2 above p's, under the weight both hold): the union of each alternative's ranges at the
+// critical value less its offset.
 // The estimate's profile ranges in SI (c_j^2 = scale x_j): its 68.3 % and 95 % intervals
 // (BoundedProfileInterval; with p.whitening_at set, CalibratedProfileIntervals of
 // profile_calibration.h) and, when it is not fitted, its 95 % upper limit, each the hull of the
@@ -157,8 +170,13 @@ Eigen::MatrixXd FreeColumns(const LinearProblem& p, unsigned free_mask, int j, E
 // interval conditional on the subset the same data chose under-covers: on white noise AIC adds a
 // spurious Q to 7 % of records, and N, traded against Q, then sits 3 sigma low (N's 68.3 %
 // interval held the truth in 62 % of 2 h records).
+// With `alternatives`, the union above, over the alternatives whose estimate of x_j differs from
+// p's by more than kTradeShift of its standard error: the ranges of a term that does not trade
+// with the parameter they move stay where p's are, and each alternative's ranges cost as much as
+// p's (on that record the fit took 0.7 s with none, 3.7 s with all).
+inline constexpr double kTradeShift = 0.2;
 void SetProfileRanges(const LinearProblem& p, const std::vector<unsigned>& free_masks, int j,
-                      double scale, CoefficientEstimate* e);
+                      double scale, CoefficientEstimate* e, const std::vector<LinearProblem>& alternatives = {});
 
 // The problem whitened by the covariance of the model x (p.whitening_at), with p.free_directions
 // projected out: what ProfileStatistic tests a held value under. False (q untouched) when
@@ -187,8 +205,10 @@ bool GoodnessOfFitChi2(const LinearProblem& p, unsigned mask, double* chi2);
 // (under W0) does not tell the two apart: on 2 h records of white noise and a rate random walk,
 // 25 of 200 had p < 1e-3 under the pilot's weight, whose small K made the long taus' variances
 // too small, and the fallback moved K's 95 % coverage there from 191 to 177 of 200.
+// `alternatives`: as SetProfileRanges (the same weight rule applies to them).
 void SetFitProfileRanges(LinearProblem p, const std::vector<unsigned>& free_masks, const std::vector<int>& terms,
-                         const std::vector<double>& scale, FitSummary* summary);
+                         const std::vector<double>& scale, FitSummary* summary,
+                         std::vector<LinearProblem> alternatives = {});
 
 // The fit's goodness of fit (FitSummary::gof_chi2, gof_p_value): GoodnessOfFitChi2 of the chosen
 // subset free_masks.front() (every term when empty) on summary->dof, where p.whitening_at is set

@@ -1,7 +1,9 @@
 #include "estimators/fit/parametric_fit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <map>
 #include <numbers>
@@ -299,6 +301,7 @@ struct FitEnd {
 // scale[j] x_j), the parametric parameters free to first order; and where the fit ended.
 struct LinearPart {
   LinearProblem problem;
+  std::vector<LinearProblem> alternatives;  // at other cutoffs (CutoffAlternatives)
   std::vector<int> linear;  // Coefficient indices, ascending: the columns of problem
   std::vector<double> scale;
   FitEnd end;
@@ -444,13 +447,106 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
     }
   }
   JudgeGoodnessOfFit(part.problem, masks, &summary->base);
-  if (options.profile_ranges) SetFitProfileRanges(part.problem, masks, part.linear, part.scale, &summary->base);
+  if (options.profile_ranges) {
+    SetFitProfileRanges(part.problem, masks, part.linear, part.scale, &summary->base, part.alternatives);
+  }
   keep_covariance_sigmas();
   if (options.uncertainty == FitUncertainty::kBootstrap) Bootstrap(options, curve, held_zero, summary);
   return true;
 }
 
 namespace {
+
+// The GLS whitening of the curve's covariance under the model x (scaled linear terms) with the
+// linear terms' shapes and the additive terms' AVAR fixed (linear_profile.h: whitening_at).
+std::function<bool(const Eigen::VectorXd&, Eigen::MatrixXd*)> WhiteningAt(
+    const std::shared_ptr<const AvarCovarianceModel>& covariance, const Eigen::MatrixXd& shapes,
+    const Eigen::VectorXd& extra, const Eigen::MatrixXd& unfiltered, const std::vector<int>& linear,
+    const std::vector<double>& scale, const Eigen::VectorXd& sqrt_half_nu) {
+  return [covariance, shapes, extra, unfiltered, linear, scale, sqrt_half_nu](const Eigen::VectorXd& x,
+                                                                              Eigen::MatrixXd* wx) {
+    const Eigen::VectorXd held = x.cwiseMax(0.0);
+    return GlsWhitening(*covariance, linear, scale, held, shapes * held + extra, unfiltered * held, sqrt_half_nu,
+                        wx);
+  };
+}
+
+// The linear problem at other cutoffs of a band-limit that is the fit's one parametric term
+// (linear_profile.h: alternative problems), the weight w held: steps of kCutoffStep in log
+// frequency outwards from the fit's cutoff on both sides, each side up to the cutoff's bound or
+// to the first step whose minimum (the fit's terms free) lies more than kCutoffReach above the
+// fit's. Outwards because the shapes at a new cutoff are the costly part (a low cutoff's chain is
+// long): a well-resolved cutoff costs two steps. Scanning every step to the bounds instead cost
+// 1.7 s per fit on 1 h records at 100 Hz and moved none of the ranges in the test (a second
+// valley beyond a barrier was not seen). At most kMaxAlternatives are kept, spread evenly over
+// the steps found, the outermost included. Empty when the fit has other parametric
+// parameters or its cutoff is at a bound. *range_u: the cutoff's own 95 % profile range (log
+// frequency) read off the same steps: the outermost step within kProfileDelta95 of the fit's
+// minimum, or the crossing beyond it (linear in the root of the offset); {u, u} when empty.
+constexpr double kCutoffStep = 0.15;                    // in log frequency: 16 %
+constexpr double kCutoffReach = 2.0 * kProfileDelta95;  // SetProfileRanges keeps those below kProfileDelta95
+constexpr int kMaxCutoffSteps = 40;                     // per side
+constexpr std::size_t kMaxAlternatives = 8;
+std::vector<LinearProblem> CutoffAlternatives(ModelPieces* pieces, const std::vector<const ParametricTerm*>& active,
+                                              const std::vector<double>& u, const std::vector<double>& u_lo,
+                                              const std::vector<double>& u_hi, const Eigen::MatrixXd& w,
+                                              const Eigen::VectorXd& curve,
+                                              const std::shared_ptr<const AvarCovarianceModel>& covariance,
+                                              const std::vector<int>& linear, const std::vector<double>& scale,
+                                              const Eigen::VectorXd& sqrt_half_nu, unsigned held_zero,
+                                              const LinearProblem& fit, std::array<double, 2>* range_u) {
+  std::vector<LinearProblem> out;
+  *range_u = {u.empty() ? 0.0 : u[0], u.empty() ? 0.0 : u[0]};
+  if (linear.empty() || u.size() != 1 || active.size() != 1 || !active[0]->modifies_other_terms() ||
+      !(u[0] > u_lo[0] + 1e-6 && u[0] < u_hi[0] - 1e-6)) {
+    return out;
+  }
+  const unsigned fitted = ((1u << linear.size()) - 1u) & ~held_zero;
+  if (fitted == 0u) return out;
+  const double fit_chi2 = fit.Chi2(SolveSubset(fit, fitted));
+  std::vector<std::pair<double, LinearProblem>> found;  // by cutoff
+  for (double side : {-1.0, 1.0}) {
+    double last_u = u[0], last_offset = 0.0;
+    double& end = (*range_u)[side < 0.0 ? 0 : 1];
+    for (int k = 1; k <= kMaxCutoffSteps; ++k) {
+      const double ug = std::clamp(u[0] + side * kCutoffStep * k, u_lo[0], u_hi[0]);
+      Eigen::MatrixXd shapes;
+      Eigen::VectorXd extra;
+      pieces->Evaluate(&ug, &shapes, &extra);
+      LinearProblem alternative;
+      alternative.a = w * shapes;
+      alternative.y = w * (curve - extra);
+      const double offset = alternative.Chi2(SolveSubset(alternative, fitted)) - fit_chi2;
+      if (offset < kProfileDelta95) {
+        end = ug;
+      } else if (last_offset < kProfileDelta95) {
+        // The crossing, in the root of the offset, which is linear in the cutoff near a minimum.
+        const double root_last = std::sqrt(std::max(last_offset, 0.0));
+        const double f = (std::sqrt(kProfileDelta95) - root_last) / std::max(std::sqrt(offset) - root_last, 1e-300);
+        end = last_u + std::clamp(f, 0.0, 1.0) * (ug - last_u);
+      }
+      last_u = ug;
+      last_offset = offset;
+      if (!(offset < kCutoffReach)) break;
+      if (covariance) {
+        alternative.design = shapes;
+        alternative.target = curve - extra;
+        alternative.offset = extra;
+        alternative.whitening_at =
+            WhiteningAt(covariance, shapes, extra, pieces->Unfiltered(), linear, scale, sqrt_half_nu);
+      }
+      found.emplace_back(ug, std::move(alternative));
+      if (ug == u_lo[0] || ug == u_hi[0]) break;
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  const std::size_t keep = std::min(found.size(), kMaxAlternatives);
+  for (std::size_t k = 0; k < keep; ++k) {
+    const std::size_t at = keep == 1 ? 0 : k * (found.size() - 1) / (keep - 1);
+    out.push_back(std::move(found[at].second));
+  }
+  return out;
+}
 
 bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsigned held_zero,
              ParametricFitSummary* summary, LinearPart* part, const FitEnd* from) {
@@ -708,12 +804,13 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsign
       for (std::size_t c = 0; c < free.size(); ++c) jf.col(static_cast<Eigen::Index>(c)) = ju.col(free[c]);
       lp.free_directions = w.colPivHouseholderQr().solve(jf);  // ju = -W dE/du
     }
-    lp.whitening_at = [covariance, shapes, extra, unfiltered = Eigen::MatrixXd(pieces.Unfiltered()), linear,
-                       scale, sqrt_half_nu](const Eigen::VectorXd& x, Eigen::MatrixXd* wx) {
-      const Eigen::VectorXd held = x.cwiseMax(0.0);
-      return GlsWhitening(*covariance, linear, scale, held, shapes * held + extra, unfiltered * held,
-                          sqrt_half_nu, wx);
-    };
+    lp.whitening_at = WhiteningAt(covariance, shapes, extra, pieces.Unfiltered(), linear, scale, sqrt_half_nu);
+  }
+  std::vector<LinearProblem> alternatives;
+  std::array<double, 2> cutoff_range_u{};
+  if (part && options.profile_ranges && domain == ModelAvarResiduals::Domain::kLinear) {
+    alternatives = CutoffAlternatives(&pieces, active, u, u_lo, u_hi, w, a, covariance, linear, scale,
+                                      sqrt_half_nu, held_zero, lp, &cutoff_range_u);
   }
   for (std::size_t q = 0; q < linear.size(); ++q) {
     CoefficientEstimate& ce = base.coefficients[linear[q]];
@@ -739,6 +836,10 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsign
       const double su = std::sqrt(std::max(cov(idx, idx), 0.0));
       pe.value_si[q] = values[q];
       pe.sigma_si[q] = pe.parameters[q].log_scale ? values[q] * su : su;
+      if (!alternatives.empty() || cutoff_range_u[0] != cutoff_range_u[1]) {
+        pe.interval95_si.resize(values.size(), {0.0, 0.0});
+        pe.interval95_si[q] = {std::exp(cutoff_range_u[0]), std::exp(cutoff_range_u[1])};
+      }
       const std::size_t g = static_cast<std::size_t>(idx) - linear.size();
       if (u[g] <= u_lo[g] + 1e-6 || u[g] >= u_hi[g] - 1e-6) {
         pe.note += (pe.note.empty() ? "" : "; ") + pe.parameters[q].name + " at its bound";
@@ -750,7 +851,7 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsign
   SetFitCost(res.squaredNorm(), &base);
   base.iterations = iterations;
   base.converged = stage.converged;
-  if (part) *part = {std::move(lp), linear, scale, {theta, u, w, covariance}};
+  if (part) *part = {std::move(lp), std::move(alternatives), linear, scale, {theta, u, w, covariance}};
   base.ok = summary->ok = true;
   std::ostringstream os;
   os << (stage.converged ? "converged" : "Ceres did not converge: " + stage.message);

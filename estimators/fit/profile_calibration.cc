@@ -117,17 +117,17 @@ CalibrationRatio CalibrationRatioAt(const LinearProblem& p, unsigned free_mask, 
   return out;
 }
 
-ProfileRanges CalibratedProfileIntervals(const LinearProblem& p, unsigned free_mask, int j) {
+ProfileRanges CalibratedProfileIntervals(const LinearProblem& p, unsigned free_mask, int j, double offset) {
   const double sigma = ProfileStandardError(p, free_mask, j);
   if (!p.whitening_at || !(sigma > 0.0) || !std::isfinite(sigma) ||
       std::abs(EstimateSkewness(p, free_mask, j)) < kGaussianSkewness) {
-    return {BoundedProfileInterval(p, free_mask, j, kProfileLevel68),
-            BoundedProfileInterval(p, free_mask, j, kProfileLevel95)};
+    return {BoundedProfileInterval(p, free_mask, j, kProfileLevel68, offset),
+            BoundedProfileInterval(p, free_mask, j, kProfileLevel95, offset)};
   }
-  const ProfileRange gaussian68 = BoundedProfileInterval(p, free_mask, j, kProfileLevel68);
+  const ProfileRange gaussian68 = BoundedProfileInterval(p, free_mask, j, kProfileLevel68, offset);
   if (gaussian68.lower > 0.0) {
     // Off the boundary the ratio is 1 within the replicates' noise (header).
-    return {gaussian68, BoundedProfileInterval(p, free_mask, j, kProfileLevel95)};
+    return {gaussian68, BoundedProfileInterval(p, free_mask, j, kProfileLevel95, offset)};
   }
   const double t_hat = std::max(SolveSubset(p, free_mask)(j), 0.0);
   auto bounded = [sigma](double level, double t) {
@@ -161,7 +161,7 @@ ProfileRanges CalibratedProfileIntervals(const LinearProblem& p, unsigned free_m
     if (!upper && t_hat > 0.0 && (points.empty() || points.front().first > 0.0)) calibrate(0.0);
     double e = 0.0;
     for (int round = 0; round <= kMaxCalibrations; ++round) {
-      e = ProfileEnd(p, free_mask, j, [&](double t) { return ratio_at(level, t) * bounded(level, t); },
+      e = ProfileEnd(p, free_mask, j, [&](double t) { return ratio_at(level, t) * bounded(level, t) - offset; },
                      upper, kSearchTolerance);
       if (!std::isfinite(e) || (!upper && e <= 0.0) || round == kMaxCalibrations) break;
       const bool near = std::any_of(points.begin(), points.end(), [e](const auto& k) {

@@ -61,7 +61,9 @@ struct ProfileRanges {
 // The 68.3 % and 95 % ranges of x_j: BoundedProfileInterval when p.whitening_at is unset, the
 // estimate of x_j is nearly Gaussian (|EstimateSkewness| < kGaussianSkewness: N, Q and mostly B)
 // or the Gaussian 68.3 % range stays off 0; else t is accepted when Delta(t) <= the bounded
-// threshold times the interpolated ratio (header), each end to kEndTolerance.
-ProfileRanges CalibratedProfileIntervals(const LinearProblem& p, unsigned free_mask, int j);
+// threshold times the interpolated ratio (header), each end to kEndTolerance. offset: subtracted
+// from every critical value (an alternative problem whose minimum lies that far above the fit's,
+// linear_profile.h); a range whose estimate it rejects has NaN ends.
+ProfileRanges CalibratedProfileIntervals(const LinearProblem& p, unsigned free_mask, int j, double offset = 0.0);
 
 }  // namespace allanlab::estimators
