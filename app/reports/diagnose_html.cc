@@ -17,9 +17,6 @@ std::string Escaped(const std::string& text) {
   return out;
 }
 
-std::string Coefficient(bool fitted, double value, double sigma) {
-  return fitted ? PlainNumber(value) + " &plusmn; " + PlainNumber(sigma) : "not fitted";
-}
 
 // The plain words and the coefficients side by side.
 void Summary(std::ostream& os, const HtmlSection& s) {
@@ -31,8 +28,10 @@ void Summary(std::ostream& os, const HtmlSection& s) {
   os << "</tr>\n";
   for (const PlainCoefficient& c : s.plain.coefficients) {
     os << "<tr><td>" << Escaped(c.id) << "</td><td>" << Escaped(c.unit) << "</td><td>"
-       << Coefficient(c.baseline_fitted, c.baseline, c.baseline_sigma) << "</td>";
-    if (!s.plain.model_label.empty()) os << "<td>" << Coefficient(c.model_fitted, c.model, c.model_sigma) << "</td>";
+       << Escaped(CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma, c.baseline_upper)) << "</td>";
+    if (!s.plain.model_label.empty()) {
+      os << "<td>" << Escaped(CoefficientText(c.model_fitted, c.model, c.model_sigma, c.model_upper)) << "</td>";
+    }
     os << "</tr>\n";
   }
   os << "</table>\n";

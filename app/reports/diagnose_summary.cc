@@ -159,11 +159,6 @@ std::string ShrinkText(const PlainShrink& v) {
          (factor > 0.0 ? " (" + PlainNumber(factor) + "x)" : "");
 }
 
-std::string CoefficientText(bool fitted, double value, double sigma, double upper) {
-  if (fitted) return PlainNumber(value) + " +- " + PlainNumber(sigma);
-  return upper > 0.0 ? "< " + PlainNumber(upper) + " (95 % upper limit)" : "not fitted";
-}
-
 Json CoefficientJson(bool fitted, double value, double sigma, double upper) {
   if (fitted) return Json{{"value", value}, {"sigma", sigma}};
   return upper > 0.0 ? Json{{"upper_limit", upper}} : Json(nullptr);
@@ -361,6 +356,11 @@ Json PlainJson(const PlainSummary& p) {
   j["coefficients"] = coefficients;
   j["model"] = p.model_label;
   return j;
+}
+
+std::string CoefficientText(bool fitted, double value, double sigma, double upper) {
+  if (fitted) return PlainNumber(value) + " +- " + PlainNumber(sigma);
+  return upper > 0.0 ? "< " + PlainNumber(upper) + " (95 % upper limit)" : "not fitted";
 }
 
 }  // namespace allanlab::app

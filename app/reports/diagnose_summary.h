@@ -92,6 +92,9 @@ void WritePlainMarkdown(std::ostream& os, const PlainSummary& p);
 nlohmann::ordered_json PlainJson(const PlainSummary& p);
 // Significant digits every form prints (4; the consistency test parses at this precision).
 std::string PlainNumber(double v);
+// One coefficient as every form prints it: "2.435 +- 0.002833", "< 119.3 (95 % upper limit)"
+// (not fitted, with its limit) or "not fitted".
+std::string CoefficientText(bool fitted, double value, double sigma, double upper);
 // An effect's parameters in the report's units: "size 15 deg/h (0.004167 deg/s), time 2500 s".
 std::string QuantitiesText(const PlainEffect& e);
 

@@ -327,8 +327,32 @@ TEST_F(DiagnoseReportTest, SameJsonForOneAndTwoThreads) {
 TEST_F(DiagnoseReportTest, HtmlIsSelfContainedAndRendersInABrowser) {
   WriteStepRecord();
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
-  ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N --trials 5 --html " + Path("d.html")), 0) << Read("err.txt");
+  ASSERT_EQ(Run(Path("rec.csv") + " --rate 100 --model N,K --trials 5 --html " + Path("d.html") + " --json " +
+                Path("d.json")),
+            0)
+      << Read("err.txt");
   const std::string html = Read("d.html");
+  // The coefficients side by side as stdout and the Markdown print them: a term not fitted by its
+  // 95 % upper limit (K in the verdict's model: the step record has no random walk), never as
+  // "not fitted".
+  const Json summary = Json::parse(Read("d.json"))["summary"];
+  bool limited = false;
+  for (const Json& c : summary["coefficients"]) {
+    const std::string id = c["id"];
+    const auto row = html.find("<tr><td>" + id + "</td>");
+    ASSERT_NE(row, std::string::npos) << id;
+    const std::string cells = html.substr(row, html.find("</tr>", row) - row);
+    std::vector<std::string> td;
+    for (auto at = cells.find("<td>"); at != std::string::npos; at = cells.find("<td>", at + 1)) {
+      td.push_back(std::regex_replace(cells.substr(at + 4, cells.find("</td>", at) - at - 4), std::regex("&lt;"), "<"));
+    }
+    ASSERT_EQ(td.size(), 4u) << cells;  // id, unit, baseline, the verdict's model
+    ExpectCoefficientText(td[2], c["baseline"], id + " baseline, HTML");
+    ExpectCoefficientText(td[3], c["model"], id + " model, HTML");
+    limited = limited || c["baseline"].contains("upper_limit") || c["model"].contains("upper_limit");
+  }
+  EXPECT_TRUE(limited) << "no coefficient given by its upper limit: the record does not test that row: "
+                       << summary["coefficients"].dump();
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(html.find("src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // a PNG inline
   EXPECT_EQ(html.find("http://"), std::string::npos);
