@@ -299,6 +299,16 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
 
 namespace {
 
+// A table cell's text: its "|" (as in "|z|") escaped, which would otherwise end the cell.
+std::string MarkdownCell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 // How a gap region departs: the record above or below the model, or for the block-mean views
 // (x: block length) the step's time or the settling's time constant.
 std::string RegionMeaning(const GapRegion& r, const DiagnoseUnits& unit) {
@@ -319,7 +329,7 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
                bool plain = true) {
   const std::string h = markdown ? "## " : "";
   const PlainSummary summary = MakePlainSummary(s, unit);
-  if (markdown) os << "# allanlab diagnose\n\n";
+  if (markdown && plain) os << "# allanlab diagnose\n\n";
   if (plain && markdown) {
     WritePlainMarkdown(os, summary);
   } else if (plain) {
@@ -398,9 +408,10 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
       os << "| " << c.id() << " | " << views << " | " << SignificantDigits(score, 4) << " | "
          << SignificantDigits(c.after.View(View::kOavar).chi2, 4) << " | " << SignificantDigits(c.after.All().chi2, 4)
          << " | " << SignificantDigits(c.after.All().max_abs_z, 4) << " | " << held << " | "
-         << (c.closes_gap ? "yes" : "no") << " | " << (s.verdict_candidate >= 0 && &c == &s.candidates[s.verdict_candidate] && s.verdict != "unexplained"
+         << (c.closes_gap ? "yes" : "no") << " | "
+         << (s.verdict_candidate >= 0 && &c == &s.candidates[s.verdict_candidate] && s.verdict != "unexplained"
                  ? "(the verdict)"
-                 : c.why_not_verdict)
+                 : MarkdownCell(c.why_not_verdict))
          << " |\n";
     } else {
       os << "  " << c.id() << ": score " << SignificantDigits(score, 4) << " (" << views << "), max |z| after "
@@ -529,7 +540,7 @@ std::optional<Failure> DiagnoseSeveral(const DiagnoseCommandOptions& o, const Di
       panels.push_back(std::move(panel));
     }
     std::ostringstream detail;
-    WriteText(detail, s, false, unit, false);
+    WriteText(detail, s, true, unit, false);
     sections.push_back({"column " + c.name, MakePlainSummary(s, unit), detail.str()});
   }
   std::cout.flush();
@@ -653,8 +664,8 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     std::string bytes;
     if (!PlotBytes(panels, &png, html.path(), &bytes, &why)) return RuntimeFailure(why);
     std::ostringstream detail;
-    WriteText(detail, s, false, unit, false);
-    if (!validation.is_null()) WriteValidation(detail, validation, false);
+    WriteText(detail, s, true, unit, false);
+    if (!validation.is_null()) WriteValidation(detail, validation, true);
     WriteDiagnoseHtml(html.stream(), title, {{"", MakePlainSummary(s, unit), detail.str()}}, bytes, ProvenancePairs(p));
   }
   for (AtomicFile* file : {&json, &report, &png, &html}) {

@@ -1,22 +1,11 @@
 #include "app/reports/diagnose_html.h"
 
+#include "app/reports/markdown_html.h"
+
 namespace allanlab::app {
 namespace {
 
-std::string Escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
+std::string Escaped(const std::string& text) { return EscapedHtml(text); }
 
 // The plain words and the coefficients side by side.
 void Summary(std::ostream& os, const HtmlSection& s) {
@@ -39,7 +28,7 @@ void Summary(std::ostream& os, const HtmlSection& s) {
 
 void Detail(std::ostream& os, const HtmlSection& s) {
   os << "<details><summary>detail" << (s.heading.empty() ? "" : " (" + Escaped(s.heading) + ")")
-     << ": every view, region and candidate</summary>\n<pre>" << Escaped(s.detail) << "</pre>\n</details>\n";
+     << ": every view, region and candidate</summary>\n" << MarkdownToHtml(s.detail) << "</details>\n";
 }
 
 }  // namespace
@@ -77,7 +66,10 @@ void WriteDiagnoseHtml(std::ostream& os, const std::string& title, const std::ve
         "ul.plain li { margin: 0.3em 0; }\n"
         "table { border-collapse: collapse; margin: 0.8em 0; }\n"
         "td, th { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: left; }\n"
-        "pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.85em; }\n"
+        "details { margin: 0.8em 0; }\n"
+        "details table { font-size: 0.9em; }\n"
+        "p.indent { margin: 0.2em 0 0.2em 2em; }\n"
+        "code { background: #f6f6f6; padding: 0 0.2em; }\n"
         "img { max-width: 100%; border: 1px solid #ddd; }\n"
         "</style>\n</head>\n<body>\n<h1>" << Escaped(title) << "</h1>\n";
   for (const HtmlSection& s : sections) Summary(os, s);

@@ -14,7 +14,7 @@ namespace allanlab::app {
 struct HtmlSection {
   std::string heading;  // e.g. the column name; empty for a single record
   PlainSummary plain;
-  std::string detail;   // the detailed text report (as stdout prints it after the summary)
+  std::string detail;   // the detailed report in Markdown (as the --report file has it after the summary)
 };
 
 // `png`: the plot's bytes (empty: no plot). `provenance`: key, value lines.

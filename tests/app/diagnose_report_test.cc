@@ -182,7 +182,8 @@ TEST_F(DiagnoseReportTest, EveryOtherCandidateSaysWhyItIsNotTheVerdict) {
     const std::string why = c["not_the_verdict_because"];
     EXPECT_FALSE(why.empty());
     EXPECT_NE(out.find("not the verdict: " + why), std::string::npos) << why << "\n" << out;
-    EXPECT_NE(md.find("| " + why + " |"), std::string::npos) << why;
+    // In the Markdown table its "|" (as in "|z|") is escaped, so that the cell does not end there.
+    EXPECT_NE(md.find("| " + std::regex_replace(why, std::regex(R"(\|)"), R"(\|)") + " |"), std::string::npos) << why;
     if (c["closes_gap"].get<bool>()) {
       ++closing_others;
       bool listed = false;
