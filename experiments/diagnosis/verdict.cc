@@ -183,7 +183,7 @@ bool EarnsItsPlace(const Context& ctx, double threshold, const ModelGap& baselin
   const EffectInstance& added = next.effects.back();
   const double penalty = 2.0 * static_cast<double>(EffectParameterNames(added.effect).size());
   if (!next.after.has_heldout || !(next.after.heldout.chi2 <= (1.0 - margin) * heldout_before.chi2 - penalty)) {
-    *why = "held-out chi2 " + std::to_string(heldout_before.chi2) + " -> " + std::to_string(next.after.heldout.chi2);
+    *why = "held-out chi2 " + SignificantDigits(heldout_before.chi2, 4) + " -> " + SignificantDigits(next.after.heldout.chi2, 4);
     return false;
   }
   const auto& shows = SpecOf(added.effect).views;
@@ -197,7 +197,7 @@ bool EarnsItsPlace(const Context& ctx, double threshold, const ModelGap& baselin
       if (now.chi2 <= (1.0 - margin) * was.chi2) {
         explains = true;
       } else if (unexplained.empty()) {
-        unexplained = std::string(ViewId(r.view)) + " chi2 " + std::to_string(was.chi2) + " -> " + std::to_string(now.chi2);
+        unexplained = std::string(ViewId(r.view)) + " chi2 " + SignificantDigits(was.chi2, 4) + " -> " + SignificantDigits(now.chi2, 4);
       }
     }
     if (was.max_abs_z <= threshold && now.max_abs_z > threshold) {
