@@ -71,6 +71,13 @@ std::vector<double> Variances(Statistic s, std::span<const double> rate,
     if (!std::isfinite(last_phase)) return {};
     return Scaled(s, n, ms, sums);
   }
+  if (overlapping && workspace != nullptr && workspace->checkpoints_only() &&
+      FitsCheckpointPass(n, DifferenceOrder(s), ms)) {
+    const PhaseCheckpoints& x = workspace->SetCheckpoints(rate, reference);
+    if (!std::isfinite(x.Last())) return {};
+    SumOverlappingDifferencesFromCheckpoints(x, DifferenceOrder(s), ms, sums);
+    return Scaled(s, n, ms, sums);
+  }
   if (workspace == nullptr) workspace = &local;
   const std::span<double> phase = workspace->Phase(rate.size() + 1);
   if (overlapping) {
@@ -121,6 +128,7 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
                             AvarSummary* summary, AllanFamilyWorkspace* workspace) {
   *summary = AvarSummary{};
+  if (workspace != nullptr) workspace->ClearCheckpoints();
   summary->options = options;
   const auto n = static_cast<std::int64_t>(rate.size());
   summary->num_samples = n;
@@ -159,7 +167,8 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
   if (values.empty()) {
     // Only now is the record searched: finite data pay for no separate pass.
     summary->dropped.clear();
-    if (workspace != nullptr && workspace->Phase(rate.size() + 1).data() + 1 == rate.data()) {
+    if (workspace != nullptr && workspace->Checkpoints() == nullptr &&
+        workspace->Phase(rate.size() + 1).data() + 1 == rate.data()) {
       // Integrated in place: the samples are gone, the phase tells where it stopped being finite.
       const std::span<const double> phase = workspace->Phase(rate.size() + 1);
       std::int64_t k = 1;

@@ -6,6 +6,7 @@
 
 #include "estimators/avar_summary.h"
 #include "estimators/confidence.h"
+#include "estimators/phase_checkpoints.h"
 
 namespace allanlab::estimators {
 
@@ -21,6 +22,11 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
 // Same results as ComputeAvar, except that a non-finite running sum is reported by position only.
 bool ComputeAvarOnStorage(const AvarOptions& options, std::span<double> storage,
                           AvarSummary* summary);
+
+// ComputeAvar for rate input whose integration pass was already made: `checkpoints` complete,
+// from the rate samples about their ReferenceLevel (phase_integral.h), e.g. integrated by a reader
+// block by block as it checked them. Same results as ComputeAvar(options, checkpoints.rate()).
+bool ComputeAvarFromCheckpoints(const AvarOptions& options, PhaseCheckpoints checkpoints, AvarSummary* summary);
 
 // ComputeAvarOnStorage for a vector of samples alone: the spare slot is inserted in front (one
 // move of the record; a reader that can leave the slot itself should, see record_reader.h).
