@@ -260,7 +260,7 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
     rate = differenced;
   }
   AllanFamilyWorkspace workspace;
-  workspace.KeepCheckpointsOnly();
+  if (rate.size() >= kCheckpointMinSamples) workspace.KeepCheckpointsOnly();
   return Compute(options, rate, summary, &workspace);
 }
 

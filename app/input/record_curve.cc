@@ -215,15 +215,18 @@ std::optional<Failure> CurveOfValues(const Plan& plan, std::span<double> storage
 }
 
 // The curve of a mapped record (MapRecordValues): rate samples already in SI are used where they
-// lie, integrated (`checkpoints`, when complete) as the reader checked them; others are copied
-// behind a spare slot and converted as CurveOfValues converts them.
+// lie (on long records integrated as the reader checked them: `checkpoints`, complete); others
+// are copied behind a spare slot and converted as CurveOfValues converts them.
 std::optional<Failure> CurveOfMappedValues(const Plan& plan, std::span<const double> values,
                                            std::optional<estimators::PhaseCheckpoints> checkpoints, AvarReport* report) {
-  if (checkpoints && checkpoints->complete()) {
+  if (plan.input == InputKind::kRate && InputScale(plan.input, report->record.units).identity()) {
     report->input_units = report->record.units;
     estimators::AvarOptions options = plan.avar;
     options.sample_clock = report->record.sample_clock;
-    if (estimators::ComputeAvarFromCheckpoints(options, std::move(*checkpoints), &report->summary)) return std::nullopt;
+    const bool ok = checkpoints && checkpoints->complete()
+                        ? estimators::ComputeAvarFromCheckpoints(options, std::move(*checkpoints), &report->summary)
+                        : estimators::ComputeAvar(options, values, &report->summary);
+    if (ok) return std::nullopt;
     // A failure is reported as the copied record's pass reports it (where the running sum overflows).
   }
   std::vector<double> storage(kSpareSlot + values.size());
@@ -237,12 +240,16 @@ std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   {
     MappedFile map;
     std::span<const double> values;
-    // Rate samples in SI are integrated block by block while the reader's checks have them in
-    // cache, which spares a pass over the record.
+    // Long records of rate samples in SI are integrated block by block while the reader's checks
+    // have them in cache (estimators::kCheckpointMinSamples), which spares a pass over them.
     std::optional<estimators::PhaseCheckpoints> checkpoints;
     bool integrate = plan.input == InputKind::kRate;
     const BlockSink integrate_blocks = [&](std::span<const double> block) {
       if (!integrate) return;
+      if (values.size() < estimators::kCheckpointMinSamples) {
+        integrate = false;
+        return;
+      }
       if (!checkpoints) {
         integrate = InputScale(plan.input, report->record.units).identity();
         if (!integrate) return;
