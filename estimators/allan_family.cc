@@ -80,29 +80,39 @@ std::vector<double> Variances(Statistic s, std::span<const double> rate,
   }
   if (workspace == nullptr) workspace = &local;
   const std::span<double> phase = workspace->Phase(rate.size() + 1);
+  const AllanFamilyWorkspace::PhaseReadyHook& hook = workspace->phase_ready();
   if (overlapping) {
-    IntegrateAndSumOverlappingDifferences(rate, reference, DifferenceOrder(s), ms, phase, sums);
+    const PhaseReady ready = [&](const std::function<void()>& rest) { hook(ms, rest); };
+    IntegrateAndSumOverlappingDifferences(rate, reference, DifferenceOrder(s), ms, phase, sums,
+                                          hook ? &ready : nullptr);
     if (!std::isfinite(phase.back())) return {};
   } else {
     IntegrateAbout(rate, reference, phase);
     if (!std::isfinite(phase.back())) return {};
-    switch (s) {
-      case Statistic::kAllanNonOverlapping:
-      case Statistic::kHadamardNonOverlapping:
-        StridedDifferenceSums(phase, DifferenceOrder(s), ms, sums);
-        break;
-      case Statistic::kModifiedAllan:
-      case Statistic::kTime: {
-        const auto work = static_cast<std::size_t>(ModifiedAllanWorkSize(n, ms));
-        ModifiedAllanSums(phase, ms, workspace->Scratch(work), sums);
-        break;
+    const std::function<void()> rest = [&] {
+      switch (s) {
+        case Statistic::kAllanNonOverlapping:
+        case Statistic::kHadamardNonOverlapping:
+          StridedDifferenceSums(phase, DifferenceOrder(s), ms, sums);
+          break;
+        case Statistic::kModifiedAllan:
+        case Statistic::kTime: {
+          const auto work = static_cast<std::size_t>(ModifiedAllanWorkSize(n, ms));
+          ModifiedAllanSums(phase, ms, workspace->Scratch(work), sums);
+          break;
+        }
+        case Statistic::kTotal:
+          TotalVarianceSums(phase, ms, sums);
+          break;
+        case Statistic::kAllanOverlapping:
+        case Statistic::kHadamardOverlapping:
+          break;  // above
       }
-      case Statistic::kTotal:
-        TotalVarianceSums(phase, ms, sums);
-        break;
-      case Statistic::kAllanOverlapping:
-      case Statistic::kHadamardOverlapping:
-        break;  // above
+    };
+    if (hook) {
+      hook(ms, rest);
+    } else {
+      rest();
     }
   }
   return Scaled(s, n, ms, sums);

@@ -5,6 +5,8 @@
 // Definitions: NIST SP 1065 (Riley 2008) eqs. for AVAR, OAVAR, MVAR, HVAR, OHVAR, TOTVAR, TVAR,
 // with rate samples as fractional frequency and angle as phase.
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <utility>
@@ -70,6 +72,14 @@ class AllanFamilyWorkspace {
     return checkpoints_;
   }
   void ClearCheckpoints() { has_checkpoints_ = false; }
+  // Called by the next call once Phase(N + 1) holds the whole integrated record, with the lags
+  // being computed and the rest of the pass (which only reads the phase): the hook must run that
+  // rest once before returning, and may meanwhile read the phase (e.g. identify the noise at
+  // every tau in another thread). Not called when the pass keeps checkpoints or fails early.
+  using PhaseReadyHook =
+      std::function<void(std::span<const std::int64_t> lags, const std::function<void()>& rest)>;
+  void SetPhaseReady(PhaseReadyHook hook) { phase_ready_ = std::move(hook); }
+  const PhaseReadyHook& phase_ready() const { return phase_ready_; }
 
  private:
   class Buffer {
@@ -86,6 +96,7 @@ class AllanFamilyWorkspace {
   bool has_checkpoints_ = false;
   bool adopted_checkpoints_ = false;
   PhaseCheckpoints checkpoints_;
+  PhaseReadyHook phase_ready_;
 };
 
 // As above, with the work space supplied by the caller (null: as above, no phase kept).

@@ -102,30 +102,35 @@ struct TauMeasures {
 // Below this many samples the measures take well under a millisecond: no helper.
 constexpr std::size_t kSharedMeasuresSamples = std::size_t{1} << 20;
 
-TauMeasures MeasureEveryTau(const AvarOptions& options, std::span<const double> rate,
-                            const RecordPhase& phase, const std::vector<AvarPoint>& points) {
+// `rest` (may be null): the rest of the Allan pass, run as the first piece beside the measures.
+TauMeasures MeasureEveryTau(const AvarOptions& options, std::span<const double> rate, const RecordPhase& phase,
+                            std::span<const std::int64_t> ms, const std::function<void()>* rest = nullptr) {
   TauMeasures t;
   const auto n_rate = static_cast<std::int64_t>(rate.size());
-  t.record_edfs.assign(points.size(), 0.0);
-  if (!options.alpha_fixed) t.ids.resize(points.size());
+  t.record_edfs.assign(ms.size(), 0.0);
+  if (!options.alpha_fixed) t.ids.resize(ms.size());
   std::vector<std::size_t> edf_points;  // longest m first
-  for (std::size_t k = points.size(); k-- > 0;) {
+  for (std::size_t k = ms.size(); k-- > 0;) {
     if (options.confidence_method == ConfidenceMethod::kAuto &&
-        RecordEdfAvailable(options.statistic, points[k].m, n_rate)) {
+        RecordEdfAvailable(options.statistic, ms[k], n_rate)) {
       edf_points.push_back(k);
     }
   }
+  const int first = rest != nullptr ? 1 : 0;
   const auto edf_count = static_cast<int>(edf_points.size());
   const std::function<void(int)> piece = [&](int p) {
-    if (p < edf_count) {
+    p -= first;
+    if (p < 0) {
+      (*rest)();
+    } else if (p < edf_count) {
       const std::size_t k = edf_points[static_cast<std::size_t>(p)];
-      t.record_edfs[k] = RecordEdfOf(options.statistic, phase, n_rate, points[k].m);
+      t.record_edfs[k] = RecordEdfOf(options.statistic, phase, n_rate, ms[k]);
     } else {
       const auto k = static_cast<std::size_t>(p - edf_count);
-      t.ids[k] = IdentifyAt(options, rate, phase, points[k].m);
+      t.ids[k] = IdentifyAt(options, rate, phase, ms[k]);
     }
   };
-  const int count = edf_count + static_cast<int>(t.ids.size());
+  const int count = first + edf_count + static_cast<int>(t.ids.size());
   if (rate.size() >= kSharedMeasuresSamples && PieceSharing::Useful()) {
     PieceSharing sharing;
     sharing.Run(count, piece);
@@ -206,12 +211,31 @@ double PointEdf(const AvarOptions& options, const RecordPhase& phase, AvarPoint*
 // identification takes its averages.
 bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSummary* summary,
              AllanFamilyWorkspace* workspace) {
-  if (!ComputeStatisticValues(options, rate, summary, workspace)) return false;
+  // Once the pass has the whole integrated record, the taus are measured on it while the pass
+  // finishes its long lags: the measures are mostly arithmetic, the long lags mostly memory
+  // traffic, so a helper thread overlaps them.
+  TauMeasures measures;
+  bool measured = false;
+  workspace->SetPhaseReady([&](std::span<const std::int64_t> lags, const std::function<void()>& rest) {
+    const std::span<const double> whole = workspace->Phase(rate.size() + 1);
+    if (!std::isfinite(whole.back())) {  // the pass fails: nothing to measure
+      rest();
+      return;
+    }
+    measures = MeasureEveryTau(options, rate, RecordPhase{whole, nullptr}, lags, &rest);
+    measured = true;
+  });
+  const bool ok = ComputeStatisticValues(options, rate, summary, workspace);
+  workspace->SetPhaseReady(nullptr);
+  if (!ok) return false;
   RecordPhase phase;
   phase.checkpoints = workspace->Checkpoints();
   if (phase.checkpoints == nullptr) phase.whole = workspace->Phase(rate.size() + 1);
-
-  const TauMeasures measures = MeasureEveryTau(options, rate, phase, summary->points);
+  if (!measured) {
+    std::vector<std::int64_t> ms;
+    for (const AvarPoint& point : summary->points) ms.push_back(point.m);
+    measures = MeasureEveryTau(options, rate, phase, ms);
+  }
   const int unidentified = AssignNoiseExponents(options, measures, &summary->points);
   if (unidentified > 0) {
     AppendNote("noise type not identifiable at " + std::to_string(unidentified) +

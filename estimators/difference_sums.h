@@ -4,6 +4,7 @@
 // Hadamard one). Preconditions: phase.size() = n + 1, sums.size() = lags.size(), every lag
 // 1 <= m with order * m <= n.
 #include <cstdint>
+#include <functional>
 #include <span>
 
 namespace allanlab::estimators {
@@ -18,9 +19,14 @@ void OverlappingDifferenceSums(std::span<const double> phase, int order,
 // The same sums from rate samples: fills phase (phase.size() = rate.size() + 1) as
 // IntegrateAbout(rate, reference, phase) does, bit for bit, and sums the short lags right behind
 // the integration while that part of the phase is still in cache, which saves a pass over it.
+// When `phase_ready` is given, the rest of the pass (the long lags, which only read the phase) is
+// handed to it as soon as the phase is complete: it must run that rest once, in any thread, before
+// returning, and may do other work that reads the phase meanwhile.
+using PhaseReady = std::function<void(const std::function<void()>& rest)>;
 void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double reference,
                                            int order, std::span<const std::int64_t> lags,
-                                           std::span<double> phase, std::span<double> sums);
+                                           std::span<double> phase, std::span<double> sums,
+                                           const PhaseReady* phase_ready = nullptr);
 
 // Whether the lags suit the passes below: false when a lag of 32768 or more is not a multiple
 // of its tier's row (dense or explicit grids; the octave grid always qualifies).

@@ -360,7 +360,8 @@ void OverlappingDifferenceSums(std::span<const double> phase, int order,
 
 void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double reference,
                                            int order, std::span<const std::int64_t> lags,
-                                           std::span<double> phase, std::span<double> sums) {
+                                           std::span<double> phase, std::span<double> sums,
+                                           const PhaseReady* phase_ready) {
   const auto n = static_cast<std::int64_t>(rate.size());
   const SplitLags split = Split(n, order, lags);
   Accumulators acc(lags.size());
@@ -368,7 +369,12 @@ void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double 
   BlockPass(phase.data(), order, kBlock, split.short_lags, &acc,
             [&](std::int64_t last) { lazy.EnsureUpTo(last); });
   lazy.EnsureUpTo(n);
-  LongPasses(phase.data(), n, order, split, &acc);
+  const std::function<void()> rest = [&] { LongPasses(phase.data(), n, order, split, &acc); };
+  if (phase_ready != nullptr) {
+    (*phase_ready)(rest);
+  } else {
+    rest();
+  }
   for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = acc.Total(slot);
 }
 
