@@ -17,7 +17,9 @@ class MappedFile {
 
   // Maps `path` when it is a non-empty regular file; false otherwise (standard input, a pipe, a
   // missing or unreadable file, or a failed mapping), with nothing mapped and no message: such a
-  // file is read as a stream, which reports what is wrong with it.
+  // file is read as a stream, which reports what is wrong with it. A file that grows meanwhile
+  // is read as it was; one that another process truncates meanwhile faults (SIGBUS) when the
+  // lost pages are read, where a stream would have read the shorter file.
   bool Map(const std::string& path);
   std::span<const char> bytes() const { return {static_cast<const char*>(data_), size_}; }
 

@@ -1,5 +1,6 @@
-// The overlapping sums from checkpoints, in pieces shared by two threads on long records: the bits
-// of the fused pass over a stored phase, in one thread and in two.
+// The overlapping sums on long records from checkpoints, in pieces shared by two threads, and fused
+// with the integration into a stored phase: each has the bits of the stored phase's sums, in one
+// thread and in two.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -32,14 +33,21 @@ TEST(CheckpointDifferenceSums, SameBitsAsTheStoredPhaseInOneAndTwoThreads) {
     std::vector<std::int64_t> ms;
     for (std::int64_t m = 1; order * m <= static_cast<std::int64_t>(n); m *= 2) ms.push_back(m);
     ASSERT_TRUE(FitsCheckpointPass(static_cast<std::int64_t>(n), order, ms));
+    // The reference: the phase stored whole first, then its sums.
     std::vector<double> phase(n + 1), stored(ms.size());
-    IntegrateAndSumOverlappingDifferences(y, reference, order, ms, phase, stored);
+    IntegrateAbout(y, reference, phase);
+    OverlappingDifferenceSums(phase, order, ms, stored);
     const int before = omp_get_max_threads();
     for (int threads : {1, 2}) {
       omp_set_num_threads(threads);
       std::vector<double> sums(ms.size());
       ASSERT_TRUE(SumOverlappingDifferencesFromCheckpoints(x, order, ms, sums));
       EXPECT_EQ(sums, stored) << "order " << order << ", threads " << threads;
+      // The fused pass.
+      std::vector<double> fused_phase(n + 1), fused(ms.size());
+      IntegrateAndSumOverlappingDifferences(y, reference, order, ms, fused_phase, fused);
+      EXPECT_EQ(fused, stored) << "order " << order << ", threads " << threads;
+      EXPECT_EQ(fused_phase, phase) << "order " << order << ", threads " << threads;
     }
     omp_set_num_threads(before);
   }
