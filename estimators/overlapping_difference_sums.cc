@@ -328,12 +328,6 @@ void RebuiltStripPiece(const PhaseCheckpoints& x, int order, const Tier& tier, s
       const std::int64_t start = column + built * r;
       if (start > n) break;
       const std::int64_t count = std::min(w, n - start);
-      // The samples a few rows on are a jump of a whole row away, which the hardware prefetcher
-      // cannot guess: ask for them.
-      const std::int64_t ahead = start + kPrefetchRows * r;
-      if (ahead + w <= n) {
-        for (std::int64_t k = 0; k < w; k += 8) __builtin_prefetch(x.rate().data() + ahead + k, 0, 3);
-      }
       double* out = rows.data() + (built - first_row) * w;
       out[0] = x.At(start);
       ContinueIntegral(x.rate().subspan(static_cast<std::size_t>(start), static_cast<std::size_t>(count)),
