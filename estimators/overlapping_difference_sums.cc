@@ -234,22 +234,22 @@ void ShiftLags(const LagSet& from, std::int64_t base, std::int64_t lo, std::int6
   }
 }
 
-// One piece's lane sums and the flushes it made, in order, for the totals.
+// The flushes one piece made, in order, for the totals.
+using Flushes = std::vector<std::pair<std::size_t, double>>;
+
+// A piece's lane sums while it runs (a few KiB, not kept), and its flushes.
 class PieceAccumulators {
  public:
-  explicit PieceAccumulators(std::size_t count) : lanes_(count, Lanes{}) {}
+  PieceAccumulators(std::size_t count, Flushes* flushed) : lanes_(count, Lanes{}), flushed_(*flushed) {}
   Lanes* lanes(std::size_t slot) { return &lanes_[slot]; }
   void Flush(std::size_t slot) {
     flushed_.emplace_back(slot, SumLanes(lanes_[slot]));
     lanes_[slot] = Lanes{};
   }
-  void AddTo(std::vector<CompensatedSum>* totals) const {
-    for (const auto& [slot, value] : flushed_) (*totals)[slot].Add(value);
-  }
 
  private:
   std::vector<Lanes> lanes_;
-  std::vector<std::pair<std::size_t, double>> flushed_;
+  Flushes& flushed_;
 };
 
 // x[base .. done] of the record in a window that slides forward, integrated from a checkpoint.
@@ -391,14 +391,14 @@ bool SumOverlappingDifferencesFromCheckpoints(const PhaseCheckpoints& x, int ord
     const std::int64_t blocks = (split.short_lags.end[0] + kBlock - 1) / kBlock;
     for (std::int64_t b = 0; b < blocks; b += kPieceBlocks) pieces.push_back({nullptr, b});
   }
-  std::vector<PieceAccumulators> acc(pieces.size(), PieceAccumulators(lags.size()));
+  std::vector<Flushes> flushes(pieces.size());
   const std::function<void(int)> run = [&](int p) {
     const Piece& piece = pieces[static_cast<std::size_t>(p)];
-    PieceAccumulators* a = &acc[static_cast<std::size_t>(p)];
+    PieceAccumulators a(lags.size(), &flushes[static_cast<std::size_t>(p)]);
     if (piece.tier != nullptr) {
-      RebuiltStripPiece(x, order, *piece.tier, piece.first, a);
+      RebuiltStripPiece(x, order, *piece.tier, piece.first, &a);
     } else {
-      WindowedBlockPiece(x, order, split.short_lags, piece.first, piece.first + kPieceBlocks, a);
+      WindowedBlockPiece(x, order, split.short_lags, piece.first, piece.first + kPieceBlocks, &a);
     }
   };
   const int count = static_cast<int>(pieces.size());
@@ -409,7 +409,9 @@ bool SumOverlappingDifferencesFromCheckpoints(const PhaseCheckpoints& x, int ord
     for (int p = 0; p < count; ++p) run(p);
   }
   std::vector<CompensatedSum> totals(lags.size());
-  for (const PieceAccumulators& a : acc) a.AddTo(&totals);
+  for (const Flushes& piece : flushes) {
+    for (const auto& [slot, value] : piece) totals[slot].Add(value);
+  }
   for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = totals[slot].Value();
   return true;
 }
