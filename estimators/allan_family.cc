@@ -71,31 +71,48 @@ std::vector<double> Variances(Statistic s, std::span<const double> rate,
     if (!std::isfinite(last_phase)) return {};
     return Scaled(s, n, ms, sums);
   }
+  if (overlapping && workspace != nullptr && workspace->checkpoints_only() &&
+      FitsCheckpointPass(n, DifferenceOrder(s), ms)) {
+    const PhaseCheckpoints& x = workspace->SetCheckpoints(rate, reference);
+    if (!std::isfinite(x.Last())) return {};
+    SumOverlappingDifferencesFromCheckpoints(x, DifferenceOrder(s), ms, sums);
+    return Scaled(s, n, ms, sums);
+  }
   if (workspace == nullptr) workspace = &local;
   const std::span<double> phase = workspace->Phase(rate.size() + 1);
+  const AllanFamilyWorkspace::PhaseReadyHook& hook = workspace->phase_ready();
   if (overlapping) {
-    IntegrateAndSumOverlappingDifferences(rate, reference, DifferenceOrder(s), ms, phase, sums);
+    const PhaseReady ready = [&](const std::function<void()>& rest) { hook(ms, rest); };
+    IntegrateAndSumOverlappingDifferences(rate, reference, DifferenceOrder(s), ms, phase, sums,
+                                          hook ? &ready : nullptr);
     if (!std::isfinite(phase.back())) return {};
   } else {
     IntegrateAbout(rate, reference, phase);
     if (!std::isfinite(phase.back())) return {};
-    switch (s) {
-      case Statistic::kAllanNonOverlapping:
-      case Statistic::kHadamardNonOverlapping:
-        StridedDifferenceSums(phase, DifferenceOrder(s), ms, sums);
-        break;
-      case Statistic::kModifiedAllan:
-      case Statistic::kTime: {
-        const auto work = static_cast<std::size_t>(ModifiedAllanWorkSize(n, ms));
-        ModifiedAllanSums(phase, ms, workspace->Scratch(work), sums);
-        break;
+    const std::function<void()> rest = [&] {
+      switch (s) {
+        case Statistic::kAllanNonOverlapping:
+        case Statistic::kHadamardNonOverlapping:
+          StridedDifferenceSums(phase, DifferenceOrder(s), ms, sums);
+          break;
+        case Statistic::kModifiedAllan:
+        case Statistic::kTime: {
+          const auto work = static_cast<std::size_t>(ModifiedAllanWorkSize(n, ms));
+          ModifiedAllanSums(phase, ms, workspace->Scratch(work), sums);
+          break;
+        }
+        case Statistic::kTotal:
+          TotalVarianceSums(phase, ms, sums);
+          break;
+        case Statistic::kAllanOverlapping:
+        case Statistic::kHadamardOverlapping:
+          break;  // above
       }
-      case Statistic::kTotal:
-        TotalVarianceSums(phase, ms, sums);
-        break;
-      case Statistic::kAllanOverlapping:
-      case Statistic::kHadamardOverlapping:
-        break;  // above
+    };
+    if (hook) {
+      hook(ms, rest);
+    } else {
+      rest();
     }
   }
   return Scaled(s, n, ms, sums);
@@ -121,6 +138,7 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
 bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> rate,
                             AvarSummary* summary, AllanFamilyWorkspace* workspace) {
   *summary = AvarSummary{};
+  if (workspace != nullptr) workspace->ClearCheckpoints();
   summary->options = options;
   const auto n = static_cast<std::int64_t>(rate.size());
   summary->num_samples = n;
@@ -159,7 +177,8 @@ bool ComputeStatisticValues(const AvarOptions& options, std::span<const double> 
   if (values.empty()) {
     // Only now is the record searched: finite data pay for no separate pass.
     summary->dropped.clear();
-    if (workspace != nullptr && workspace->Phase(rate.size() + 1).data() + 1 == rate.data()) {
+    if (workspace != nullptr && workspace->Checkpoints() == nullptr &&
+        workspace->Phase(rate.size() + 1).data() + 1 == rate.data()) {
       // Integrated in place: the samples are gone, the phase tells where it stopped being finite.
       const std::span<const double> phase = workspace->Phase(rate.size() + 1);
       std::int64_t k = 1;

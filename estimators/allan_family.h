@@ -5,10 +5,14 @@
 // Definitions: NIST SP 1065 (Riley 2008) eqs. for AVAR, OAVAR, MVAR, HVAR, OHVAR, TOTVAR, TVAR,
 // with rate samples as fractional frequency and angle as phase.
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
+#include <utility>
 
 #include "estimators/avar_summary.h"
+#include "estimators/phase_checkpoints.h"
 
 namespace allanlab::estimators {
 
@@ -43,6 +47,39 @@ class AllanFamilyWorkspace {
   // before it is written) and the rate is consumed.
   void AdoptPhase(std::span<double> storage) { adopted_ = storage; }
   std::span<double> Scratch(std::size_t size) { return scratch_.Get(size); }
+  // From now on the overlapping statistics, on grids the checkpoint pass takes (difference_sums.h:
+  // the octave grid), keep checkpoints of the integrated record (phase_checkpoints.h) instead of
+  // the record itself: no N-sized phase is touched, and the pass is shared with a helper thread
+  // on long records. After such a call Checkpoints() is non-null (and refers to the rate given),
+  // and Phase() is not filled; after any other call it is null.
+  void KeepCheckpointsOnly() { checkpoints_only_ = true; }
+  bool checkpoints_only() const { return checkpoints_only_; }
+  const PhaseCheckpoints* Checkpoints() const { return has_checkpoints_ ? &checkpoints_ : nullptr; }
+  // Checkpoints already integrated (complete) from the rate the next call is given, about that
+  // rate's ReferenceLevel: that call uses them instead of integrating again.
+  void AdoptCheckpoints(PhaseCheckpoints checkpoints) {
+    checkpoints_only_ = true;
+    adopted_checkpoints_ = true;
+    checkpoints_ = std::move(checkpoints);
+  }
+  // The checkpoints of `rate` about `reference`: the adopted ones when they are those, else built.
+  const PhaseCheckpoints& SetCheckpoints(std::span<const double> rate, double reference) {
+    const bool same = adopted_checkpoints_ && checkpoints_.complete() && checkpoints_.rate().data() == rate.data() &&
+                      checkpoints_.rate().size() == rate.size() && checkpoints_.reference() == reference;
+    if (!same) checkpoints_ = PhaseCheckpoints(rate, reference);
+    adopted_checkpoints_ = false;
+    has_checkpoints_ = true;
+    return checkpoints_;
+  }
+  void ClearCheckpoints() { has_checkpoints_ = false; }
+  // Called by the next call once Phase(N + 1) holds the whole integrated record, with the lags
+  // being computed and the rest of the pass (which only reads the phase): the hook must run that
+  // rest once before returning, and may meanwhile read the phase (e.g. identify the noise at
+  // every tau in another thread). Not called when the pass keeps checkpoints or fails early.
+  using PhaseReadyHook =
+      std::function<void(std::span<const std::int64_t> lags, const std::function<void()>& rest)>;
+  void SetPhaseReady(PhaseReadyHook hook) { phase_ready_ = std::move(hook); }
+  const PhaseReadyHook& phase_ready() const { return phase_ready_; }
 
  private:
   class Buffer {
@@ -55,6 +92,11 @@ class AllanFamilyWorkspace {
   };
   Buffer phase_, scratch_;
   std::span<double> adopted_;
+  bool checkpoints_only_ = false;
+  bool has_checkpoints_ = false;
+  bool adopted_checkpoints_ = false;
+  PhaseCheckpoints checkpoints_;
+  PhaseReadyHook phase_ready_;
 };
 
 // As above, with the work space supplied by the caller (null: as above, no phase kept).

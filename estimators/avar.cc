@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/piece_sharing.h"
@@ -12,6 +13,7 @@
 #include "estimators/confidence.h"
 #include "estimators/estimate_distribution.h"
 #include "estimators/noise_identification.h"
+#include "estimators/phase_checkpoints.h"
 #include "estimators/record_edf.h"
 
 namespace allanlab::estimators {
@@ -22,17 +24,45 @@ void AppendNote(const std::string& note, std::string* message) {
   *message += note;
 }
 
+// The integrated record as identification and the record EDF read it: the whole record, or its
+// checkpoints (phase_checkpoints.h), from which only the values they read are rebuilt.
+struct RecordPhase {
+  std::span<const double> whole;
+  const PhaseCheckpoints* checkpoints = nullptr;
+};
+
 // Identification at one tau, on the middle options.identification_max_averages m-averages
 // when the record has more (avar_summary.h).
-NoiseId IdentifyAt(const AvarOptions& options, std::span<const double> rate,
-                   std::span<const double> phase, std::int64_t m) {
+NoiseId IdentifyAt(const AvarOptions& options, std::span<const double> rate, const RecordPhase& phase,
+                   std::int64_t m) {
   const std::int64_t cap = options.identification_max_averages;
   const std::int64_t count = m > 0 ? static_cast<std::int64_t>(rate.size()) / m : 0;
-  if (cap <= 0 || count <= cap) return IdentifyNoise(rate, phase, m);
-  const auto first = static_cast<std::size_t>((count - cap) / 2 * m);
-  const auto length = static_cast<std::size_t>(cap * m);
-  return IdentifyNoise(rate.subspan(first, length),
-                       phase.size() == rate.size() + 1 ? phase.subspan(first, length + 1) : phase, m);
+  const bool capped = !(cap <= 0 || count <= cap);
+  const std::int64_t first = capped ? (count - cap) / 2 * m : 0;
+  const std::int64_t length = capped ? cap * m : static_cast<std::int64_t>(rate.size());
+  if (phase.checkpoints != nullptr) {
+    if (m < 1 || length < m) return {};
+    const PhaseCheckpoints& x = *phase.checkpoints;
+    std::vector<double> sampled(static_cast<std::size_t>(length / m + 1));
+    x.Decimate(first, m, sampled);
+    return IdentifyNoiseFromSampledPhase(
+        sampled, m, [&] { return ModifiedToAllanRatioOfCheckpoints(x, first, length, m); });
+  }
+  if (!capped) return IdentifyNoise(rate, phase.whole, m);
+  const auto from = static_cast<std::size_t>(first);
+  const auto size = static_cast<std::size_t>(length);
+  return IdentifyNoise(rate.subspan(from, size),
+                       phase.whole.size() == rate.size() + 1 ? phase.whole.subspan(from, size + 1) : phase.whole, m);
+}
+
+// RecordEdf of the record, from the stretch it reads alone when only checkpoints are kept.
+double RecordEdfOf(Statistic s, const RecordPhase& phase, std::int64_t n_rate, std::int64_t m) {
+  if (phase.checkpoints == nullptr) return RecordEdf(s, phase.whole, m);
+  const RecordEdfStretch reads = RecordEdfReads(s, n_rate, m);
+  if (reads.hi < reads.lo) return 0.0;
+  std::vector<double> stretch(static_cast<std::size_t>(reads.hi - reads.lo + 1));
+  phase.checkpoints->Rebuild(reads.lo, stretch);
+  return RecordEdfFromStretch(s, n_rate, stretch, m);
 }
 
 // The exponent a point uses, and whether it was read at that point's own tau.
@@ -72,30 +102,35 @@ struct TauMeasures {
 // Below this many samples the measures take well under a millisecond: no helper.
 constexpr std::size_t kSharedMeasuresSamples = std::size_t{1} << 20;
 
-TauMeasures MeasureEveryTau(const AvarOptions& options, std::span<const double> rate,
-                            std::span<const double> phase, const std::vector<AvarPoint>& points) {
+// `rest` (may be null): the rest of the Allan pass, run as the first piece beside the measures.
+TauMeasures MeasureEveryTau(const AvarOptions& options, std::span<const double> rate, const RecordPhase& phase,
+                            std::span<const std::int64_t> ms, const std::function<void()>* rest = nullptr) {
   TauMeasures t;
   const auto n_rate = static_cast<std::int64_t>(rate.size());
-  t.record_edfs.assign(points.size(), 0.0);
-  if (!options.alpha_fixed) t.ids.resize(points.size());
+  t.record_edfs.assign(ms.size(), 0.0);
+  if (!options.alpha_fixed) t.ids.resize(ms.size());
   std::vector<std::size_t> edf_points;  // longest m first
-  for (std::size_t k = points.size(); k-- > 0;) {
+  for (std::size_t k = ms.size(); k-- > 0;) {
     if (options.confidence_method == ConfidenceMethod::kAuto &&
-        RecordEdfAvailable(options.statistic, points[k].m, n_rate)) {
+        RecordEdfAvailable(options.statistic, ms[k], n_rate)) {
       edf_points.push_back(k);
     }
   }
+  const int first = rest != nullptr ? 1 : 0;
   const auto edf_count = static_cast<int>(edf_points.size());
   const std::function<void(int)> piece = [&](int p) {
-    if (p < edf_count) {
+    p -= first;
+    if (p < 0) {
+      (*rest)();
+    } else if (p < edf_count) {
       const std::size_t k = edf_points[static_cast<std::size_t>(p)];
-      t.record_edfs[k] = RecordEdf(options.statistic, phase, points[k].m);
+      t.record_edfs[k] = RecordEdfOf(options.statistic, phase, n_rate, ms[k]);
     } else {
       const auto k = static_cast<std::size_t>(p - edf_count);
-      t.ids[k] = IdentifyAt(options, rate, phase, points[k].m);
+      t.ids[k] = IdentifyAt(options, rate, phase, ms[k]);
     }
   };
-  const int count = edf_count + static_cast<int>(t.ids.size());
+  const int count = first + edf_count + static_cast<int>(t.ids.size());
   if (rate.size() >= kSharedMeasuresSamples && PieceSharing::Useful()) {
     PieceSharing sharing;
     sharing.Run(count, piece);
@@ -134,7 +169,7 @@ int AssignNoiseExponents(const AvarOptions& options, const TauMeasures& measures
 }
 
 // record_edf: RecordEdf(options.statistic, phase, m) where --ci auto uses it (TauMeasures).
-double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarPoint* point,
+double PointEdf(const AvarOptions& options, const RecordPhase& phase, AvarPoint* point,
                 std::int64_t n_rate, double record_edf) {
   switch (options.confidence_method) {
     case ConfidenceMethod::kNone:
@@ -156,7 +191,7 @@ double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarP
         // Bounded by OAVAR's EDF at the same m, measured on the record where it can be.
         double oavar = 0.0;
         if (RecordEdfAvailable(Statistic::kAllanOverlapping, point->m, n_rate)) {
-          oavar = RecordEdf(Statistic::kAllanOverlapping, phase, point->m);
+          oavar = RecordEdfOf(Statistic::kAllanOverlapping, phase, n_rate, point->m);
         }
         if (!(oavar > 0.0)) {
           oavar = StatisticEdf(Statistic::kAllanOverlapping, point->alpha, point->m, n_rate,
@@ -176,10 +211,31 @@ double PointEdf(const AvarOptions& options, std::span<const double> phase, AvarP
 // identification takes its averages.
 bool Compute(const AvarOptions& options, std::span<const double> rate, AvarSummary* summary,
              AllanFamilyWorkspace* workspace) {
-  if (!ComputeStatisticValues(options, rate, summary, workspace)) return false;
-  const std::span<const double> phase = workspace->Phase(rate.size() + 1);
-
-  const TauMeasures measures = MeasureEveryTau(options, rate, phase, summary->points);
+  // Once the pass has the whole integrated record, the taus are measured on it while the pass
+  // finishes its long lags: the measures are mostly arithmetic, the long lags mostly memory
+  // traffic, so a helper thread overlaps them.
+  TauMeasures measures;
+  bool measured = false;
+  workspace->SetPhaseReady([&](std::span<const std::int64_t> lags, const std::function<void()>& rest) {
+    const std::span<const double> whole = workspace->Phase(rate.size() + 1);
+    if (!std::isfinite(whole.back())) {  // the pass fails: nothing to measure
+      rest();
+      return;
+    }
+    measures = MeasureEveryTau(options, rate, RecordPhase{whole, nullptr}, lags, &rest);
+    measured = true;
+  });
+  const bool ok = ComputeStatisticValues(options, rate, summary, workspace);
+  workspace->SetPhaseReady(nullptr);
+  if (!ok) return false;
+  RecordPhase phase;
+  phase.checkpoints = workspace->Checkpoints();
+  if (phase.checkpoints == nullptr) phase.whole = workspace->Phase(rate.size() + 1);
+  if (!measured) {
+    std::vector<std::int64_t> ms;
+    for (const AvarPoint& point : summary->points) ms.push_back(point.m);
+    measures = MeasureEveryTau(options, rate, phase, ms);
+  }
   const int unidentified = AssignNoiseExponents(options, measures, &summary->points);
   if (unidentified > 0) {
     AppendNote("noise type not identifiable at " + std::to_string(unidentified) +
@@ -228,6 +284,15 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
     rate = differenced;
   }
   AllanFamilyWorkspace workspace;
+  if (rate.size() >= kCheckpointMinSamples) workspace.KeepCheckpointsOnly();
+  return Compute(options, rate, summary, &workspace);
+}
+
+bool ComputeAvarFromCheckpoints(const AvarOptions& options, PhaseCheckpoints checkpoints, AvarSummary* summary) {
+  if (options.input != InputKind::kRate) return ComputeAvar(options, checkpoints.rate(), summary);
+  const std::span<const double> rate = checkpoints.rate();
+  AllanFamilyWorkspace workspace;
+  workspace.AdoptCheckpoints(std::move(checkpoints));
   return Compute(options, rate, summary, &workspace);
 }
 

@@ -1,11 +1,13 @@
 #pragma once
 // One entry point for an Allan-family curve with confidence intervals:
 //   statistic values (allan_family.h) -> noise identification per tau -> EDF -> chi-square CI.
+#include <cstddef>
 #include <span>
 #include <vector>
 
 #include "estimators/avar_summary.h"
 #include "estimators/confidence.h"
+#include "estimators/phase_checkpoints.h"
 
 namespace allanlab::estimators {
 
@@ -21,6 +23,19 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
 // Same results as ComputeAvar, except that a non-finite running sum is reported by position only.
 bool ComputeAvarOnStorage(const AvarOptions& options, std::span<double> storage,
                           AvarSummary* summary);
+
+// From this many samples on, ComputeAvar keeps checkpoints of the integrated record rather than
+// the record (AllanFamilyWorkspace::KeepCheckpointsOnly): the checkpoints are re-read from the
+// samples for every pass (about six, each a pass over the samples' memory), while a stored
+// integral costs its fresh pages once; below ~256 MB those cost less than the passes, above it the
+// kernel's zeroing of them (and the compaction that finds huge pages for them on a busy machine:
+// seconds of system time at 1e8 samples) costs more.
+inline constexpr std::size_t kCheckpointMinSamples = std::size_t{1} << 25;
+
+// ComputeAvar for rate input whose integration pass was already made: `checkpoints` complete,
+// from the rate samples about their ReferenceLevel (phase_integral.h), e.g. integrated by a reader
+// block by block as it checked them. Same results as ComputeAvar(options, checkpoints.rate()).
+bool ComputeAvarFromCheckpoints(const AvarOptions& options, PhaseCheckpoints checkpoints, AvarSummary* summary);
 
 // ComputeAvarOnStorage for a vector of samples alone: the spare slot is inserted in front (one
 // move of the record; a reader that can leave the slot itself should, see record_reader.h).

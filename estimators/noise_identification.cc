@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <vector>
 
 #include "estimators/difference_kernel.h"  // CompensatedSum
+#include "estimators/phase_checkpoints.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -173,37 +175,63 @@ double ModifiedToAllanRatio(std::span<const double> rate, std::int64_t m) {
 // from one carried sum (w_{t+j} = w_t + partial sums of the changes), which keeps the
 // loop-carried chain at one addition per four terms; its rounding drifts like a random walk,
 // ~sqrt(N) ulp, far below the resolution the boundaries below need.
-double ModifiedToAllanRatioFromPhase(std::span<const double> phase, std::int64_t m) {
-  const auto n = static_cast<std::int64_t>(phase.size()) - 1;
+//
+// stretch(slot, lo, count) gives x_lo .. x_{lo + count - 1} (count <= kFlush + 4), valid until
+// the next call with the same slot (0..3): the stored record, or stretches rebuilt from its
+// checkpoints; the terms are computed from the same x bits either way.
+constexpr std::int64_t kRatioFlush = 4096;
+
+template <typename Stretch>
+double ModifiedToAllanRatioOfStretches(std::int64_t n, std::int64_t m, Stretch&& stretch) {
   if (3 * m > n) return 0.0;
-  const double* x = phase.data();
-  auto a = [x, m](std::int64_t t) { return (x[t + 2 * m] - x[t + m]) - (x[t + m] - x[t]); };
   const std::int64_t count = n - 2 * m + 1;  // Allan differences (times m)
   CompensatedSum avar_total, mvar_total;
   // The first window, a_0..a_{m-1}, and their squares.
   double window = 0.0;
   {
     double squares = 0.0;
-    for (std::int64_t j = 0; j < m; ++j) {
-      const double v = a(j);
-      window += v;
-      squares += v * v;
+    for (std::int64_t j0 = 0; j0 < m; j0 += kRatioFlush) {
+      const std::int64_t len = std::min(kRatioFlush, m - j0);
+      const double* x0 = stretch(0, j0, len);
+      const double* x1 = stretch(1, j0 + m, len);
+      const double* x2 = stretch(2, j0 + 2 * m, len);
+      for (std::int64_t i = 0; i < len; ++i) {
+        const double v = (x2[i] - x1[i]) - (x1[i] - x0[i]);
+        window += v;
+        squares += v * v;
+      }
     }
     avar_total.Add(squares);
   }
   // w_t = sum_{j=t-m+1}^{t} a_j for t = m - 1 .. count - 1; w_{t+1} = w_t + a_{t+1} - a_{t+1-m},
   // and the incoming a_{t+1} are the remaining Allan terms.
-  constexpr std::int64_t kFlush = 4096;
   const std::int64_t last = count - 1;
   std::int64_t t = m - 1;
   while (t <= last) {
-    const std::int64_t end = std::min(last + 1, t + kFlush);
+    const std::int64_t end = std::min(last + 1, t + kRatioFlush);
+    // This block reads a_u and a_{u-m} for u in [t + 1, min(end, last)]: x at u - m, u, u + m and
+    // u + 2m.
+    const std::int64_t u0 = t + 1;
+    const std::int64_t len = std::min(end, last) - t;
+    const double* x0 = len > 0 ? stretch(0, u0 - m, len) : nullptr;
+    const double* x1 = len > 0 ? stretch(1, u0, len) : nullptr;
+    const double* x2 = len > 0 ? stretch(2, u0 + m, len) : nullptr;
+    const double* x3 = len > 0 ? stretch(3, u0 + 2 * m, len) : nullptr;
+    // a_u, and a_{u-m}.
+    auto lead = [&](std::int64_t u) {
+      const std::int64_t i = u - u0;
+      return (x3[i] - x2[i]) - (x2[i] - x1[i]);
+    };
+    auto trail = [&](std::int64_t u) {
+      const std::int64_t i = u - u0;
+      return (x2[i] - x1[i]) - (x1[i] - x0[i]);
+    };
     double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
     double q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
     for (; t + 4 <= end && t + 4 <= last; t += 4) {
-      const double in0 = a(t + 1), in1 = a(t + 2), in2 = a(t + 3), in3 = a(t + 4);
-      const double d0 = in0 - a(t + 1 - m), d1 = in1 - a(t + 2 - m);
-      const double d2 = in2 - a(t + 3 - m), d3 = in3 - a(t + 4 - m);
+      const double in0 = lead(t + 1), in1 = lead(t + 2), in2 = lead(t + 3), in3 = lead(t + 4);
+      const double d0 = in0 - trail(t + 1), d1 = in1 - trail(t + 2);
+      const double d2 = in2 - trail(t + 3), d3 = in3 - trail(t + 4);
       const double w1 = window + d0, w2 = window + (d0 + d1), w3 = window + ((d0 + d1) + d2);
       s0 += window * window;
       s1 += w1 * w1;
@@ -218,9 +246,9 @@ double ModifiedToAllanRatioFromPhase(std::span<const double> phase, std::int64_t
     for (; t < end; ++t) {
       s0 += window * window;
       if (t < last) {
-        const double in = a(t + 1);
+        const double in = lead(t + 1);
         q0 += in * in;
-        window += in - a(t + 1 - m);
+        window += in - trail(t + 1);
       }
     }
     mvar_total.Add((s0 + s1) + (s2 + s3));
@@ -232,23 +260,26 @@ double ModifiedToAllanRatioFromPhase(std::span<const double> phase, std::int64_t
   return avar > 0.0 ? mvar / avar : 0.0;
 }
 
-// phase empty: R(n) from the rate samples.
-int PhaseNoiseOrWhiteFm(std::span<const double> rate, std::span<const double> phase,
-                        std::int64_t m) {
+double ModifiedToAllanRatioFromPhase(std::span<const double> phase, std::int64_t m) {
+  const double* x = phase.data();
+  return ModifiedToAllanRatioOfStretches(static_cast<std::int64_t>(phase.size()) - 1, m,
+                                         [x](int, std::int64_t lo, std::int64_t) { return x + lo; });
+}
+
+// ratio() gives R(n) of the record at m (from its rate or its integrated record).
+int PhaseNoiseOrWhiteFm(const std::function<double()>& ratio, std::int64_t m) {
   if (m < kMinRnFactor) return 2;
   const double md = static_cast<double>(m);
   const double white_phase = 1.0 / md;
   const double flicker_phase =
       3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
   const double white_fm = 0.5;
-  const double rn =
-      phase.empty() ? ModifiedToAllanRatio(rate, m) : ModifiedToAllanRatioFromPhase(phase, m);
+  const double rn = ratio();
   if (rn < std::sqrt(white_phase * flicker_phase)) return 2;
   return rn < std::sqrt(flicker_phase * white_fm) ? 1 : 0;
 }
 
-NoiseId B1Identification(std::span<const double> rate, std::span<const double> phase,
-                         std::int64_t m,
+NoiseId B1Identification(const std::function<double()>& ratio, std::int64_t m,
                          const std::vector<double>& means) {
   const double n = static_cast<double>(means.size());
   long double mean = 0.0L;
@@ -275,7 +306,7 @@ NoiseId B1Identification(std::span<const double> rate, std::span<const double> p
       return id;
     }
   }
-  id.alpha = PhaseNoiseOrWhiteFm(rate, phase, m);
+  id.alpha = PhaseNoiseOrWhiteFm(ratio, m);
   id.estimate = id.alpha == 0 ? -B1Exponent(n, b1) - 1.0 : id.alpha;
   return id;
 }
@@ -283,14 +314,14 @@ NoiseId B1Identification(std::span<const double> rate, std::span<const double> p
 
 // Identification from the m-averages (any constant offset: the trend removal, the ACF and the
 // B1 ratio do not see it).
-NoiseId IdentifyFromMeans(std::span<const double> rate, std::span<const double> phase,
-                          std::int64_t m, std::vector<double> means) {
+NoiseId IdentifyFromMeans(const std::function<double()>& ratio, std::int64_t m,
+                          std::vector<double> means) {
   if (means.size() >= kMinAcfPoints) {
     RemoveLinearTrend(means);
     const std::size_t count = means.size();
     return AcfId(AcfAlpha(std::move(means)), count);
   }
-  if (means.size() >= kMinB1Points) return B1Identification(rate, phase, m, means);
+  if (means.size() >= kMinB1Points) return B1Identification(ratio, m, means);
   return {};
 }
 
@@ -409,11 +440,41 @@ NoiseId StreamedAcfIdentification(std::size_t count, MeanAt&& mean_at) {
   }
 }
 
+// count m-averages from the integrated record sampled every m-th index, x_at(k) = x_{k m}.
+template <typename XAt>
+NoiseId IdentifyFromSampledPhase(std::size_t count, std::int64_t m, XAt&& x_at,
+                                 const std::function<double()>& ratio) {
+  auto mean_at = [&](std::size_t k) { return (x_at(k + 1) - x_at(k)) / m; };
+  if (count < kMinAcfPoints) {
+    std::vector<double> means(count);
+    for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
+    return IdentifyFromMeans(ratio, m, std::move(means));
+  }
+  if (m == 1) return StreamedAcfIdentification(count, [&](std::size_t k) { return x_at(k + 1) - x_at(k); });
+  // 1/m is exact for the octave grid's powers of two; elsewhere it is one rounding.
+  const double inverse = 1.0 / static_cast<double>(m);
+  return StreamedAcfIdentification(count, [&](std::size_t k) { return (x_at(k + 1) - x_at(k)) * inverse; });
+}
+
 }  // namespace
+
+double ModifiedToAllanRatioOfPhase(std::span<const double> phase, std::int64_t m) {
+  return ModifiedToAllanRatioFromPhase(phase, m);
+}
+
+double ModifiedToAllanRatioOfCheckpoints(const PhaseCheckpoints& x, std::int64_t first, std::int64_t length,
+                                         std::int64_t m) {
+  std::vector<double> buffers(4 * static_cast<std::size_t>(kRatioFlush + 4));
+  return ModifiedToAllanRatioOfStretches(length, m, [&](int slot, std::int64_t lo, std::int64_t count) {
+    const std::span<double> out(buffers.data() + slot * (kRatioFlush + 4), static_cast<std::size_t>(count));
+    x.Rebuild(first + lo, out);
+    return static_cast<const double*>(out.data());
+  });
+}
 
 NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
   if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};
-  return IdentifyFromMeans(rate, {}, m, ClusterMeans(rate, m));
+  return IdentifyFromMeans([&] { return ModifiedToAllanRatio(rate, m); }, m, ClusterMeans(rate, m));
 }
 
 NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phase, std::int64_t m) {
@@ -422,21 +483,17 @@ NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phas
   }
   const std::size_t count = rate.size() / static_cast<std::size_t>(m);
   const auto mu = static_cast<std::size_t>(m);
-  auto mean_at = [&](std::size_t k) { return (phase[(k + 1) * mu] - phase[k * mu]) / m; };
-  if (count < kMinAcfPoints) {
-    std::vector<double> means(count);
-    for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
-    return IdentifyFromMeans(rate, phase, m, std::move(means));
-  }
-  if (m == 1) {
-    const double* x = phase.data();
-    return StreamedAcfIdentification(count, [x](std::size_t k) { return x[k + 1] - x[k]; });
-  }
-  // 1/m is exact for the octave grid's powers of two; elsewhere it is one rounding.
-  const double inverse = 1.0 / static_cast<double>(m);
   const double* x = phase.data();
-  return StreamedAcfIdentification(
-      count, [x, mu, inverse](std::size_t k) { return (x[(k + 1) * mu] - x[k * mu]) * inverse; });
+  return IdentifyFromSampledPhase(count, m, [x, mu](std::size_t k) { return x[k * mu]; },
+                                  [&] { return ModifiedToAllanRatioFromPhase(phase, m); });
+}
+
+NoiseId IdentifyNoiseFromSampledPhase(std::span<const double> sampled, std::int64_t m,
+                                      const std::function<double()>& modified_to_allan_ratio) {
+  if (m < 1 || sampled.size() < 2) return {};
+  const double* x = sampled.data();
+  return IdentifyFromSampledPhase(sampled.size() - 1, m, [x](std::size_t k) { return x[k]; },
+                                  modified_to_allan_ratio);
 }
 
 }  // namespace allanlab::estimators

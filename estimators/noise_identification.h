@@ -3,6 +3,7 @@
 // identification using the lag 1 autocorrelation"; NIST SP 1065 §5.6), with the B1 ratio
 // (Barnes) as fallback when too few points remain. alpha: S_y(f) ~ f^alpha, rate as frequency.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 
@@ -28,5 +29,22 @@ NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m);
 // c, N + 1 values): the m-averages come from phase differences in O(N/m) instead of O(N), so a
 // whole curve costs O(N) rather than O(N) per tau. Same result up to rounding.
 NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phase, std::int64_t m);
+
+// The same from the integrated record sampled at every m-th index alone: sampled[k] = phase[k m],
+// k = 0..count, for count m-averages. modified_to_allan_ratio() is called only where the B1
+// ratio cannot tell white FM from the phase noises (a few averages), and must give
+// ModifiedToAllanRatioOfPhase of the record's whole integrated record: then the result is
+// IdentifyNoise's with that record, bit for bit, without the record in memory.
+NoiseId IdentifyNoiseFromSampledPhase(std::span<const double> sampled, std::int64_t m,
+                                      const std::function<double()>& modified_to_allan_ratio);
+
+// R(n) = MVAR(m) / OAVAR(m) of a record from its integrated record (phase.size() = N + 1), as
+// identification computes it.
+double ModifiedToAllanRatioOfPhase(std::span<const double> phase, std::int64_t m);
+// The same for the stretch x_first .. x_{first + length} of an integrated record kept as
+// checkpoints, rebuilt a few thousand values at a time: the same bits, in O(m) memory.
+class PhaseCheckpoints;
+double ModifiedToAllanRatioOfCheckpoints(const PhaseCheckpoints& x, std::int64_t first, std::int64_t length,
+                                         std::int64_t m);
 
 }  // namespace allanlab::estimators

@@ -1,9 +1,14 @@
 #include <algorithm>
+#include <functional>
 #include <numeric>
+#include <utility>
 #include <vector>
+
+#include "common/piece_sharing.h"
 
 #include "estimators/difference_kernel.h"
 #include "estimators/difference_sums.h"
+#include "estimators/phase_checkpoints.h"
 #include "estimators/phase_integral.h"
 
 namespace allanlab::estimators {
@@ -102,9 +107,9 @@ class Accumulators {
 // Terms [lo, hi) of every lag of the set that still has terms there; a run of doubling lags
 // (m, 2m, 4m, ...) goes through one chain call that shares their loads.
 // `visit(j)` follows each lag's accumulation.
-template <typename Visit>
+template <typename Acc, typename Visit>
 void ForEachActiveLag(const LagSet& set, int order, std::int64_t lo, std::int64_t hi,
-                      const double* x, Accumulators* acc, Visit&& visit) {
+                      const double* x, Acc* acc, Visit&& visit) {
   const std::size_t count = set.m.size();
   for (std::size_t j = 0; j < count && lo < set.end[j];) {
     std::size_t chain = 1;
@@ -199,19 +204,25 @@ class LazyPhase {
 };
 
 
-// ---- Without an N-sized phase (SumOverlappingDifferencesFromRate). Fresh pages for N + 1
+// ---- Without an N-sized phase (SumOverlappingDifferencesFromCheckpoints). Fresh pages for N + 1
 // phase doubles cost more in this VM than the whole octave curve (measured ~4.5 ns per sample
-// for first touch), so the phase is rebuilt from the rate, which the caller holds anyway, in
-// buffers that stay in cache:
-// * short lags: a sliding window of x, integrated just ahead of the blocks that read it;
-// * tiers: a strip of kStripWidth columns of each row, rebuilt from the checkpoint x_{kR + c}
-//   kept every kCheckpoint samples, in a window of consecutive rows stored kStripWidth apart,
-//   so that lag q R of the record is lag q kStripWidth of the window.
-// The same kernel calls see the same x bits (pieces start at multiples of 8 from the same
-// carries: phase_integral.h) over the same term ranges, with term indices shifted by multiples
-// of kLanes, so every sum has the bits of IntegrateAndSumOverlappingDifferences.
-constexpr std::int64_t kCheckpoint = kStripWidth;
-static_assert(kShortLimit % kCheckpoint == 0 && kBlock % kLanes == 0 && kStripWidth % 8 == 0);
+// for first touch), so the phase is rebuilt from the checkpoints of one integration pass
+// (phase_checkpoints.h) in buffers that stay in cache:
+// * short lags: a sliding window of x, integrated just ahead of the blocks that read it, from the
+//   checkpoint at the first block of a piece of kPieceBlocks blocks;
+// * tiers: a strip of kStripWidth columns of each row, rebuilt from the checkpoint x_{kR + c}, in
+//   a window of consecutive rows stored kStripWidth apart, so that lag q R of the record is lag
+//   q kStripWidth of the window; one strip is one piece.
+// The same kernel calls see the same x bits over the same term ranges, with term indices shifted
+// by multiples of kLanes, so every flush has the bits of IntegrateAndSumOverlappingDifferences.
+// Pieces depend on nothing but the checkpoints, so a helper thread takes some of them; each piece
+// keeps its flushes, and they reach the compensated totals in piece order, the order of the pass
+// above: the bits do not depend on which thread ran a piece.
+constexpr std::int64_t kPieceBlocks = 64;
+static_assert(kShortLimit % PhaseCheckpoints::kStride == 0 && kBlock % kLanes == 0 &&
+              kStripWidth % PhaseCheckpoints::kStride == 0 && kBlock % PhaseCheckpoints::kStride == 0);
+// Below this many samples a pass takes well under a millisecond: no helper.
+constexpr std::int64_t kSharedPassSamples = std::int64_t{1} << 20;
 
 // lags with their term ends moved to a window whose index 0 is the record's index `base`, and
 // lags scaled (tiers); ends clamped to [lo, lo + width] for the window range [lo, lo + width).
@@ -223,108 +234,112 @@ void ShiftLags(const LagSet& from, std::int64_t base, std::int64_t lo, std::int6
   }
 }
 
+// The flushes one piece made, in order, for the totals.
+using Flushes = std::vector<std::pair<std::size_t, double>>;
+
+// A piece's lane sums while it runs (a few KiB, not kept), and its flushes.
+class PieceAccumulators {
+ public:
+  PieceAccumulators(std::size_t count, Flushes* flushed) : lanes_(count, Lanes{}), flushed_(*flushed) {}
+  Lanes* lanes(std::size_t slot) { return &lanes_[slot]; }
+  void Flush(std::size_t slot) {
+    flushed_.emplace_back(slot, SumLanes(lanes_[slot]));
+    lanes_[slot] = Lanes{};
+  }
+
+ private:
+  std::vector<Lanes> lanes_;
+  Flushes& flushed_;
+};
+
+// x[base .. done] of the record in a window that slides forward, integrated from a checkpoint.
 class WindowedPhase {
  public:
-  WindowedPhase(std::span<const double> rate, double reference, std::int64_t span)
-      : rate_(rate),
-        reference_(reference),
-        n_(static_cast<std::int64_t>(rate.size())),
-        window_(static_cast<std::size_t>(4 * span + 8)),
-        checkpoints_(static_cast<std::size_t>(n_ / kCheckpoint + 1)) {
-    window_[0] = 0.0;
-    checkpoints_[0] = 0.0;
+  // Starts at x_from (from a multiple of the checkpoint stride) with room for `span` samples.
+  WindowedPhase(const PhaseCheckpoints& x, std::int64_t span, std::int64_t from, std::vector<double>* window)
+      : x_(x), window_(*window), base_(from), done_(from) {
+    window_.resize(static_cast<std::size_t>(4 * span + 8));
+    window_[0] = x.At(from);
   }
   // Makes x[from .. upto] available (from a multiple of kLanes, never decreasing); returns the
   // window pointer whose index 0 is x_base().
   const double* Ensure(std::int64_t from, std::int64_t upto) {
-    upto = std::min(upto, n_);
+    const std::int64_t n = x_.size();
+    upto = std::min(upto, n);
     if (upto - base_ >= static_cast<std::int64_t>(window_.size()) - 8) {
-      std::copy(window_.begin() + (from - base_), window_.begin() + (done_ - base_ + 1),
-                window_.begin());
+      std::copy(window_.begin() + (from - base_), window_.begin() + (done_ - base_ + 1), window_.begin());
       base_ = from;
     }
     if (upto > done_) {
-      upto = std::min(n_, (upto + 7) / 8 * 8);
+      upto = std::min(n, (upto + 7) / 8 * 8);
       const auto count = static_cast<std::size_t>(upto - done_);
-      ContinueIntegral(rate_.subspan(static_cast<std::size_t>(done_), count), reference_,
-                       std::span<double>(window_).subspan(static_cast<std::size_t>(done_ - base_),
-                                                          count + 1));
-      for (std::int64_t k = (done_ / kCheckpoint + 1) * kCheckpoint; k <= upto; k += kCheckpoint) {
-        checkpoints_[static_cast<std::size_t>(k / kCheckpoint)] = window_[k - base_];
-      }
+      ContinueIntegral(x_.rate().subspan(static_cast<std::size_t>(done_), count), x_.reference(),
+                       std::span<double>(window_).subspan(static_cast<std::size_t>(done_ - base_), count + 1));
       done_ = upto;
     }
     return window_.data();
   }
   std::int64_t base() const { return base_; }
-  // Integrates to the end, keeping only what the checkpoints need.
-  void Finish() {
-    const auto step = static_cast<std::int64_t>(window_.size()) / 2;
-    while (done_ < n_) Ensure(done_ / 8 * 8, done_ + step);
-  }
-  double Last() const { return window_[done_ - base_]; }
-  const std::vector<double>& checkpoints() const { return checkpoints_; }
 
  private:
-  std::span<const double> rate_;
-  double reference_;
-  std::int64_t n_;
-  std::vector<double> window_;  // x[base_ .. done_] at [0 .. done_ - base_]
-  std::vector<double> checkpoints_;
-  std::int64_t base_ = 0, done_ = 0;
+  const PhaseCheckpoints& x_;
+  std::vector<double>& window_;  // x[base_ .. done_] at [0 .. done_ - base_]
+  std::int64_t base_, done_;
 };
 
-void WindowedBlockPass(WindowedPhase* phase, int order, const LagSet& set, Accumulators* acc) {
-  if (set.m.empty()) return;
+// Blocks [first_block, end_block) of the short-lag pass.
+void WindowedBlockPiece(const PhaseCheckpoints& x, int order, const LagSet& set, std::int64_t first_block,
+                        std::int64_t end_block, PieceAccumulators* acc) {
+  static thread_local std::vector<double> window;
   const std::int64_t reach = order * set.m.back();
+  WindowedPhase phase(x, kBlock + reach, first_block * kBlock, &window);
   LagSet shifted = set;
-  for (std::int64_t start = 0; start < set.end[0]; start += kBlock) {
-    const double* x = phase->Ensure(start, start + kBlock - 1 + reach);
-    const std::int64_t base = phase->base();
+  for (std::int64_t start = first_block * kBlock; start < set.end[0] && start < end_block * kBlock;
+       start += kBlock) {
+    const double* w = phase.Ensure(start, start + kBlock - 1 + reach);
+    const std::int64_t base = phase.base();
     for (std::size_t j = 0; j < set.m.size(); ++j) shifted.end[j] = set.end[j] - base;
-    ForEachActiveLag(shifted, order, start - base, start - base + kBlock, x, acc,
+    ForEachActiveLag(shifted, order, start - base, start - base + kBlock, w, acc,
                      [&](std::size_t j) { acc->Flush(set.slot[j]); });
   }
 }
 
-// RowPass over strips rebuilt from the checkpoints.
-void RebuiltRowPass(std::span<const double> rate, double reference,
-                    const std::vector<double>& checkpoints, int order, const Tier& tier,
-                    Accumulators* acc) {
+// One strip (columns [column, column + kStripWidth)) of RowPass, its rows rebuilt from the
+// checkpoints.
+void RebuiltStripPiece(const PhaseCheckpoints& x, int order, const Tier& tier, std::int64_t column,
+                       PieceAccumulators* acc) {
+  static thread_local std::vector<double> rows;
   const LagSet& set = tier.lags;
-  if (set.m.empty()) return;
-  const auto n = static_cast<std::int64_t>(rate.size());
+  const std::int64_t n = x.size();
   const std::int64_t r = tier.row_length;
   const std::int64_t w = kStripWidth;
   const std::int64_t reach_rows = order * (set.m.back() / r);
   const std::int64_t capacity = 2 * (reach_rows + 1);  // rows in the window
-  std::vector<double> rows(static_cast<std::size_t>(capacity * w + 1));
+  rows.resize(static_cast<std::size_t>(capacity * w + 1));
   LagSet shifted = set;
-  for (std::int64_t column = 0; column < r; column += w) {
-    std::int64_t first_row = 0, built = 0;  // window rows: [first_row, built)
-    for (std::int64_t row = 0; column + row * r < set.end[0]; ++row) {
-      const std::int64_t need = row + reach_rows + 1;
-      if (need - first_row > capacity) {
-        std::copy(rows.begin() + (row - first_row) * w, rows.begin() + (built - first_row) * w,
-                  rows.begin());
-        first_row = row;
-      }
-      for (; built < need; ++built) {
-        const std::int64_t start = column + built * r;
-        if (start > n) break;
-        const std::int64_t count = std::min(w, n - start);
-        double* out = rows.data() + (built - first_row) * w;
-        out[0] = checkpoints[static_cast<std::size_t>(start / kCheckpoint)];
-        ContinueIntegral(rate.subspan(static_cast<std::size_t>(start), static_cast<std::size_t>(count)),
-                         reference, {out, static_cast<std::size_t>(count + 1)});
-      }
-      const std::int64_t lo = (row - first_row) * w;
-      ShiftLags(set, column + row * r, lo, w, w, r, &shifted);
-      ForEachActiveLag(shifted, order, lo, lo + w, rows.data(), acc, [](std::size_t) {});
+  std::int64_t first_row = 0, built = 0;  // window rows: [first_row, built)
+  for (std::int64_t row = 0; column + row * r < set.end[0]; ++row) {
+    const std::int64_t need = row + reach_rows + 1;
+    if (need - first_row > capacity) {
+      std::copy(rows.begin() + (row - first_row) * w, rows.begin() + (built - first_row) * w, rows.begin());
+      first_row = row;
     }
-    for (std::size_t j = 0; j < set.m.size(); ++j) acc->Flush(set.slot[j]);
+    for (; built < need; ++built) {
+      const std::int64_t start = column + built * r;
+      if (start > n) break;
+      const std::int64_t count = std::min(w, n - start);
+      double* out = rows.data() + (built - first_row) * w;
+      out[0] = x.At(start);
+      ContinueIntegral(x.rate().subspan(static_cast<std::size_t>(start), static_cast<std::size_t>(count)),
+                       x.reference(), {out, static_cast<std::size_t>(count + 1)});
+    }
+    const std::int64_t lo = (row - first_row) * w;
+    ShiftLags(set, column + row * r, lo, w, w, r, &shifted);
+    ForEachActiveLag(shifted, order, lo, lo + w, rows.data(), acc, [](std::size_t) {});
   }
+  for (std::size_t j = 0; j < set.m.size(); ++j) acc->Flush(set.slot[j]);
 }
+
 }  // namespace
 
 void OverlappingDifferenceSums(std::span<const double> phase, int order,
@@ -339,7 +354,8 @@ void OverlappingDifferenceSums(std::span<const double> phase, int order,
 
 void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double reference,
                                            int order, std::span<const std::int64_t> lags,
-                                           std::span<double> phase, std::span<double> sums) {
+                                           std::span<double> phase, std::span<double> sums,
+                                           const PhaseReady* phase_ready) {
   const auto n = static_cast<std::int64_t>(rate.size());
   const SplitLags split = Split(n, order, lags);
   Accumulators acc(lags.size());
@@ -347,32 +363,70 @@ void IntegrateAndSumOverlappingDifferences(std::span<const double> rate, double 
   BlockPass(phase.data(), order, kBlock, split.short_lags, &acc,
             [&](std::int64_t last) { lazy.EnsureUpTo(last); });
   lazy.EnsureUpTo(n);
-  LongPasses(phase.data(), n, order, split, &acc);
+  const std::function<void()> rest = [&] { LongPasses(phase.data(), n, order, split, &acc); };
+  if (phase_ready != nullptr) {
+    (*phase_ready)(rest);
+  } else {
+    rest();
+  }
   for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = acc.Total(slot);
 }
 
-}  // namespace allanlab::estimators
+bool SumOverlappingDifferencesFromCheckpoints(const PhaseCheckpoints& x, int order,
+                                              std::span<const std::int64_t> lags, std::span<double> sums) {
+  const std::int64_t n = x.size();
+  const SplitLags split = Split(n, order, lags);
+  if (!split.other_lags.m.empty()) return false;
+  // The pieces: every strip of every tier, then the short-lag blocks kPieceBlocks at a time.
+  struct Piece {
+    const Tier* tier = nullptr;
+    std::int64_t first = 0;  // the strip's column, or the first block
+  };
+  std::vector<Piece> pieces;
+  for (const Tier& tier : split.tiers) {
+    if (tier.lags.m.empty()) continue;
+    for (std::int64_t column = 0; column < tier.row_length; column += kStripWidth) pieces.push_back({&tier, column});
+  }
+  if (!split.short_lags.m.empty()) {
+    const std::int64_t blocks = (split.short_lags.end[0] + kBlock - 1) / kBlock;
+    for (std::int64_t b = 0; b < blocks; b += kPieceBlocks) pieces.push_back({nullptr, b});
+  }
+  std::vector<Flushes> flushes(pieces.size());
+  const std::function<void(int)> run = [&](int p) {
+    const Piece& piece = pieces[static_cast<std::size_t>(p)];
+    PieceAccumulators a(lags.size(), &flushes[static_cast<std::size_t>(p)]);
+    if (piece.tier != nullptr) {
+      RebuiltStripPiece(x, order, *piece.tier, piece.first, &a);
+    } else {
+      WindowedBlockPiece(x, order, split.short_lags, piece.first, piece.first + kPieceBlocks, &a);
+    }
+  };
+  const int count = static_cast<int>(pieces.size());
+  if (n >= kSharedPassSamples && PieceSharing::Useful()) {
+    PieceSharing sharing;
+    sharing.Run(count, run);
+  } else {
+    for (int p = 0; p < count; ++p) run(p);
+  }
+  std::vector<CompensatedSum> totals(lags.size());
+  for (const Flushes& piece : flushes) {
+    for (const auto& [slot, value] : piece) totals[slot].Add(value);
+  }
+  for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = totals[slot].Value();
+  return true;
+}
 
-namespace allanlab::estimators {
+bool FitsCheckpointPass(std::int64_t n, int order, std::span<const std::int64_t> lags) {
+  return Split(n, order, lags).other_lags.m.empty();
+}
 
 bool SumOverlappingDifferencesFromRate(std::span<const double> rate, double reference, int order,
                                        std::span<const std::int64_t> lags, std::span<double> sums,
                                        double* last_phase) {
-  const auto n = static_cast<std::int64_t>(rate.size());
-  const SplitLags split = Split(n, order, lags);
-  if (!split.other_lags.m.empty()) return false;
-  Accumulators acc(lags.size());
-  const std::int64_t reach =
-      split.short_lags.m.empty() ? kBlock : order * split.short_lags.m.back();
-  WindowedPhase phase(rate, reference, kBlock + reach);
-  WindowedBlockPass(&phase, order, split.short_lags, &acc);
-  phase.Finish();
-  *last_phase = phase.Last();
-  for (const Tier& tier : split.tiers) {
-    RebuiltRowPass(rate, reference, phase.checkpoints(), order, tier, &acc);
-  }
-  for (std::size_t slot = 0; slot < lags.size(); ++slot) sums[slot] = acc.Total(slot);
-  return true;
+  if (!FitsCheckpointPass(static_cast<std::int64_t>(rate.size()), order, lags)) return false;
+  const PhaseCheckpoints x(rate, reference);
+  *last_phase = x.Last();
+  return SumOverlappingDifferencesFromCheckpoints(x, order, lags, sums);
 }
 
 }  // namespace allanlab::estimators

@@ -38,20 +38,37 @@ bool RecordEdfAvailable(Statistic s, std::int64_t m, std::int64_t n, std::int64_
   return window <= kMaxLagWindow && kTermsPerLag * window <= MeasuredTerms(s, m, n, max_terms);
 }
 
+RecordEdfStretch RecordEdfReads(Statistic s, std::int64_t n, std::int64_t m, std::int64_t max_terms) {
+  if (n < 1 || !RecordEdfAvailable(s, m, n, max_terms)) return {};
+  const std::int64_t stride = Stride(s, m);
+  const std::int64_t used = MeasuredTerms(s, m, n, max_terms);
+  const std::int64_t first = (TermCount(s, m, n) - used) / 2;
+  return {first * stride, (first + used - 1) * stride + DifferenceOrder(s) * m};
+}
+
 double RecordEdf(Statistic s, std::span<const double> phase, std::int64_t m,
                  std::int64_t max_terms) {
   const auto n = static_cast<std::int64_t>(phase.size()) - 1;
+  const RecordEdfStretch reads = RecordEdfReads(s, n, m, max_terms);
+  if (reads.hi < reads.lo) return 0.0;
+  return RecordEdfFromStretch(
+      s, n, phase.subspan(static_cast<std::size_t>(reads.lo), static_cast<std::size_t>(reads.hi - reads.lo + 1)), m,
+      max_terms);
+}
+
+double RecordEdfFromStretch(Statistic s, std::int64_t n, std::span<const double> stretch, std::int64_t m,
+                            std::int64_t max_terms) {
   if (n < 1 || !RecordEdfAvailable(s, m, n, max_terms)) return 0.0;
   const int d = DifferenceOrder(s);
   const std::int64_t stride = Stride(s, m);
   const std::int64_t total = TermCount(s, m, n);
   const std::int64_t used = MeasuredTerms(s, m, n, max_terms);
-  const std::int64_t first = (total - used) / 2;
-  // The measured terms: a_j = sum_i c_i x_{t + i m}, t = (first + j) stride, binomial c with
-  // alternating signs (order 2: 1, -2, 1; order 3: -1, 3, -3, 1).
+  // The measured terms: a_j = sum_i c_i x_{t + i m}, t = (first + j) stride for the middle
+  // `used` terms, binomial c with alternating signs (order 2: 1, -2, 1; order 3: -1, 3, -3, 1);
+  // stretch[0] is x_{first stride} (RecordEdfReads).
   std::vector<double> a(static_cast<std::size_t>(used));
   for (std::int64_t j = 0; j < used; ++j) {
-    const double* x = phase.data() + (first + j) * stride;
+    const double* x = stretch.data() + j * stride;
     a[static_cast<std::size_t>(j)] =
         d == 2 ? (x[2 * m] - x[m]) - (x[m] - x[0])
                : ((x[3 * m] - x[0]) - 3.0 * (x[2 * m] - x[m]));

@@ -27,6 +27,17 @@ namespace allanlab::estimators {
 double RecordEdf(Statistic s, std::span<const double> phase, std::int64_t m,
                  std::int64_t max_terms = std::int64_t{1} << 18);
 
+// The stretch x_lo .. x_hi of the integrated record of n samples that RecordEdf reads at m (empty,
+// hi < lo, where it gives 0), and RecordEdf from that stretch alone (stretch[i] = x_{lo + i}):
+// the same bits, for a caller that rebuilds the stretch instead of keeping the whole record.
+struct RecordEdfStretch {
+  std::int64_t lo = 0, hi = -1;
+};
+RecordEdfStretch RecordEdfReads(Statistic s, std::int64_t n, std::int64_t m,
+                                std::int64_t max_terms = std::int64_t{1} << 18);
+double RecordEdfFromStretch(Statistic s, std::int64_t n, std::span<const double> stretch,
+                            std::int64_t m, std::int64_t max_terms = std::int64_t{1} << 18);
+
 // True when RecordEdf gives a value for s at m on n rate samples: the statistic is covered and
 // the lag window d m is at most 1/64 of the differences measured (which keeps the removed bias
 // under 4 % of the sum) and at most 256 lags (cost).

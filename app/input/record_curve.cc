@@ -1,5 +1,6 @@
 #include "app/input/record_curve.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <span>
@@ -9,6 +10,7 @@
 #include "app/input/accel_units.h"
 #include "app/input/constant_stretch.h"
 #include "app/input/imu_columns.h"
+#include "app/input/mapped_file.h"
 #include "app/input/rate_units.h"
 #include "app/input/record_reader.h"
 #include "app/input/stated_units.h"
@@ -17,6 +19,8 @@
 #include "estimators/allan_family.h"
 #include "estimators/avar.h"
 #include "estimators/confidence.h"
+#include "estimators/phase_checkpoints.h"
+#include "estimators/phase_integral.h"
 #include "estimators/streaming_avar.h"
 #include "sim/units.h"
 
@@ -210,10 +214,59 @@ std::optional<Failure> CurveOfValues(const Plan& plan, std::span<double> storage
   return std::nullopt;
 }
 
+// The curve of a mapped record (MapRecordValues): rate samples already in SI are used where they
+// lie (on long records integrated as the reader checked them: `checkpoints`, complete); others
+// are copied behind a spare slot and converted as CurveOfValues converts them.
+std::optional<Failure> CurveOfMappedValues(const Plan& plan, std::span<const double> values,
+                                           std::optional<estimators::PhaseCheckpoints> checkpoints, AvarReport* report) {
+  if (plan.input == InputKind::kRate && InputScale(plan.input, report->record.units).identity()) {
+    report->input_units = report->record.units;
+    estimators::AvarOptions options = plan.avar;
+    options.sample_clock = report->record.sample_clock;
+    const bool ok = checkpoints && checkpoints->complete()
+                        ? estimators::ComputeAvarFromCheckpoints(options, std::move(*checkpoints), &report->summary)
+                        : estimators::ComputeAvar(options, values, &report->summary);
+    if (ok) return std::nullopt;
+    // A failure is reported as the copied record's pass reports it (where the running sum overflows).
+  }
+  std::vector<double> storage(kSpareSlot + values.size());
+  std::copy(values.begin(), values.end(), storage.begin() + kSpareSlot);
+  return CurveOfValues(plan, storage, report);
+}
+
 // Reads the record and computes its curve in memory.
 std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
-  std::vector<double> storage;
   RecordError error;
+  {
+    MappedFile map;
+    std::span<const double> values;
+    // Long records of rate samples in SI are integrated block by block while the reader's checks
+    // have them in cache (estimators::kCheckpointMinSamples), which spares a pass over them.
+    std::optional<estimators::PhaseCheckpoints> checkpoints;
+    bool integrate = plan.input == InputKind::kRate;
+    const BlockSink integrate_blocks = [&](std::span<const double> block) {
+      if (!integrate) return;
+      if (values.size() < estimators::kCheckpointMinSamples) {
+        integrate = false;
+        return;
+      }
+      if (!checkpoints) {
+        integrate = InputScale(plan.input, report->record.units).identity();
+        if (!integrate) return;
+        checkpoints.emplace(values, estimators::ReferenceLevel(values), estimators::PhaseCheckpoints::Deferred{});
+      }
+      checkpoints->IntegrateUpTo(block.data() + block.size() - values.data());
+    };
+    switch (MapRecordValues(plan.read, &map, &values, &report->record, &error, &integrate_blocks)) {
+      case MapOutcome::kMapped:
+        return CurveOfMappedValues(plan, values, std::move(checkpoints), report);
+      case MapOutcome::kFailed:
+        return Failure{error.exit_code, error.message};
+      case MapOutcome::kNotMapped:
+        break;
+    }
+  }
+  std::vector<double> storage;
   if (!ReadRecordValues(plan.read, &storage, &report->record, &error, kSpareSlot)) {
     return Failure{error.exit_code, error.message};
   }

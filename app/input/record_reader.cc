@@ -1,6 +1,8 @@
 #include "app/input/record_reader.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <system_error>
@@ -15,6 +17,7 @@
 
 #include "app/input/accel_units.h"
 #include "app/input/imu_columns.h"
+#include "app/input/mapped_file.h"
 #include "app/reports/provenance.h"
 #include "app/input/raw_sample_decoder.h"
 #include "app/input/raw_sidecar.h"
@@ -73,6 +76,13 @@ class Reader {
   Reader(const RecordReaderOptions& options, const std::function<void(std::span<const double>)>* row_sink,
          RecordInfo* info)
       : o_(options), sink_(kNoSink), block_sink_(nullptr), row_sink_(row_sink), info_(info) {}
+  // A raw float64 file mapped where it can be (MapRecordValues): *values the mapped samples.
+  Reader(const RecordReaderOptions& options, MappedFile* map, std::span<const double>* values, RecordInfo* info,
+         const std::function<void(std::span<const double>)>* block_sink)
+      : o_(options), sink_(kNoSink), block_sink_(block_sink != nullptr ? block_sink : &kNoBlockSink), info_(info),
+        map_(map), mapped_values_(values) {}
+  // After Run returned false: the file was not mapped, nothing was reported (MapRecordValues).
+  bool not_mapped() const { return not_mapped_; }
 
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
@@ -126,6 +136,15 @@ class Reader {
                                 (o_.kind == estimators::InputKind::kAngle ? "deg, rad or arcsec" : "deg/s, deg/h or rad/s"));
       }
       if (!ResolveStatedUnits(std::move(stated), "the samples", error)) return false;
+    }
+    if (map_ != nullptr) {
+      if (!MapRaw()) {
+        not_mapped_ = true;
+        return false;
+      }
+      info_->compression = Compression::kNone;
+      if (!ReadMapped(error)) return false;
+      return Conclude(error);
     }
     std::unique_ptr<ByteSource> source;
     if (!OpenSource(&source, error)) return false;
@@ -425,24 +444,64 @@ class Reader {
     return true;
   }
 
+  // A block of raw values whose first has index `first`.
+  void AcceptBlock(std::span<const double> values, std::int64_t first) {
+    bool finite = true;
+    for (double v : values) finite &= std::isfinite(v);
+    if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
+      info_->samples += static_cast<std::int64_t>(values.size());
+      stretch_.AddBlock(values);
+      info_->longest_constant_stretch = stretch_.longest();
+      (*block_sink_)(values);
+      return;
+    }
+    for (std::size_t k = 0; k < values.size(); ++k) Accept(values[k], first + static_cast<std::int64_t>(k));
+  }
+
+  // Maps a raw float64 file that can be used where it lies: a regular file, not compressed (the
+  // magic bytes OpenByteSource goes by), not a bag, whole samples only, every value kept (no
+  // --drop-nonfinite, which would leave gaps). Anything else is read as a stream.
+  bool MapRaw() {
+    static_assert(std::endian::native == std::endian::little, "raw samples are little-endian");
+    if (format_ != RecordFormat::kFloat64 || o_.drop_nonfinite || o_.path == "-") return false;
+    if (!map_->Map(o_.path) || DetectBag(o_.path)) return false;
+    const std::span<const char> bytes = map_->bytes();
+    static constexpr unsigned char kGzipMagic[] = {0x1f, 0x8b};
+    static constexpr unsigned char kXzMagic[] = {0xfd, '7', 'z', 'X', 'Z', 0x00};
+    const auto starts_with = [&](const unsigned char* magic, std::size_t n) {
+      return bytes.size() >= n && std::memcmp(bytes.data(), magic, n) == 0;
+    };
+    if (bytes.size() % sizeof(double) != 0 || starts_with(kGzipMagic, sizeof kGzipMagic) ||
+        starts_with(kXzMagic, sizeof kXzMagic)) {
+      return false;
+    }
+    *mapped_values_ = {reinterpret_cast<const double*>(bytes.data()), bytes.size() / sizeof(double)};
+    return true;
+  }
+
+  // The mapped values checked block by block as ReadRaw checks them (the sink, when there is one,
+  // sees them in place).
+  bool ReadMapped(RecordError* error) {
+    info_->column = "float64 samples";
+    const std::span<const double> values = *mapped_values_;
+    for (std::size_t first = 0; first < values.size(); first += kBlockValues) {
+      AcceptBlock(values.subspan(first, std::min(kBlockValues, values.size() - first)),
+                  static_cast<std::int64_t>(first));
+    }
+    info_->longest_constant_stretch = stretch_.longest();
+    if (nonfinite_.count() > 0) {
+      return Runtime(error, In() + nonfinite_.Describe("the samples", "0-based index(es)"));
+    }
+    return true;
+  }
+
   bool ReadRaw(ByteSource* source, RecordError* error) {
     const RawSampleType type =
         format_ == RecordFormat::kFloat32 ? RawSampleType::kFloat32 : RawSampleType::kFloat64;
     RawSampleDecoder decoder(
         type,
         [&](std::span<const double> values, std::int64_t first) {
-          bool finite = true;
-          for (double v : values) finite &= std::isfinite(v);
-          if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
-            info_->samples += static_cast<std::int64_t>(values.size());
-            stretch_.AddBlock(values);
-            info_->longest_constant_stretch = stretch_.longest();
-            (*block_sink_)(values);
-            return true;
-          }
-          for (std::size_t k = 0; k < values.size(); ++k) {
-            Accept(values[k], first + static_cast<std::int64_t>(k));
-          }
+          AcceptBlock(values, first);
           return true;
         },
         kBlockValues);
@@ -578,6 +637,7 @@ class Reader {
   static constexpr double kLongestPlausibleStepS = 10.0;
 
   static inline const std::function<void(double)> kNoSink = [](double) {};
+  static inline const std::function<void(std::span<const double>)> kNoBlockSink = [](std::span<const double>) {};
   const RecordReaderOptions& o_;
   const std::function<void(double)>& sink_;
   const std::function<void(std::span<const double>)>* block_sink_;
@@ -592,6 +652,9 @@ class Reader {
   TimeSteps steps_;
   std::string bag_stamps_;  // a ROS bag: where its time column comes from
   ConstantStretchTracker stretch_;
+  MappedFile* map_ = nullptr;
+  std::span<const double>* mapped_values_ = nullptr;
+  bool not_mapped_ = false;
 };
 
 }  // namespace
@@ -673,6 +736,13 @@ bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* v
         values->insert(values->end(), block.begin(), block.end());
       };
   return Reader(options, sink, info, &block_sink).Run(error);
+}
+
+MapOutcome MapRecordValues(const RecordReaderOptions& options, MappedFile* map, std::span<const double>* values,
+                           RecordInfo* info, RecordError* error, const BlockSink* checked_blocks) {
+  Reader reader(options, map, values, info, checked_blocks);
+  if (reader.Run(error)) return MapOutcome::kMapped;
+  return reader.not_mapped() ? MapOutcome::kNotMapped : MapOutcome::kFailed;
 }
 
 bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,

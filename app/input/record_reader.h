@@ -141,6 +141,19 @@ inline constexpr std::size_t kSpareSlot = 1;
 bool ReadRecordValues(const RecordReaderOptions& options, std::vector<double>* values,
                       RecordInfo* info, RecordError* error, std::size_t leading_zeros = 0);
 
+// The same for a raw float64 record used where it lies: a regular, uncompressed file of whole
+// samples, read without --drop-nonfinite, is mapped read-only (app/input/mapped_file.h) and
+// checked as ReadRecordValues checks it; *values are its samples, valid while *map lives. A file
+// that cannot be used so (standard input, a pipe, compressed, text, float32, ...) gives
+// kNotMapped with nothing reported: read it with ReadRecordValues. kFailed: *error as
+// ReadRecordValues would give it. checked_blocks (optional) sees the samples a block at a time, in
+// order, as each is checked (pointers into the mapping), while no value has failed the checks; the
+// record's units are known by the first block.
+enum class MapOutcome { kMapped, kNotMapped, kFailed };
+class MappedFile;
+MapOutcome MapRecordValues(const RecordReaderOptions& options, MappedFile* map, std::span<const double>* values,
+                           RecordInfo* info, RecordError* error, const BlockSink* checked_blocks = nullptr);
+
 // Several columns (options.columns or options.imu) read in one pass: values[k] holds column k's
 // kept samples in file units, every column the same length.
 bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,
