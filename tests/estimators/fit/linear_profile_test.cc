@@ -81,5 +81,36 @@ TEST(LinearProfile, RangesReachTheFitsValueWhenTheExpansionsMinimumSitsOffIt) {
   EXPECT_NEAR(e.interval95_si[1], std::sqrt(4.0 + 0.1 * std::sqrt(kProfileDelta95)), 1e-6);
 }
 
+// Alternative problems (the same column at another value of a parameter the fit held): a term's
+// range is the union of each problem's range at the critical value less its offset above the fit.
+// One column, sigma 1: the fit x = 2 (Delta(t) = (2 - t)^2); an alternative with x = 5 whose
+// minimum lies 2.25 above extends the 95 % range to 5 + sqrt(3.841 - 2.25) = 6.26, and adds
+// nothing at 68.3 % (2.25 > 1); one 4 above (beyond 3.841) adds nothing at all.
+TEST(LinearProfile, AlternativesExtendTheRangesByTheirOffsets) {
+  auto problem = [](double x_hat, double offset) {
+    LinearProblem p;
+    p.a = Eigen::MatrixXd(2, 1);
+    p.a << 1.0, 0.0;
+    p.y = Eigen::VectorXd(2);
+    p.y << x_hat, std::sqrt(offset);
+    return p;
+  };
+  const LinearProblem fit = problem(2.0, 0.0);
+  CoefficientEstimate alone, near, far;
+  for (CoefficientEstimate* e : {&alone, &near, &far}) {
+    e->fitted = true;
+    e->value_si = std::sqrt(2.0);
+  }
+  SetProfileRanges(fit, {1u}, 0, 1.0, &alone);
+  SetProfileRanges(fit, {1u}, 0, 1.0, &near, {problem(5.0, 2.25)});
+  SetProfileRanges(fit, {1u}, 0, 1.0, &far, {problem(5.0, 4.0)});
+  EXPECT_NEAR(alone.interval95_si[1], std::sqrt(2.0 + std::sqrt(kProfileDelta95)), 1e-6);
+  EXPECT_NEAR(near.interval95_si[1], std::sqrt(5.0 + std::sqrt(kProfileDelta95 - 2.25)), 1e-6);
+  EXPECT_EQ(near.interval95_si[0], alone.interval95_si[0]);
+  EXPECT_EQ(near.interval68_si[0], alone.interval68_si[0]);
+  EXPECT_EQ(near.interval68_si[1], alone.interval68_si[1]);
+  EXPECT_EQ(far.interval95_si[1], alone.interval95_si[1]);
+}
+
 }  // namespace
 }  // namespace allanlab::estimators
