@@ -15,6 +15,7 @@
 #include "estimators/fit/ceres_solver_options.h"
 #include "estimators/fit/linear_profile.h"
 #include "estimators/fit/model_avar_residuals.h"
+#include "estimators/fit/whitening_cache.h"
 #include "sim/band_limited_avar.h"
 
 namespace allanlab::estimators {
@@ -708,12 +709,12 @@ bool FitOnce(const ParametricFitOptions& options, const AvarCurve& curve, unsign
       for (std::size_t c = 0; c < free.size(); ++c) jf.col(static_cast<Eigen::Index>(c)) = ju.col(free[c]);
       lp.free_directions = w.colPivHouseholderQr().solve(jf);  // ju = -W dE/du
     }
-    lp.whitening_at = [covariance, shapes, extra, unfiltered = Eigen::MatrixXd(pieces.Unfiltered()), linear,
-                       scale, sqrt_half_nu](const Eigen::VectorXd& x, Eigen::MatrixXd* wx) {
+    lp.whitening_at = CachedWhitening([covariance, shapes, extra, unfiltered = Eigen::MatrixXd(pieces.Unfiltered()),
+                                       linear, scale, sqrt_half_nu](const Eigen::VectorXd& x, Eigen::MatrixXd* wx) {
       const Eigen::VectorXd held = x.cwiseMax(0.0);
       return GlsWhitening(*covariance, linear, scale, held, shapes * held + extra, unfiltered * held,
                           sqrt_half_nu, wx);
-    };
+    });
   }
   for (std::size_t q = 0; q < linear.size(); ++q) {
     CoefficientEstimate& ce = base.coefficients[linear[q]];
