@@ -109,29 +109,3 @@ bool IsValidAveragingFactor(std::int64_t m, const RecordShape& shape, std::strin
 }
 
 }  // namespace allanlab::sim
-
-namespace allanlab::sim {
-
-double DeterministicAvar(const std::function<double(std::int64_t)>& y, std::int64_t t_lo,
-                         std::int64_t t_hi, std::int64_t m, const RecordShape& shape) {
-  const AllanStarts starts = AllanDifferenceStarts(m, shape);
-  if (starts.count == 0) return 0.0;
-  const std::int64_t last = (starts.count - 1) * starts.stride;
-  // First and last admissible start inside [t_lo, t_hi] on the estimator's stride.
-  std::int64_t first = std::max<std::int64_t>(t_lo, 0);
-  first = (first + starts.stride - 1) / starts.stride * starts.stride;
-  const std::int64_t stop = std::min(t_hi, last);
-  if (first > stop) return 0.0;
-  // Prefix sums of y over [first, stop + 2m).
-  std::vector<long double> prefix(static_cast<std::size_t>(stop - first + 2 * m + 1), 0.0L);
-  for (std::int64_t k = first; k < stop + 2 * m; ++k) prefix[k - first + 1] = prefix[k - first] + y(k);
-  long double sum = 0.0L;
-  for (std::int64_t t = first; t <= stop; t += starts.stride) {
-    const std::int64_t i = t - first;
-    const long double d = (prefix[i + 2 * m] - 2.0L * prefix[i + m] + prefix[i]) / m;
-    sum += d * d;
-  }
-  return static_cast<double>(sum / (2.0L * starts.count));
-}
-
-}  // namespace allanlab::sim

@@ -66,9 +66,10 @@ AllanPlot AllanPanel(const DiagnosisSummary& s, const std::string& title, const 
     for (double v : avar) y.push_back(std::sqrt(v) * unit);
     return y;
   };
-  auto band = [&](const sim::SensorModel& model, const std::string& name, const std::string& color,
-                  PlotSeries* line) {
-    const OavarTheory t = ExactOavar(model, s.curve.m, s.num_samples);
+  // The diagnosis keeps each model's exact OAVAR; computed here only for a summary without it.
+  auto band = [&](const sim::SensorModel& model, const OavarTheory& kept, const std::string& name,
+                  const std::string& color, PlotSeries* line) {
+    const OavarTheory t = kept.mean.size() == s.curve.size() ? kept : ExactOavar(model, s.curve.m, s.num_samples);
     PlotSeries b{name + ": 95 % band", PlotStyle::kBand, s.curve.tau_s, adev(t.mean)};
     if (name == "baseline") b.style = PlotStyle::kBandOutline;  // the verdict's filled band shows under it
     for (std::size_t i = 0; i < t.mean.size(); ++i) {
@@ -83,9 +84,10 @@ AllanPlot AllanPanel(const DiagnosisSummary& s, const std::string& title, const 
     return b;
   };
   PlotSeries baseline_line, model_line;
-  plot.series.push_back(band(s.baseline_model, "baseline", kBaselineColor, &baseline_line));
+  plot.series.push_back(band(s.baseline_model, s.baseline_theory, "baseline", kBaselineColor, &baseline_line));
   if (s.verdict_candidate >= 0) {
-    plot.series.push_back(band(s.candidates[s.verdict_candidate].model, ModelName(s), kModelColor, &model_line));
+    const CandidateResult& verdict = s.candidates[s.verdict_candidate];
+    plot.series.push_back(band(verdict.model, verdict.theory, ModelName(s), kModelColor, &model_line));
     model_line.style = PlotStyle::kLine;
   }
   PlotSeries record{"record", PlotStyle::kPoints, s.curve.tau_s, adev(s.curve.avar)};

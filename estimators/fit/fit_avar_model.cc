@@ -14,6 +14,7 @@
 #include "estimators/fit/avar_residuals.h"
 #include "estimators/fit/ceres_solver_options.h"
 #include "estimators/fit/linear_profile.h"
+#include "estimators/fit/whitening_cache.h"
 #include "sim/sensor_model.h"
 
 namespace allanlab::estimators {
@@ -575,14 +576,14 @@ bool FitFixedTerms(const FitOptions& options, const AvarCurve& curve, CurveCache
       linear->problem.target = Eigen::Map<const Eigen::VectorXd>(curve.avar.data(), static_cast<Eigen::Index>(taus));
       linear->problem.whitening = whitening;
       const AvarCovarianceModel* covariance = &cache->Covariance();
-      linear->problem.whitening_at = [covariance, asked = p.asked, scale = linear->scale](
-                                         const Eigen::VectorXd& x_scaled, Eigen::MatrixXd* w) {
+      linear->problem.whitening_at = CachedWhitening([covariance, asked = p.asked, scale = linear->scale](
+                                                         const Eigen::VectorXd& x_scaled, Eigen::MatrixXd* w) {
         std::array<double, kTerms> theta{};
         for (std::size_t j = 0; j < asked.size(); ++j) {
           theta[asked[j]] = std::max(x_scaled(static_cast<Eigen::Index>(j)), 0.0) * scale[j];
         }
         return Whitening(covariance->Covariance(theta), w);
-      };
+      });
     }
   }
   const Eigen::MatrixXd cov = (a.transpose() * a).completeOrthogonalDecomposition().pseudoInverse();

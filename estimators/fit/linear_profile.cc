@@ -9,8 +9,6 @@
 #include <limits>
 #include <vector>
 
-#include <boost/math/distributions/chi_squared.hpp>
-
 namespace allanlab::estimators {
 
 Eigen::VectorXd NonNegativeLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& y) {

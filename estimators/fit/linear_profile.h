@@ -44,7 +44,8 @@ struct LinearProblem {
   // Optional (GLS): the whitening W (W' W = Omega^-1) of the curve's covariance under the model
   // x, and the unwhitened design and target (a = W0 design, y = W0 target for the W0 the fit
   // held). When set, the profile tests each held value under the covariance of that value's
-  // model (see ProfileInterval) instead of W0's.
+  // model (see ProfileInterval) instead of W0's. The fits wrap it in CachedWhitening
+  // (whitening_cache.h): the score, the goodness of fit and the profile ask for the same x.
   std::function<bool(const Eigen::VectorXd& x, Eigen::MatrixXd* w)> whitening_at;
   Eigen::MatrixXd design;
   Eigen::VectorXd target;

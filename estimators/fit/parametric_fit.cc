@@ -17,6 +17,7 @@
 #include "estimators/fit/ceres_solver_options.h"
 #include "estimators/fit/linear_profile.h"
 #include "estimators/fit/model_avar_residuals.h"
+#include "estimators/fit/whitening_cache.h"
 #include "sim/band_limited_avar.h"
 
 namespace allanlab::estimators {
@@ -458,17 +459,18 @@ bool FitAvarModelWithTerms(const ParametricFitOptions& options, const AvarCurve&
 namespace {
 
 // The GLS whitening of the curve's covariance under the model x (scaled linear terms) with the
-// linear terms' shapes and the additive terms' AVAR fixed (linear_profile.h: whitening_at).
+// linear terms' shapes and the additive terms' AVAR fixed (linear_profile.h: whitening_at),
+// cached by the bits of x (whitening_cache.h).
 std::function<bool(const Eigen::VectorXd&, Eigen::MatrixXd*)> WhiteningAt(
     const std::shared_ptr<const AvarCovarianceModel>& covariance, const Eigen::MatrixXd& shapes,
     const Eigen::VectorXd& extra, const Eigen::MatrixXd& unfiltered, const std::vector<int>& linear,
     const std::vector<double>& scale, const Eigen::VectorXd& sqrt_half_nu) {
-  return [covariance, shapes, extra, unfiltered, linear, scale, sqrt_half_nu](const Eigen::VectorXd& x,
-                                                                              Eigen::MatrixXd* wx) {
+  return CachedWhitening([covariance, shapes, extra, unfiltered, linear, scale, sqrt_half_nu](const Eigen::VectorXd& x,
+                                                                                              Eigen::MatrixXd* wx) {
     const Eigen::VectorXd held = x.cwiseMax(0.0);
     return GlsWhitening(*covariance, linear, scale, held, shapes * held + extra, unfiltered * held, sqrt_half_nu,
                         wx);
-  };
+  });
 }
 
 // The linear problem at other cutoffs of a band-limit that is the fit's one parametric term

@@ -100,7 +100,8 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
                           ctx.curve.sample_clock.period_s() * static_cast<double>(ctx.curve.num_samples), why)) {
     return std::nullopt;
   }
-  c.after = Assess(ctx, c.model, false, 0, why);
+  c.theory = ExactOavar(c.model, ctx.layout.oavar_m, ctx.layout.num_samples);
+  c.after = Assess(ctx, c.model, false, 0, why, &c.theory);
   const int k = ParameterCount(effects);
   c.score = ExactChi2(s.before) - ExactChi2(c.after) - 2.0 * k;
   if (ctx.have_halves) {
@@ -109,7 +110,8 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
     if (HeldoutModel(ctx, effects, c.heldout_half, &c.heldout_model, &ignored)) {
       const HalfRecord& scored = ctx.halves[c.heldout_half];
       c.heldout_before = scored.against_other_baseline;
-      c.after.heldout = CurveMetrics(c.heldout_model, scored.curve);
+      c.heldout_theory = ExactOavar(c.heldout_model, scored.curve.m, scored.curve.num_samples);
+      c.after.heldout = CurveMetrics(c.heldout_theory, scored.curve);
       c.after.has_heldout = true;
     }
   }
@@ -253,7 +255,8 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     r.rate = rate.subspan(h * half, half);
     half_ok[h] = RecordCurve(r.rate, sample_clock, &r.curve, &half_why) && FitLinear(ctx.spec, r.curve, &r.baseline, nullptr);
     if (!half_ok[h]) continue;
-    r.edf = ExactOavar(ctx.spec.Model(r.baseline, sample_clock), r.curve.m, r.curve.num_samples).edf;
+    r.own_baseline_theory = ExactOavar(ctx.spec.Model(r.baseline, sample_clock), r.curve.m, r.curve.num_samples);
+    r.edf = r.own_baseline_theory.edf;
     r.layout = MakeViewLayout(sample_clock, static_cast<std::int64_t>(half), r.curve.m);
     r.have_views = ComputeViews(r.layout, r.rate, &r.observed, &half_why);
   }
@@ -265,19 +268,23 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     for (int h = 0; h < 2; ++h) {
       HalfRecord& r = ctx.halves[h];
       r.layout.rate_random_walk_bound = RandomWalkBound(ctx.spec, ctx.halves[1 - h].baseline);
-      r.other_baseline_theory =
-          ExactOavar(ctx.spec.Model(ctx.halves[1 - h].baseline, sample_clock), r.curve.m, r.curve.num_samples);
+      // Halves of one length share their taus: the other half's own theory is this one's.
+      const HalfRecord& other = ctx.halves[1 - h];
+      r.other_baseline_theory = other.curve.m == r.curve.m && other.curve.num_samples == r.curve.num_samples
+                                    ? other.own_baseline_theory
+                                    : ExactOavar(ctx.spec.Model(other.baseline, sample_clock), r.curve.m,
+                                                 r.curve.num_samples);
       r.against_other_baseline = CurveMetrics(r.other_baseline_theory, r.curve);
     }
   } else {
     s.notes.push_back("no held-out score: the halves are too short or their fit failed");
   }
   // The baseline's exact OAVAR: the EDFs every refit weighs the curve with, and its OAVAR view.
-  const OavarTheory baseline_theory = ExactOavar(s.baseline_model, ctx.curve.m, ctx.curve.num_samples);
-  ctx.curve_edf = baseline_theory.edf;
+  s.baseline_theory = ExactOavar(s.baseline_model, ctx.curve.m, ctx.curve.num_samples);
+  ctx.curve_edf = s.baseline_theory.edf;
   std::string note;
   ReportProgress(ctx, "views", 0, 0);
-  s.before = Assess(ctx, s.baseline_model, true, options.seed, &note, &baseline_theory);
+  s.before = Assess(ctx, s.baseline_model, true, options.seed, &note, &s.baseline_theory);
   if (!note.empty()) s.notes.push_back("envelope: " + note);
   if (ctx.have_halves) {
     s.before.heldout = ctx.halves[1].against_other_baseline;
@@ -321,10 +328,10 @@ bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& 
   ctx.layout.sample_clock = curve.sample_clock;
   ctx.layout.num_samples = curve.num_samples;
   ctx.layout.oavar_m = curve.m;
-  const OavarTheory baseline_theory = ExactOavar(s.baseline_model, curve.m, curve.num_samples);
-  ctx.curve_edf = baseline_theory.edf;
+  s.baseline_theory = ExactOavar(s.baseline_model, curve.m, curve.num_samples);
+  ctx.curve_edf = s.baseline_theory.edf;
   std::string note;
-  s.before = Assess(ctx, s.baseline_model, false, options.seed, &note, &baseline_theory);
+  s.before = Assess(ctx, s.baseline_model, false, options.seed, &note, &s.baseline_theory);
   s.notes.push_back("curve mode: OAVAR view only (exact distribution), no held-out score");
   Finish(ctx, &s);
   s.ok = true;

@@ -44,6 +44,7 @@
 #include "estimators/fit/avar_curve.h"
 #include "estimators/fit/fit_avar_model.h"
 #include "experiments/diagnosis/effect.h"
+#include "experiments/diagnosis/envelope.h"
 #include "experiments/diagnosis/gap.h"
 #include "sim/sensor_model.h"
 
@@ -91,6 +92,9 @@ struct CandidateResult {
   std::vector<EffectInstance> effects;  // one, or two for a pair
   estimators::FitSummary fit;           // the linear terms refitted with the effect
   sim::SensorModel model;
+  // The exact OAVAR of `model` on the record and of `heldout_model` on the scored half, kept for
+  // the views, the held-out score and the plot that read them again (each costs O(N) per tau).
+  OavarTheory theory, heldout_theory;
   ModelGap after;
   // Held-out: the candidate fitted on one half and scored on the other (after.heldout), against
   // the other half's baseline scored the same way (heldout_before). The scored half is the one
@@ -155,6 +159,7 @@ struct DiagnosisSummary {
   estimators::AvarCurve curve;
   estimators::FitSummary baseline;
   sim::SensorModel baseline_model;
+  OavarTheory baseline_theory;  // the baseline's exact OAVAR on the record (as theory above)
   ModelGap before;
   int total_points = 0;
   double threshold = 0.0;  // |z| level of a gap (Bonferroni over total_points)

@@ -24,6 +24,7 @@ struct HalfRecord {
   std::span<const double> rate;
   estimators::FitSummary baseline;  // the asked terms fitted on this half alone
   std::vector<double> edf;          // exact EDFs of `curve` under `baseline`
+  OavarTheory own_baseline_theory;  // `baseline`'s exact OAVAR on `curve` (edf above is its edf)
   ViewLayout layout;
   ViewValues observed;
   bool have_views = false;

@@ -107,7 +107,8 @@ void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std:
   c->heldout_before = MetricsOf(before.residuals, before.gap_views);
   c->after.heldout = MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, c->heldout_model, true,
                                                ctx.options->trials, seed, &ignored, ViewSetOf(before.gap_views),
-                                               &flicker),
+                                               &flicker,
+                                               c->heldout_theory.mean.empty() ? nullptr : &c->heldout_theory),
                                before.gap_views);
   c->heldout_in_gap_views = true;
 }

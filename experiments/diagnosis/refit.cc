@@ -203,6 +203,8 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     po.method = estimators::FitMethod::kGls;
     po.terms = term_set;
     po.covariance = spec.Covariance(fit_curve);
+    // Only the kept fit's profile ranges are read: they are formed once it is chosen (below).
+    po.profile_ranges = false;
     for (std::size_t i = 0; i < terms.size(); ++i) po.extra.push_back(std::make_shared<SeededTerm>(terms[i], start[i]));
     // A band-limit candidate replaces the held one (AddBandwidth): not both in series.
     if (auto band = spec.HeldBandLimitTerm(); band && !replaces_band_limit) po.extra.push_back(std::move(band));
@@ -224,6 +226,14 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     }
   }
   if (!any) return false;
+  // The kept fit again with its profile ranges: the same options give the same fit (ranges do not
+  // move it), and one more fit costs less than the ranges of every fit tried (up to six: 40 % of
+  // their time went to ranges nobody read).
+  best_options.profile_ranges = true;
+  if (!estimators::FitAvarModelWithTerms(best_options, fit_curve, &best)) {
+    *why = best.base.message;
+    return false;
+  }
   std::vector<EffectInstance> fitted = *effects;
   for (std::size_t i = 0; i < fitted.size(); ++i) {
     const auto& pe = best.extra[i];

@@ -65,7 +65,7 @@ void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* 
       return static_cast<int>(a.view) < static_cast<int>(b.view);
     });
   } else {
-    full = Assess(ctx, c->model, true, ctx.options->seed + salt, &note);
+    full = Assess(ctx, c->model, true, ctx.options->seed + salt, &note, c->theory.mean.empty() ? nullptr : &c->theory);
   }
   full.heldout = c->after.heldout;
   full.has_heldout = c->after.has_heldout;
