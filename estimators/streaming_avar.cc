@@ -111,6 +111,7 @@ StreamingAvar::StreamingAvar(StreamingAvarOptions options) : options_(options) {
   lo_.reserve(reserved);
   hi_.push_back(0.0);  // S_0
   lo_.push_back(0.0);
+  short_nonoverlap_ = std::min<std::int64_t>(largest, 2);
   if (PieceSharing::Useful()) sharing_ = std::make_shared<PieceSharing>();
 }
 
@@ -223,7 +224,8 @@ void StreamingAvar::FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to
   const double block = BlockSquares()(hi, lo, first, last, m);
   CompensatedAdd(&sums.o_sum, &sums.o_comp, block);
   sums.o_terms += to - begin + 1;
-  for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
+  // m = 1 and 2 have theirs summed as the prefix sums are made (Add).
+  for (std::int64_t t = m <= short_nonoverlap_ ? to + 1 : (begin + m - 1) / m * m; t <= to; t += m) {
     const std::int64_t a = t - first_;
     const double d =
         SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
@@ -297,11 +299,23 @@ void StreamingAvar::Add(std::span<const double> y) {
   // in registers (a member would be stored and loaded again on every sample).
   double hi = prefix_.hi, lo = prefix_.lo;
   const double reference = reference_;
+  // The non-overlapping sums of m = 1 and 2 are summed here, term by term in the order Fold
+  // would sum them: their own chains of additions run beside the prefix sum's, which leaves the
+  // core idle most of each sample, instead of in a loop of their own.
+  const bool has_m1 = short_nonoverlap_ >= 1, has_m2 = short_nonoverlap_ >= 2;
+  Sums s1 = has_m1 ? exact_[0].sums : Sums{};
+  Sums s2 = has_m2 ? exact_[1].sums : Sums{};
   std::size_t i = 0;
   while (i < y.size()) {
-    const std::size_t run = std::min(capacity_ - hi_.size(), y.size() - i);
-    for (std::size_t k = i; k < i + run; ++k) {
-      const double x = y[k] - reference;
+    const std::size_t start = hi_.size();
+    const std::size_t run = std::min(capacity_ - start, y.size() - i);
+    hi_.resize(start + run);
+    lo_.resize(start + run);
+    double* const h = hi_.data();
+    double* const l = lo_.data();
+    std::int64_t n = n_;  // index of the prefix sum written last
+    for (std::size_t k = 0; k < run; ++k) {
+      const double x = y[i + k] - reference;
       // (hi, lo) += x in double-double: the exact error of hi + x, then renormalise. When
       // |hi| >= |x|, as for nearly every sample once the sum has grown, Dekker's FastTwoSum
       // gives that error in two operations; Knuth's TwoSum, for the rest, in five. Both give it
@@ -317,13 +331,31 @@ void StreamingAvar::Add(std::span<const double> y) {
       const double sum_lo = lo + err;
       hi = t + sum_lo;
       lo = sum_lo - (hi - t);
-      hi_.push_back(hi);
-      lo_.push_back(lo);
+      const std::size_t j = start + k;
+      h[j] = hi;
+      l[j] = lo;
+      ++n;
+      if (has_m1 && n >= 2) {
+        const double d = SecondDifference(hi, lo, h[j - 1], l[j - 1], h[j - 2], l[j - 2]);
+        CompensatedAdd(&s1.n_sum, &s1.n_comp, d * d);
+        ++s1.n_terms;
+      }
+      if (has_m2 && (n & 1) == 0 && n >= 4) {
+        const double d = SecondDifference(hi, lo, h[j - 2], l[j - 2], h[j - 4], l[j - 4]);
+        CompensatedAdd(&s2.n_sum, &s2.n_comp, d * d);
+        ++s2.n_terms;
+      }
     }
     i += run;
     n_ += static_cast<std::int64_t>(run);
     prefix_ = {hi, lo};
-    if (hi_.size() == capacity_) Fold();
+    if (has_m1) exact_[0].sums = s1;
+    if (has_m2) exact_[1].sums = s2;
+    if (hi_.size() == capacity_) {
+      Fold();
+      if (has_m1) s1 = exact_[0].sums;
+      if (has_m2) s2 = exact_[1].sums;
+    }
   }
 }
 

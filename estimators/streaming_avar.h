@@ -131,6 +131,8 @@ class StreamingAvar {
   std::size_t kept_ = 0;      // 2 exact_overlap_max_m + 1: S values a block needs before its own
   std::size_t capacity_ = 0;  // kept_ and a block
   std::vector<ExactOctave> exact_;
+  // Exact octaves m <= this have their non-overlapping sums made in Add, not in Fold.
+  std::int64_t short_nonoverlap_ = 0;
   std::vector<Octave> octaves_;  // strided, ascending m
   // Fold's second thread, when one is useful; a copy of the state (Points) shares it.
   std::shared_ptr<PieceSharing> sharing_;

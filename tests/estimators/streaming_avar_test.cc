@@ -167,5 +167,23 @@ TEST(StreamingAvarTest, ThreadsAndSpansNeverChangeTheBits) {
   }
 }
 
+// The non-overlapping sums are made in different places depending on m and the exact limit (as
+// the prefix sums are made, in a block's fold, or from a strided octave's ring), always term by
+// term in the same order: every limit gives the same bits.
+TEST(StreamingAvarTest, NonOverlappingBitsDoNotDependOnTheExactLimit) {
+  const std::vector<double> y = Record(70001, 13);
+  const std::vector<StreamingAvarPoint> reference = Stream(y, 64).Points();
+  for (std::int64_t limit : {1, 2, 4, 8, 1024}) {
+    const std::vector<StreamingAvarPoint> other = Stream(y, limit).Points();
+    ASSERT_EQ(other.size(), reference.size()) << limit;
+    for (std::size_t k = 0; k < other.size(); ++k) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(other[k].nonoverlapping),
+                std::bit_cast<std::uint64_t>(reference[k].nonoverlapping))
+          << "m = " << other[k].m << ", limit " << limit;
+      EXPECT_EQ(other[k].nonoverlapping_terms, reference[k].nonoverlapping_terms);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace allanlab::estimators
