@@ -188,5 +188,68 @@ TEST(StreamingAvarTest, NonOverlappingBitsDoNotDependOnTheExactLimit) {
   }
 }
 
+// The exact octaves' overlapping AVAR, bit for bit, is the documented block-by-block sum: per
+// block, eight partial sums of D^2 (lane k over every eighth start from the block's first, the
+// last count mod 8 starts into lane 0) added in a fixed order, then one compensated addition.
+// However the folds share loads between octaves or threads, these are the bits. Records of two
+// or three blocks (with seven exact octaves, folded three pairs and one alone once past the
+// first block): over many blocks the compensated total would absorb a block's last bit.
+void ExpectBlockByBlockSums(std::int64_t samples, std::uint64_t seed) {
+  const std::vector<double> y = Record(samples, seed);
+  const std::int64_t limit = 64;  // kept 2 * 64 + 1 prefix sums, blocks of 2048
+  const std::vector<StreamingAvarPoint> points = Stream(y, limit).Points();
+  // The double-double prefix sums of y - y[0].
+  std::vector<double> hi{0.0}, lo{0.0};
+  for (double v : y) {
+    const double x = v - y.front(), h = hi.back(), l = lo.back();
+    const double t = h + x, bp = t - h;
+    const double sum_lo = l + ((h - (t - bp)) + (x - bp));
+    hi.push_back(t + sum_lo);
+    lo.push_back(sum_lo - (hi.back() - t));
+  }
+  const auto n = static_cast<std::int64_t>(y.size());
+  std::vector<std::pair<std::int64_t, std::int64_t>> blocks{{1, 2 * limit + 2048}};
+  while (blocks.back().second < n) {
+    const std::int64_t from = blocks.back().second + 1;
+    blocks.push_back({from, std::min(from + 2047, n)});
+  }
+  std::size_t checked = 0;
+  for (const StreamingAvarPoint& p : points) {
+    if (p.m > limit) break;
+    const std::int64_t m = p.m;
+    double sum = 0, comp = 0;
+    for (const auto& [from, to] : blocks) {
+      if (2 * m > to) continue;
+      const std::int64_t begin = std::max(from, 2 * m);
+      double lanes[8] = {};
+      const std::int64_t groups_end = begin + (to - begin + 1) / 8 * 8;
+      for (std::int64_t a = begin; a <= to; ++a) {
+        const auto i = static_cast<std::size_t>(a), b = i - m, c = i - 2 * m;
+        const double d = ((hi[i] - hi[b]) - (hi[b] - hi[c])) + ((lo[i] - lo[b]) - (lo[b] - lo[c]));
+        lanes[a < groups_end ? (a - begin) % 8 : 0] += d * d;
+      }
+      const double v = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
+                       ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+      const double t = sum + v;
+      comp += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
+      sum = t;
+    }
+    const double expected =
+        (sum + comp) / (2.0 * static_cast<double>(m) * static_cast<double>(m) *
+                        static_cast<double>(n - 2 * m + 1));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(p.overlapping), std::bit_cast<std::uint64_t>(expected))
+        << "m = " << m << ": " << p.overlapping << " against " << expected;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 7u);
+}
+
+TEST(StreamingAvarTest, ExactOctavesAreTheBlockByBlockSums) {
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    ExpectBlockByBlockSums(2 * 64 + 1 + 2 * 2048, seed);
+    ExpectBlockByBlockSums(2 * 64 + 2 * 2048 + 1000 + static_cast<std::int64_t>(seed), seed);
+  }
+}
+
 }  // namespace
 }  // namespace allanlab::estimators
