@@ -361,31 +361,42 @@ void StreamingAvar::Fold(const std::function<void()>& extra) {
   }
 }
 
-void StreamingAvar::Add(double y) { Add(std::span<const double>(&y, 1)); }
+// Every sample is gathered first, and its prefix sum made with the others gathered (Extend runs
+// over many samples, whichever Add brought them): once there are as many as the buffer has room
+// for, or, when the buffer is full, a whole block (then folded while they are extended).
+void StreamingAvar::Add(double y) {
+  if (n_ == 0 && pending_.empty()) reference_ = y;
+  pending_.push_back(y);
+  if (pending_.size() == Room()) TakePending();
+}
 
 void StreamingAvar::Add(std::span<const double> y) {
   if (y.empty()) return;
   if (n_ == 0 && pending_.empty()) reference_ = y.front();
   while (!y.empty()) {
-    if (hi_.size() < capacity_) {
-      // Room in the buffer (the record's first block, or its last): the prefix sums go straight in.
-      const std::size_t start = hi_.size();
-      const std::size_t run = std::min(capacity_ - start, y.size());
-      hi_.resize(start + run);
-      lo_.resize(start + run);
-      Extend(y.first(run), hi_.data(), lo_.data(), start, n_);
-      n_ += static_cast<std::int64_t>(run);
-      y = y.subspan(run);
-      continue;
-    }
-    // The buffer is full: gather the next block, then fold this one while the next one's prefix
-    // sums are made (FoldWhileExtending).
-    const std::size_t block = capacity_ - kept_;
-    const std::size_t take = std::min(block - pending_.size(), y.size());
+    const std::size_t take = std::min(Room() - pending_.size(), y.size());
     pending_.insert(pending_.end(), y.begin(), y.begin() + static_cast<std::ptrdiff_t>(take));
     y = y.subspan(take);
-    if (pending_.size() == block) FoldWhileExtending();
+    if (pending_.size() == Room()) TakePending();
   }
+}
+
+std::size_t StreamingAvar::Room() const {
+  return hi_.size() < capacity_ ? capacity_ - hi_.size() : capacity_ - kept_;
+}
+
+void StreamingAvar::TakePending() {
+  if (hi_.size() == capacity_) {
+    FoldWhileExtending();
+    return;
+  }
+  // Room in the buffer (the record's first block, or its last): the prefix sums go straight in.
+  const std::size_t start = hi_.size();
+  hi_.resize(start + pending_.size());
+  lo_.resize(start + pending_.size());
+  Extend(pending_, hi_.data(), lo_.data(), start, n_);
+  n_ += static_cast<std::int64_t>(pending_.size());
+  pending_.clear();
 }
 
 void StreamingAvar::Extend(std::span<const double> y, double* h, double* l, std::size_t start,
@@ -456,10 +467,9 @@ void StreamingAvar::FoldWhileExtending() {
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
   if (folded_ < n_ || !pending_.empty()) {
     StreamingAvar folded = *this;
-    const std::vector<double> pending = std::move(folded.pending_);
-    folded.pending_.clear();
     folded.Fold();
-    folded.Add(pending);  // fewer than a block: into the buffer, made room for by the fold
+    // Fewer samples gathered than Room() had before the fold, which the fold did not reduce.
+    if (!folded.pending_.empty()) folded.TakePending();
     folded.Fold();
     return folded.Points();
   }

@@ -125,6 +125,11 @@ class StreamingAvar {
   // the fold's pieces, on whichever thread takes it, makes the gathered block's prefix sums into
   // the next buffer, which then takes the buffer's place. The sums are those of Fold then Add.
   void FoldWhileExtending();
+  // How many samples pending_ gathers before TakePending: the buffer's room, or when it is full a
+  // block.
+  std::size_t Room() const;
+  // Extends the buffer by pending_ (room permitting), or FoldWhileExtending when it is full.
+  void TakePending();
   static constexpr std::int64_t kSharedFoldValues = 4096;
   // Fold's pieces: one exact octave, and the strided octaves (from their rings, in order).
   void FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const;
