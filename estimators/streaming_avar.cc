@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "common/piece_sharing.h"
@@ -25,57 +26,90 @@ inline double SecondDifference(double a_hi, double a_lo, double b_hi, double b_l
   return ((a_hi - b_hi) - (b_hi - c_hi)) + ((a_lo - b_lo) - (b_lo - c_lo));
 }
 
-// Sum of D^2 over the block indices a = first .. last, D at lag m from S_a, S_{a-m}, S_{a-2m}.
-// Eight partial sums, each over every eighth index, added in a fixed order: every version below
-// gives the same bits, whatever vector width the compiler uses for the eight lanes.
-__attribute__((always_inline)) inline double SquaresBody(const double* hi, const double* lo,
-                                                         std::int64_t first, std::int64_t last,
-                                                         std::int64_t m) {
-  double lanes[8] = {};
-  std::int64_t i = first;
-  for (; i + 8 <= last + 1; i += 8) {
+// D at lag m from S_a, S_{a-m}, S_{a-2m} in the block.
+__attribute__((always_inline)) inline double LagDifference(const double* hi, const double* lo,
+                                                           std::int64_t a, std::int64_t m) {
+  return SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
+}
+
+// Adds D^2 at lags m and 2m (ms[0] and ms[1], when pair; lag m alone otherwise) for the block
+// indices a = first .. end - 1 ((end - first) a multiple of 8) to eight partial sums per lag,
+// lanes[k] taking every eighth index from first + k. A block's squares at one lag are these
+// groups, then its last (count mod 8) terms added to lanes[0], then the lanes added in a fixed
+// order (LaneTotal): every version below gives the same bits, whatever vector width the
+// compiler uses for the eight lanes. The two lags share S_a and S_{a-2m}: one pass loads four
+// values per index for two terms instead of six for each, and loads are what bounds this loop.
+template <bool kPair>
+__attribute__((always_inline)) inline void GroupsBody(const double* hi, const double* lo,
+                                                      std::int64_t first, std::int64_t end,
+                                                      std::int64_t m, double* lanes_m,
+                                                      double* lanes_2m) {
+  double l1[8], l2[8];
+  for (int k = 0; k < 8; ++k) {
+    l1[k] = lanes_m[k];
+    l2[k] = kPair ? lanes_2m[k] : 0.0;
+  }
+  for (std::int64_t i = first; i + 8 <= end; i += 8) {
     for (int k = 0; k < 8; ++k) {
       const std::int64_t a = i + k;
-      const double d =
-          SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
-      lanes[k] += d * d;
+      const double a_hi = hi[a], a_lo = lo[a];
+      const double b_hi = hi[a - m], b_lo = lo[a - m];
+      const double c_hi = hi[a - 2 * m], c_lo = lo[a - 2 * m];
+      const double d = SecondDifference(a_hi, a_lo, b_hi, b_lo, c_hi, c_lo);
+      l1[k] += d * d;
+      if constexpr (kPair) {
+        const double e = SecondDifference(a_hi, a_lo, c_hi, c_lo, hi[a - 4 * m], lo[a - 4 * m]);
+        l2[k] += e * e;
+      }
     }
   }
-  for (; i <= last; ++i) {
-    const double d =
-        SecondDifference(hi[i], lo[i], hi[i - m], lo[i - m], hi[i - 2 * m], lo[i - 2 * m]);
+  for (int k = 0; k < 8; ++k) {
+    lanes_m[k] = l1[k];
+    if (kPair) lanes_2m[k] = l2[k];
+  }
+}
+
+// The last (count mod 8) terms, first .. last, into lanes[0]; then the total of the lanes.
+double LaneTotal(const double* hi, const double* lo, std::int64_t first, std::int64_t last,
+                 std::int64_t m, double* lanes) {
+  for (std::int64_t i = first; i <= last; ++i) {
+    const double d = LagDifference(hi, lo, i, m);
     lanes[0] += d * d;
   }
   return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
          ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
 }
 
-double PortableSquares(const double* hi, const double* lo, std::int64_t first, std::int64_t last,
-                       std::int64_t m) {
-  return SquaresBody(hi, lo, first, last, m);
+using GroupsFn = void (*)(const double*, const double*, std::int64_t, std::int64_t, std::int64_t,
+                          double*, double*);
+
+template <bool kPair>
+void PortableGroups(const double* hi, const double* lo, std::int64_t first, std::int64_t end,
+                    std::int64_t m, double* lanes_m, double* lanes_2m) {
+  GroupsBody<kPair>(hi, lo, first, end, m, lanes_m, lanes_2m);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
 // No FMA: a fused d * d + lane would round differently from the portable version.
-__attribute__((target("avx2"))) double Avx2Squares(const double* hi, const double* lo,
-                                                   std::int64_t first, std::int64_t last,
-                                                   std::int64_t m) {
-  return SquaresBody(hi, lo, first, last, m);
+template <bool kPair>
+__attribute__((target("avx2"))) void Avx2Groups(const double* hi, const double* lo,
+                                                std::int64_t first, std::int64_t end,
+                                                std::int64_t m, double* lanes_m,
+                                                double* lanes_2m) {
+  GroupsBody<kPair>(hi, lo, first, end, m, lanes_m, lanes_2m);
 }
 #endif
 
-using SquaresFn = double (*)(const double*, const double*, std::int64_t, std::int64_t, std::int64_t);
-
-SquaresFn BlockSquares() {
+// The squares of one lag (pair false) or of the lags m and 2m (pair true).
+GroupsFn BlockGroups(bool pair) {
 #if defined(__x86_64__) && defined(__GNUC__)
-  static const SquaresFn best = [] {
+  static const bool avx2 = [] {
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") ? Avx2Squares : PortableSquares;
+    return __builtin_cpu_supports("avx2") != 0;
   }();
-  return best;
-#else
-  return PortableSquares;
+  if (avx2) return pair ? Avx2Groups<true> : Avx2Groups<false>;
 #endif
+  return pair ? PortableGroups<true> : PortableGroups<false>;
 }
 
 }  // namespace
@@ -111,6 +145,7 @@ StreamingAvar::StreamingAvar(StreamingAvarOptions options) : options_(options) {
   lo_.reserve(reserved);
   hi_.push_back(0.0);  // S_0
   lo_.push_back(0.0);
+  short_nonoverlap_ = std::min<std::int64_t>(largest, 2);
   if (PieceSharing::Useful()) sharing_ = std::make_shared<PieceSharing>();
 }
 
@@ -210,20 +245,41 @@ void StreamingAvar::StartNextOctave() {
 }
 
 void StreamingAvar::FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const {
-  const double* hi = hi_.data();
-  const double* lo = lo_.data();
   const std::int64_t m = o->m;
   const std::int64_t begin = std::max(from, 2 * m);
   // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
   const std::int64_t first = begin - first_;
   const std::int64_t last = to - first_;
+  const std::int64_t end = first + (last - first + 1) / 8 * 8;
+  double lanes[8] = {};
+  BlockGroups(false)(hi_.data(), lo_.data(), first, end, m, lanes, nullptr);
+  AddBlockTerms(o, begin, to, LaneTotal(hi_.data(), lo_.data(), end, last, m, lanes));
+}
+
+void StreamingAvar::FoldExactPair(ExactOctave* o, ExactOctave* twice, std::int64_t from,
+                                  std::int64_t to) const {
+  const std::int64_t m = o->m;
+  const std::int64_t first = from - first_;
+  const std::int64_t last = to - first_;
+  const std::int64_t end = first + (last - first + 1) / 8 * 8;
+  double lanes_m[8] = {}, lanes_2m[8] = {};
+  BlockGroups(true)(hi_.data(), lo_.data(), first, end, m, lanes_m, lanes_2m);
+  AddBlockTerms(o, from, to, LaneTotal(hi_.data(), lo_.data(), end, last, m, lanes_m));
+  AddBlockTerms(twice, from, to, LaneTotal(hi_.data(), lo_.data(), end, last, 2 * m, lanes_2m));
+}
+
+void StreamingAvar::AddBlockTerms(ExactOctave* o, std::int64_t begin, std::int64_t to,
+                                  double squares) const {
+  const double* hi = hi_.data();
+  const double* lo = lo_.data();
+  const std::int64_t m = o->m;
   // The sums in a local: another thread may be writing the next octave's, beside them in memory.
   Sums sums = o->sums;
-  // Partial sums over the block (vectorised), then one compensated addition per block.
-  const double block = BlockSquares()(hi, lo, first, last, m);
-  CompensatedAdd(&sums.o_sum, &sums.o_comp, block);
+  // The block's partial sums (vectorised), one compensated addition per block.
+  CompensatedAdd(&sums.o_sum, &sums.o_comp, squares);
   sums.o_terms += to - begin + 1;
-  for (std::int64_t t = (begin + m - 1) / m * m; t <= to; t += m) {
+  // m = 1 and 2 have theirs summed as the prefix sums are made (Extend).
+  for (std::int64_t t = m <= short_nonoverlap_ ? to + 1 : (begin + m - 1) / m * m; t <= to; t += m) {
     const std::int64_t a = t - first_;
     const double d =
         SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
@@ -251,7 +307,7 @@ void StreamingAvar::FoldStrided(std::int64_t from, std::int64_t to) {
   }
 }
 
-void StreamingAvar::Fold() {
+void StreamingAvar::Fold(const std::function<void()>& extra) {
   const std::int64_t from = folded_ + 1;
   const std::int64_t to = n_;
   if (from > to) return;
@@ -260,21 +316,38 @@ void StreamingAvar::Fold() {
   // block and write nothing else, so two threads may share them.
   std::size_t active = 0;
   while (active < exact_.size() && 2 * exact_[active].m <= to) ++active;
+  // The octaves whose first term is in an earlier block (2m < from) go in pairs, m and 2m
+  // (FoldExactPair: one piece each pair); the rest one piece each.
+  std::size_t settled = 0;
+  while (settled < active && 2 * exact_[settled].m < from) ++settled;
+  const std::size_t pairs = settled / 2;
+  // The extra piece, if any, is piece 0: the longest, so it is the first taken.
+  const int first_octave = extra ? 1 : 0;
   const auto fold_piece = [&](int piece) {
-    const auto p = static_cast<std::size_t>(piece);
+    if (piece < first_octave) {
+      extra();
+      return;
+    }
+    const auto q = static_cast<std::size_t>(piece - first_octave);
+    if (q < pairs) {
+      FoldExactPair(&exact_[2 * q], &exact_[2 * q + 1], from, to);
+      return;
+    }
+    const std::size_t p = q + pairs;  // the octaves after the pairs'
     if (p < active) {
       FoldExact(&exact_[p], from, to);
     } else {
       FoldStrided(from, to);
     }
   };
-  const int pieces = static_cast<int>(active) + 1;
+  const int pieces = first_octave + static_cast<int>(active - pairs) + 1;
   if (sharing_ && to - from + 1 >= kSharedFoldValues) {
     sharing_->Run(pieces, fold_piece);
   } else {
     for (int p = 0; p < pieces; ++p) fold_piece(p);
   }
   folded_ = to;
+  if (extra) return;  // FoldWhileExtending moves to the next buffer
   // Keep S_{to - 2 largest} .. S_to for the next block's lags.
   const std::int64_t held = to - first_ + 1;
   const auto keep = static_cast<std::int64_t>(kept_);
@@ -288,48 +361,115 @@ void StreamingAvar::Fold() {
   }
 }
 
-void StreamingAvar::Add(double y) { Add(std::span<const double>(&y, 1)); }
+// Every sample is gathered first, and its prefix sum made with the others gathered (Extend runs
+// over many samples, whichever Add brought them): once there are as many as the buffer has room
+// for, or, when the buffer is full, a whole block (then folded while they are extended).
+void StreamingAvar::Add(double y) {
+  if (n_ == 0 && pending_.empty()) reference_ = y;
+  pending_.push_back(y);
+  if (pending_.size() == Room()) TakePending();
+}
 
 void StreamingAvar::Add(std::span<const double> y) {
   if (y.empty()) return;
-  if (n_ == 0) reference_ = y.front();
+  if (n_ == 0 && pending_.empty()) reference_ = y.front();
+  while (!y.empty()) {
+    const std::size_t take = std::min(Room() - pending_.size(), y.size());
+    pending_.insert(pending_.end(), y.begin(), y.begin() + static_cast<std::ptrdiff_t>(take));
+    y = y.subspan(take);
+    if (pending_.size() == Room()) TakePending();
+  }
+}
+
+std::size_t StreamingAvar::Room() const {
+  return hi_.size() < capacity_ ? capacity_ - hi_.size() : capacity_ - kept_;
+}
+
+void StreamingAvar::TakePending() {
+  if (hi_.size() == capacity_) {
+    FoldWhileExtending();
+    return;
+  }
+  // Room in the buffer (the record's first block, or its last): the prefix sums go straight in.
+  const std::size_t start = hi_.size();
+  hi_.resize(start + pending_.size());
+  lo_.resize(start + pending_.size());
+  Extend(pending_, hi_.data(), lo_.data(), start, n_);
+  n_ += static_cast<std::int64_t>(pending_.size());
+  pending_.clear();
+}
+
+void StreamingAvar::Extend(std::span<const double> y, double* h, double* l, std::size_t start,
+                           std::int64_t n) {
   // The prefix sum in locals, so that the chain of dependent additions each sample waits on stays
   // in registers (a member would be stored and loaded again on every sample).
   double hi = prefix_.hi, lo = prefix_.lo;
   const double reference = reference_;
-  std::size_t i = 0;
-  while (i < y.size()) {
-    const std::size_t run = std::min(capacity_ - hi_.size(), y.size() - i);
-    for (std::size_t k = i; k < i + run; ++k) {
-      const double x = y[k] - reference;
-      // (hi, lo) += x in double-double: the exact error of hi + x, then renormalise. When
-      // |hi| >= |x|, as for nearly every sample once the sum has grown, Dekker's FastTwoSum
-      // gives that error in two operations; Knuth's TwoSum, for the rest, in five. Both give it
-      // exactly, so the same bits: the branch only shortens the chain.
-      const double t = hi + x;
-      double err;
-      if (__builtin_expect(std::abs(hi) >= std::abs(x), 1)) {
-        err = x - (t - hi);
-      } else {
-        const double bp = t - hi;
-        err = (hi - (t - bp)) + (x - bp);
-      }
-      const double sum_lo = lo + err;
-      hi = t + sum_lo;
-      lo = sum_lo - (hi - t);
-      hi_.push_back(hi);
-      lo_.push_back(lo);
+  // The non-overlapping sums of m = 1 and 2 are summed here, term by term in the order Fold
+  // would sum them: their own chains of additions run beside the prefix sum's, which leaves the
+  // core idle most of each sample, instead of in a loop of their own.
+  const bool has_m1 = short_nonoverlap_ >= 1, has_m2 = short_nonoverlap_ >= 2;
+  Sums s1 = short_sums_[0], s2 = short_sums_[1];
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double x = y[k] - reference;
+    // (hi, lo) += x in double-double: the exact error of hi + x, then renormalise. When
+    // |hi| >= |x|, as for nearly every sample once the sum has grown, Dekker's FastTwoSum
+    // gives that error in two operations; Knuth's TwoSum, for the rest, in five. Both give it
+    // exactly, so the same bits: the branch only shortens the chain.
+    const double t = hi + x;
+    double err;
+    if (__builtin_expect(std::abs(hi) >= std::abs(x), 1)) {
+      err = x - (t - hi);
+    } else {
+      const double bp = t - hi;
+      err = (hi - (t - bp)) + (x - bp);
     }
-    i += run;
-    n_ += static_cast<std::int64_t>(run);
-    prefix_ = {hi, lo};
-    if (hi_.size() == capacity_) Fold();
+    const double sum_lo = lo + err;
+    hi = t + sum_lo;
+    lo = sum_lo - (hi - t);
+    const std::size_t j = start + k;
+    h[j] = hi;
+    l[j] = lo;
+    ++n;  // index of the prefix sum just written
+    if (has_m1 && n >= 2) {
+      const double d = SecondDifference(hi, lo, h[j - 1], l[j - 1], h[j - 2], l[j - 2]);
+      CompensatedAdd(&s1.n_sum, &s1.n_comp, d * d);
+      ++s1.n_terms;
+    }
+    if (has_m2 && (n & 1) == 0 && n >= 4) {
+      const double d = SecondDifference(hi, lo, h[j - 2], l[j - 2], h[j - 4], l[j - 4]);
+      CompensatedAdd(&s2.n_sum, &s2.n_comp, d * d);
+      ++s2.n_terms;
+    }
   }
+  prefix_ = {hi, lo};
+  short_sums_[0] = s1;
+  short_sums_[1] = s2;
+}
+
+void StreamingAvar::FoldWhileExtending() {
+  // The next buffer starts with this one's last kept_ prefix sums: the lags its block needs.
+  next_hi_.resize(capacity_);
+  next_lo_.resize(capacity_);
+  std::copy(hi_.end() - static_cast<std::ptrdiff_t>(kept_), hi_.end(), next_hi_.begin());
+  std::copy(lo_.end() - static_cast<std::ptrdiff_t>(kept_), lo_.end(), next_lo_.begin());
+  const std::int64_t n = n_;
+  // One more piece for Fold: it reads only the gathered samples and writes only the next buffer,
+  // the prefix sum and the short non-overlapping sums, which no octave's piece touches.
+  Fold([&] { Extend(pending_, next_hi_.data(), next_lo_.data(), kept_, n); });
+  first_ = n_ + 1 - static_cast<std::int64_t>(kept_);
+  n_ += static_cast<std::int64_t>(pending_.size());
+  hi_.swap(next_hi_);
+  lo_.swap(next_lo_);
+  pending_.clear();
 }
 
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
-  if (folded_ < n_) {
+  if (folded_ < n_ || !pending_.empty()) {
     StreamingAvar folded = *this;
+    folded.Fold();
+    // Fewer samples gathered than Room() had before the fold, which the fold did not reduce.
+    if (!folded.pending_.empty()) folded.TakePending();
     folded.Fold();
     return folded.Points();
   }
@@ -345,9 +485,16 @@ std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
     p.nonoverlapping_terms = s.n_terms;
     return p;
   };
-  for (const ExactOctave& o : exact_) {
+  for (std::size_t k = 0; k < exact_.size(); ++k) {
+    const ExactOctave& o = exact_[k];
     if (n_ < 2 * o.m) return points;
-    points.push_back(point(o.m, 1, o.sums));
+    Sums sums = o.sums;
+    if (o.m <= short_nonoverlap_) {  // its non-overlapping sums were made in Extend
+      sums.n_sum = short_sums_[k].n_sum;
+      sums.n_comp = short_sums_[k].n_comp;
+      sums.n_terms = short_sums_[k].n_terms;
+    }
+    points.push_back(point(o.m, 1, sums));
   }
   for (const Octave& o : octaves_) {
     if (n_ < 2 * o.m) break;
@@ -357,7 +504,9 @@ std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
 }
 
 std::size_t StreamingAvar::StateBytes() const {
-  std::size_t bytes = sizeof *this + (hi_.capacity() + lo_.capacity()) * sizeof(double) +
+  std::size_t bytes = sizeof *this +
+                      (hi_.capacity() + lo_.capacity() + next_hi_.capacity() +
+                       next_lo_.capacity() + pending_.capacity()) * sizeof(double) +
                       exact_.capacity() * sizeof(ExactOctave) +
                       octaves_.capacity() * sizeof(Octave);
   for (const Octave& o : octaves_) bytes += o.ring.capacity() * sizeof(DoubleDouble);

@@ -25,13 +25,16 @@
 // over contiguous memory the compiler vectorises: ~1 s for 1e8 samples instead of ~20 s term by
 // term). The first strided octave is seeded from that array when it has seen its first 2m
 // samples; each later one from its predecessor's ring (every other entry): the decimate-by-2
-// cascade.
+// cascade. A full block is folded once the next block's samples are in: their prefix sums, which
+// wait on one chain of additions, are made beside the octaves' folds, as one more piece of the
+// work two threads share (a second block of state).
 //
 // Precision: the first sample is subtracted (AVAR does not see a constant) and the prefix sum is
 // kept in double-double, so a large bias or drift does not eat the digits of the differences;
 // squared differences are summed with Neumaier compensation.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -70,10 +73,11 @@ class StreamingAvar {
   // The next samples, in order: the same as Add for each.
   void Add(std::span<const double> y);
 
-  std::int64_t count() const { return n_; }
+  std::int64_t count() const { return n_ + static_cast<std::int64_t>(pending_.size()); }
   // Every octave m = 2^j with count() >= 2m, ascending.
   std::vector<StreamingAvarPoint> Points() const;
-  // Bytes held by the state (the prefix-sum block and the rings), for memory checks.
+  // Bytes held by the state (the prefix-sum blocks, the samples gathered for the next block and
+  // the rings), for memory checks.
   std::size_t StateBytes() const;
 
  private:
@@ -113,10 +117,27 @@ class StreamingAvar {
   // 2 exact_overlap_max_m + 1 of them for the next block. A block of at least
   // kSharedFoldValues new values is folded by two threads (common/piece_sharing.h): the octaves'
   // sums are the same either way.
-  void Fold();
+  void Fold(const std::function<void()>& extra = {});
+  // Makes the prefix sums of y into h[start ..], S_{n + 1} first, h[start - 1] holding S_n and the
+  // ones before it (as far as the m = 2 lag needs); sums the short non-overlapping terms.
+  void Extend(std::span<const double> y, double* h, double* l, std::size_t start, std::int64_t n);
+  // The buffer full and a whole block gathered in pending_: folds the buffer, and as one more of
+  // the fold's pieces, on whichever thread takes it, makes the gathered block's prefix sums into
+  // the next buffer, which then takes the buffer's place. The sums are those of Fold then Add.
+  void FoldWhileExtending();
+  // How many samples pending_ gathers before TakePending: the buffer's room, or when it is full a
+  // block.
+  std::size_t Room() const;
+  // Extends the buffer by pending_ (room permitting), or FoldWhileExtending when it is full.
+  void TakePending();
   static constexpr std::int64_t kSharedFoldValues = 4096;
   // Fold's pieces: one exact octave, and the strided octaves (from their rings, in order).
   void FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const;
+  // The exact octaves m and 2m (`twice`), each with its first term before the block (2m < from),
+  // in one pass over the block: the same sums as FoldExact on each.
+  void FoldExactPair(ExactOctave* o, ExactOctave* twice, std::int64_t from, std::int64_t to) const;
+  // Adds a block's squares (starts begin .. to) and non-overlapping terms to the octave's sums.
+  void AddBlockTerms(ExactOctave* o, std::int64_t begin, std::int64_t to, double squares) const;
   void FoldStrided(std::int64_t from, std::int64_t to);
   DoubleDouble PrefixAt(std::int64_t n) const;  // S_n, held in the block
 
@@ -131,6 +152,13 @@ class StreamingAvar {
   std::size_t kept_ = 0;      // 2 exact_overlap_max_m + 1: S values a block needs before its own
   std::size_t capacity_ = 0;  // kept_ and a block
   std::vector<ExactOctave> exact_;
+  // Exact octaves m <= this (at most 2) have their non-overlapping sums made in Extend, beside
+  // the prefix sums, into short_sums_, not in Fold.
+  std::int64_t short_nonoverlap_ = 0;
+  Sums short_sums_[2];
+  // Samples gathered while the buffer is full, and the buffer their prefix sums go to.
+  std::vector<double> pending_;
+  std::vector<double> next_hi_, next_lo_;
   std::vector<Octave> octaves_;  // strided, ascending m
   // Fold's second thread, when one is useful; a copy of the state (Points) shares it.
   std::shared_ptr<PieceSharing> sharing_;
