@@ -40,6 +40,7 @@ mode_t NewFileMode() {
 AtomicFile::AtomicFile(AtomicFile&& other) noexcept
     : path_(std::move(other.path_)),
       temp_path_(std::exchange(other.temp_path_, std::string())),
+      direct_(std::exchange(other.direct_, false)),
       stream_(std::move(other.stream_)) {}
 
 AtomicFile& AtomicFile::operator=(AtomicFile&& other) noexcept {
@@ -47,6 +48,7 @@ AtomicFile& AtomicFile::operator=(AtomicFile&& other) noexcept {
     Discard();
     path_ = std::move(other.path_);
     temp_path_ = std::exchange(other.temp_path_, std::string());
+    direct_ = std::exchange(other.direct_, false);
     stream_ = std::move(other.stream_);
   }
   return *this;
@@ -57,6 +59,16 @@ AtomicFile::~AtomicFile() { Discard(); }
 bool AtomicFile::Open(const std::string& path, std::string* why) {
   Discard();
   if (path.empty()) return Fail(why, "empty output path");
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+    // A device, FIFO or socket (/dev/null, /dev/stdout, a named pipe): written where it is. A
+    // rename would replace the device node itself with a regular file (as root, /dev/null).
+    stream_.open(path, std::ios::binary);
+    if (!stream_) return Fail(why, "cannot write " + path + ": " + SystemError(errno));
+    path_ = temp_path_ = path;
+    direct_ = true;
+    return true;
+  }
   std::error_code ec;
   std::string target = path;
   if (fs::is_symlink(path, ec)) {
@@ -64,7 +76,6 @@ bool AtomicFile::Open(const std::string& path, std::string* why) {
     if (ec) return Fail(why, "cannot resolve symlink " + path + ": " + ec.message());
     target = resolved.string();
   }
-  struct stat st;
   if (::stat(target.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) return Fail(why, "cannot write " + path + ": it is a directory");
     // rename(2) would replace a read-only file; honour the user's protection instead.
@@ -98,7 +109,12 @@ bool AtomicFile::Commit(std::string* why) {
   }
   if (stream_.fail()) {
     Discard();
-    return Fail(why, "error writing " + path_ + " (disk full?)");
+    return Fail(why, "error writing " + path_ + (direct_ ? "" : " (disk full?)"));
+  }
+  if (direct_) {
+    temp_path_.clear();
+    direct_ = false;
+    return true;
   }
   // Sync before the rename so that a crash cannot leave a complete name on incomplete data.
   const int fd = ::open(temp_path_.c_str(), O_RDONLY);
@@ -123,10 +139,9 @@ bool AtomicFile::Commit(std::string* why) {
 void AtomicFile::Discard() {
   if (stream_.is_open()) stream_.close();
   stream_.clear();
-  if (!temp_path_.empty()) {
-    std::remove(temp_path_.c_str());
-    temp_path_.clear();
-  }
+  if (!temp_path_.empty() && !direct_) std::remove(temp_path_.c_str());
+  temp_path_.clear();
+  direct_ = false;
 }
 
 bool CreateParentDirectories(const std::string& path, std::string* why) {

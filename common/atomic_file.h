@@ -28,7 +28,9 @@ class AtomicFile {
   // Creates an empty temporary "<path>.tmp.XXXXXX" next to `path` and opens stream() on it. Fails
   // (with the path and the system's reason in *why) if the directory is missing or not writable,
   // if `path` is a directory, or if `path` exists and is not writable. A symlink is followed, so
-  // the file it points to is replaced, not the link.
+  // the file it points to is replaced, not the link. An existing `path` that is not a regular file
+  // (/dev/null, /dev/stdout, a named pipe) is opened and written directly: there is nothing to
+  // replace, and renaming over it would replace the device node itself.
   bool Open(const std::string& path, std::string* why);
 
   // Binary stream on the temporary; valid from a successful Open() until Commit() or Discard().
@@ -50,7 +52,8 @@ class AtomicFile {
 
  private:
   std::string path_;       // destination (symlinks resolved)
-  std::string temp_path_;  // empty when nothing is pending
+  std::string temp_path_;  // empty when nothing is pending (path_ itself when direct_)
+  bool direct_ = false;    // writing to a device or pipe in place (Open)
   std::ofstream stream_;
 };
 

@@ -132,5 +132,23 @@ TEST_F(AtomicFileTest, CommitWithoutOpenFails) {
   EXPECT_FALSE(why.empty());
 }
 
+// A device (/dev/null, /dev/stdout, a named pipe: not a regular file) is written where it is, not
+// replaced: as root, `--json /dev/null` had renamed a regular file over the device node /dev/null
+// (and without root the temporary could not be made in /dev, so the write failed).
+TEST_F(AtomicFileTest, ADeviceIsWrittenInPlaceNotReplaced) {
+  if (!fs::is_character_file("/dev/null")) GTEST_SKIP() << "/dev/null is not a device on this machine";
+  std::string why;
+  AtomicFile null;
+  ASSERT_TRUE(null.Open("/dev/null", &why)) << why;
+  EXPECT_EQ(null.path(), "/dev/null");
+  null.stream() << "discarded";
+  null.Discard();
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  ASSERT_TRUE(null.Open("/dev/null", &why)) << why;
+  null.stream() << "written";
+  EXPECT_TRUE(null.Commit(&why)) << why;
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
 }  // namespace
 }  // namespace allanlab
