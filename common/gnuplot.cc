@@ -136,7 +136,9 @@ bool RunGnuplot(const std::string& script_text, std::string* why) {
 
 bool GnuplotWroteImage(const std::string& path, std::string* why) {
   struct stat st;
-  if (::stat(path.c_str(), &st) != 0 || st.st_size == 0) return Fail(why, "gnuplot wrote no image at " + path);
+  if (::stat(path.c_str(), &st) != 0) return Fail(why, "gnuplot wrote no image at " + path);
+  // A device or pipe (--plot /dev/null) has no size to check: gnuplot's exit status is the word.
+  if (S_ISREG(st.st_mode) && st.st_size == 0) return Fail(why, "gnuplot wrote no image at " + path);
   return true;
 }
 
