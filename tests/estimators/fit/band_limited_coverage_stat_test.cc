@@ -59,16 +59,23 @@ void ExpectUpperLimitShare(const std::string& what, int limits, int records) {
   EXPECT_GE(limits, lo) << what;
 }
 
-TEST(BandLimitedCoverage, RandomWalkAndFlickerBehindALowPass) {
+// N, B and K (SI) at 100 Hz behind a low-pass of `design` at `cutoff_hz`, run at 8x and averaged
+// to the output.
+independent::Recipe BehindALowPass(double n, double b, double k, independent::LowPassDesign design, double cutoff_hz) {
   independent::Recipe r;
   r.rate_hz = 100.0;
-  r.noise.arw_rad_per_sqrt_s = kN;
-  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(kB);
-  r.noise.rrw_rad_per_s_per_sqrt_s = kK;
-  r.low_pass.design = independent::LowPassDesign::kFirstOrderImpulseInvariant;
-  r.low_pass.cutoff_hz = 58.4;
+  r.noise.arw_rad_per_sqrt_s = n;
+  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(b);
+  r.noise.rrw_rad_per_s_per_sqrt_s = k;
+  r.low_pass.design = design;
+  r.low_pass.cutoff_hz = cutoff_hz;
   r.low_pass.oversampling = 8;
   r.low_pass.decimation = independent::Decimation::kAverage;
+  return r;
+}
+
+TEST(BandLimitedCoverage, RandomWalkAndFlickerBehindALowPass) {
+  const independent::Recipe r = BehindALowPass(kN, kB, kK, independent::LowPassDesign::kFirstOrderImpulseInvariant, 58.4);
   constexpr int kRecords = 100;
   constexpr double kDurationS = 3600.0;
   const auto n = static_cast<std::int64_t>(kDurationS * r.rate_hz);
@@ -127,15 +134,7 @@ TEST(BandLimitedCoverage, RandomWalkAndFlickerBehindALowPass) {
 TEST(BandLimitedCoverage, CutoffAboveNyquistIsProfiledOverTheCutoff) {
   constexpr double kNt = 0.15 * kDeg / 60.0, kBt = 0.7527 * kDeg / 3600.0, kKt = 0.15 * kDeg / 3600.0 / 60.0;
   constexpr double kCutoffHz = 131.0;
-  independent::Recipe r;
-  r.rate_hz = 100.0;
-  r.noise.arw_rad_per_sqrt_s = kNt;
-  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(kBt);
-  r.noise.rrw_rad_per_s_per_sqrt_s = kKt;
-  r.low_pass.design = independent::LowPassDesign::kSecondOrderBilinear;
-  r.low_pass.cutoff_hz = kCutoffHz;
-  r.low_pass.oversampling = 8;
-  r.low_pass.decimation = independent::Decimation::kAverage;
+  const independent::Recipe r = BehindALowPass(kNt, kBt, kKt, independent::LowPassDesign::kSecondOrderBilinear, kCutoffHz);
   constexpr int kRecords = 40;
   const auto n = static_cast<std::int64_t>(3600.0 * r.rate_hz);
   ModelFitOptions o;
