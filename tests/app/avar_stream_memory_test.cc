@@ -91,7 +91,7 @@ TEST(AvarStreamMemoryTest, PeakMemoryDoesNotGrowWithTheRecord) {
   // What the check must catch is growth with the record: holding the 9e6 more samples would add at
   // least 34 MiB (4 bytes each), so a quarter of that, 8 MiB, is the bound. The state itself adds
   // about 1.5 MiB (3 more octaves of at most 2 * 16384 + 1 16-byte entries); the whole process
-  // adds more: 3.5 MiB at 3c30ee4, 4.0 MiB once the second thread makes the next block's sums
+  // adds more: 3.5 MiB, and 4.0 MiB once the second thread makes the next block's sums
   // (its own allocations), which a 4 MiB bound then failed under load.
   EXPECT_LT(stream_large - stream_small, 8192) << "streaming memory grew with the record";
   // In memory: one double per sample (8e7 bytes = 78125 KiB; the phase is built in the record's
