@@ -405,6 +405,7 @@ std::optional<CommandFailure> LoadRealSegments(const fs::path& dir, double segme
       RecordReaderOptions ro;
       ro.path = (dir / "real" / "adis16405" / (std::string(file) + ".csv.xz")).string();
       ro.column = axis;
+      ro.units = "deg/s";  // the ADIS16405 files name no unit; the segments are converted to rad/s below
       std::vector<double> values;
       RecordInfo info;
       RecordError error;

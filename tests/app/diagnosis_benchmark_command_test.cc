@@ -3,8 +3,10 @@
 // and for one and two concurrent diagnoses, and a refused command line that writes nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -89,6 +91,27 @@ TEST_F(DiagnosisBenchmarkCommandTest, IndependentGeneratorAndBothSideBySide) {
   EXPECT_EQ(testing_support::WithoutCommentLines(Read("b2/benchmark_independent.csv")), csv);
   EXPECT_EQ(Run("--generator other --no-plot --out-dir " + Path("c2")), 2);
   EXPECT_NE(Read("err.txt").find("--generator must be sim, independent or both"), std::string::npos);
+}
+
+// The injected real recordings read the ADIS16405 files as they are laid out in the data directory
+// (time column, gyro columns in deg/s that name no unit): two small stand-ins, one effect injected.
+TEST_F(DiagnosisBenchmarkCommandTest, InjectsAnEffectIntoRealRecordings) {
+  const std::filesystem::path adis = dir_ / "data" / "real" / "adis16405";
+  std::filesystem::create_directories(adis);
+  for (const char* name : {"adis_16405_imu1.csv.xz", "adis_16405_imu2.csv.xz"}) {
+    std::ofstream f(adis / name);  // plain text: the reader recognises compression by its bytes, not the name
+    f << "t_s,Gyro_X,Gyro_Y,Gyro_Z\n";
+    for (int i = 0; i < 9000; ++i) {
+      const double w = 0.05 * std::sin(0.7 * i) + 0.02 * std::cos(1.9 * i + 0.3 * (i % 7));
+      f << i / 100.0 << ',' << w << ',' << -w << ',' << 0.5 * w << '\n';
+    }
+  }
+  ASSERT_EQ(Run("--generator independent --recordings 1 --real-recordings 1 --real-segment 60 --seed 2 --no-plot "
+                "--data-dir " + Path("data") + " --out-dir " + Path("r") + " --work-dir " + Path("r_work")),
+            0)
+      << Read("err.txt");
+  const std::string md = Read("r/benchmark_independent.md");
+  EXPECT_NE(md.find("1 from 6 segments of 60 s"), std::string::npos) << md;
 }
 
 }  // namespace
