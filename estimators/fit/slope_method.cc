@@ -47,22 +47,37 @@ SlopeMethodResult ReadSlopes(const AvarCurve& curve, const SlopeMethodOptions& o
   }
   const std::vector<double> slope = LocalSlopes(log_tau, log_adev);
 
-  for (const LineSpec& line : kLines) {
-    SlopeReading& r = result.readings[static_cast<int>(line.coefficient)];
-    // The longest run of consecutive taus whose local slope matches the line's.
+  // The longest run of consecutive taus in [from, to) whose local slope matches `line`'s.
+  auto longest_run = [&](const LineSpec& line, std::size_t from, std::size_t to) {
     std::size_t best_start = 0, best_len = 0;
-    for (std::size_t i = 0; i < n;) {
+    for (std::size_t i = from; i < to;) {
       if (std::abs(slope[i] - line.slope) > options.slope_tolerance) {
         ++i;
         continue;
       }
       std::size_t j = i;
-      while (j < n && std::abs(slope[j] - line.slope) <= options.slope_tolerance) ++j;
+      while (j < to && std::abs(slope[j] - line.slope) <= options.slope_tolerance) ++j;
       if (j - i > best_len) best_start = i, best_len = j - i;
       i = j;
     }
+    return std::pair{best_start, best_len};
+  };
+  // The white-noise line first: the quantization line is looked for only before it and the
+  // rising lines (K, R) only after it, where IEEE 952 puts them. A band-limited curve rises from
+  // its first taus to the filter's peak; read as a +1/2 line that rise gave K at 3 s 10^5 times
+  // too large.
+  constexpr LineSpec kWhite = kLines[1];
+  static_assert(kWhite.coefficient == Coefficient::kN);
+  const auto [n_start, n_len] = longest_run(kWhite, 0, n);
+  for (const LineSpec& line : kLines) {
+    SlopeReading& r = result.readings[static_cast<int>(line.coefficient)];
+    std::size_t from = 0, to = n;
+    if (n_len > 0 && line.slope < -0.5) to = n_start;
+    if (n_len > 0 && line.slope > 0.0) from = n_start + n_len;
+    const auto [best_start, best_len] = longest_run(line, from, to);
     if (best_len == 0) {
-      r.note = "no region of slope " + std::to_string(line.slope) + " on the curve";
+      r.note = "no region of slope " + std::to_string(line.slope) + " on the curve" +
+               (from > 0 ? " beyond the white-noise region" : to < n ? " before the white-noise region" : "");
       continue;
     }
     // log C = mean(log sigma - slope log tau) over the region; sigma(tau) = C tau^slope.

@@ -38,6 +38,23 @@ TEST(SlopeMethod, ReadsEachPureTermExactly) {
   EXPECT_NEAR(ReadSlopes(AsymptoteCurve(0, 0, 0, 0, r)).at(Coefficient::kR).value_si / r, 1.0, 1e-12);
 }
 
+// A band-limited curve rises from its first taus to the filter's peak (here over three decades, up
+// to 10 s) before the white-noise line; the rate random walk's +1/2 line is read beyond the white
+// region only (IEEE 952 puts it there), not on the longer rise, which gave K 10^2-10^5 too large.
+TEST(SlopeMethod, ReadsTheRisingLinesBeyondTheWhiteRegionOnly) {
+  const double n = 1e-4, k = 3e-7, tau_peak_s = 10.0;
+  AvarCurve c = AsymptoteCurve(0, n, 0, k, 0);
+  for (std::size_t i = 0; i < c.size() && c.tau_s[i] < tau_peak_s; ++i) {
+    c.avar[i] = n * n / tau_peak_s * (c.tau_s[i] / tau_peak_s);
+  }
+  const SlopeMethodResult r = ReadSlopes(c);
+  ASSERT_TRUE(r.at(Coefficient::kK).found) << r.at(Coefficient::kK).note;
+  EXPECT_GT(r.at(Coefficient::kK).tau_lo_s, 100.0);
+  EXPECT_NEAR(r.at(Coefficient::kK).value_si / k, 1.0, 0.1);
+  EXPECT_NEAR(r.at(Coefficient::kN).value_si / n, 1.0, 0.02);
+  EXPECT_FALSE(r.at(Coefficient::kQ).found);
+}
+
 TEST(SlopeMethod, BiasInstabilityFromMinimumIsBiasedAsPredicted) {
   // docs/theory.md §4.2 example: N = 0.1 deg/sqrt(h), K = 0.5 deg/h/sqrt(h), B = 0.2 deg/h reads
   // B = sqrt(0.04 + 0.1309) = 0.413 deg/h (2x).
