@@ -288,6 +288,16 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
   return Compute(options, rate, summary, &workspace);
 }
 
+bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary,
+                 std::span<double> phase) {
+  if (options.input != InputKind::kRate || data.size() >= kCheckpointMinSamples || phase.size() != data.size() + 1) {
+    return ComputeAvar(options, data, summary);
+  }
+  AllanFamilyWorkspace workspace;
+  workspace.AdoptPhase(phase);
+  return Compute(options, data, summary, &workspace);
+}
+
 bool ComputeAvarFromCheckpoints(const AvarOptions& options, PhaseCheckpoints checkpoints, AvarSummary* summary) {
   if (options.input != InputKind::kRate) return ComputeAvar(options, checkpoints.rate(), summary);
   const std::span<const double> rate = checkpoints.rate();

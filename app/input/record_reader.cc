@@ -83,6 +83,14 @@ class Reader {
         map_(map), mapped_values_(values) {}
   // After Run returned false: the file was not mapped, nothing was reported (MapRecordValues).
   bool not_mapped() const { return not_mapped_; }
+  // A mapped file's values are not checked by Run but by CheckMapped (MapRecordValuesUnchecked).
+  void DeferChecks() { defer_checks_ = true; }
+  // The checks Run deferred, as ReadMapped makes them, the checked blocks to checked_blocks.
+  bool CheckMapped(const std::function<void(std::span<const double>)>* checked_blocks, RecordError* error) {
+    block_sink_ = checked_blocks != nullptr ? checked_blocks : &kNoBlockSink;
+    info_->samples = 0;
+    return ReadMapped(error);
+  }
 
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
@@ -143,6 +151,16 @@ class Reader {
         return false;
       }
       info_->compression = Compression::kNone;
+      info_->column = "float64 samples";
+      if (defer_checks_) {
+        // The count the checks give when every value is finite; they are the caller's to make.
+        info_->samples = static_cast<std::int64_t>(mapped_values_->size());
+        if (Conclude(error)) return true;
+        // Without deferral the checks come first, and so does their failure.
+        RecordError check_error;
+        if (!CheckMapped(nullptr, &check_error)) *error = check_error;
+        return false;
+      }
       if (!ReadMapped(error)) return false;
       return Conclude(error);
     }
@@ -482,7 +500,6 @@ class Reader {
   // The mapped values checked block by block as ReadRaw checks them (the sink, when there is one,
   // sees them in place).
   bool ReadMapped(RecordError* error) {
-    info_->column = "float64 samples";
     const std::span<const double> values = *mapped_values_;
     for (std::size_t first = 0; first < values.size(); first += kBlockValues) {
       AcceptBlock(values.subspan(first, std::min(kBlockValues, values.size() - first)),
@@ -655,6 +672,7 @@ class Reader {
   MappedFile* map_ = nullptr;
   std::span<const double>* mapped_values_ = nullptr;
   bool not_mapped_ = false;
+  bool defer_checks_ = false;
 };
 
 }  // namespace
@@ -743,6 +761,27 @@ MapOutcome MapRecordValues(const RecordReaderOptions& options, MappedFile* map, 
   Reader reader(options, map, values, info, checked_blocks);
   if (reader.Run(error)) return MapOutcome::kMapped;
   return reader.not_mapped() ? MapOutcome::kNotMapped : MapOutcome::kFailed;
+}
+
+MapOutcome MapRecordValuesUnchecked(const RecordReaderOptions& options, MappedFile* map,
+                                    std::span<const double>* values, RecordInfo* info, RecordError* error,
+                                    MappedRecordChecks* checks) {
+  // The reader outlives this call in *checks, with its own copy of the options it refers to.
+  struct Unchecked {
+    Unchecked(const RecordReaderOptions& o, MappedFile* map, std::span<const double>* values, RecordInfo* info)
+        : options(o), reader(options, map, values, info, nullptr) {}
+    RecordReaderOptions options;
+    Reader reader;
+  };
+  const auto unchecked = std::make_shared<Unchecked>(options, map, values, info);
+  unchecked->reader.DeferChecks();
+  if (unchecked->reader.Run(error)) {
+    *checks = [unchecked](const BlockSink* checked_blocks, RecordError* check_error) {
+      return unchecked->reader.CheckMapped(checked_blocks, check_error);
+    };
+    return MapOutcome::kMapped;
+  }
+  return unchecked->reader.not_mapped() ? MapOutcome::kNotMapped : MapOutcome::kFailed;
 }
 
 bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,
