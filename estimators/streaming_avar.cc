@@ -388,6 +388,13 @@ void StreamingAvar::Add(std::span<const double> y) {
   if (y.empty()) return;
   if (n_ == 0 && pending_.empty()) reference_ = y.front();
   while (!y.empty()) {
+    if (pending_.empty() && buf_.held == capacity_ && y.size() >= Room()) {
+      // A whole block in the caller's span (a raw reader's chunk): used where it lies, not gathered.
+      const std::size_t block = Room();
+      FoldWhileExtending(y.first(block));
+      y = y.subspan(block);
+      continue;
+    }
     const std::size_t take = std::min(Room() - pending_.size(), y.size());
     pending_.insert(pending_.end(), y.begin(), y.begin() + static_cast<std::ptrdiff_t>(take));
     y = y.subspan(take);
@@ -401,7 +408,8 @@ std::size_t StreamingAvar::Room() const {
 
 void StreamingAvar::TakePending() {
   if (buf_.held == capacity_) {
-    FoldWhileExtending();
+    FoldWhileExtending(pending_);
+    pending_.clear();
     return;
   }
   // Room in the window (the record's first block, or its last): the prefix sums go straight in.
@@ -465,11 +473,11 @@ void StreamingAvar::Extend(std::span<const double> y, double* h, double* l, std:
   short_sums_[1] = s2;
 }
 
-void StreamingAvar::FoldWhileExtending() {
+void StreamingAvar::FoldWhileExtending(std::span<const double> samples) {
   // The previous block's fold first: its octaves' sums come before this one's, and it may read
   // the memory written below.
   FinishFold();
-  const std::size_t block = pending_.size();
+  const std::size_t block = samples.size();
   const std::size_t room = kept_ + kRoomBlocks * (capacity_ - kept_);
   static_assert(kRoomBlocks >= 4, "the window at the end and the next one at the front must not meet");
   if (buf_.hi.size() < room) {  // sized before any fold reads it
@@ -497,12 +505,11 @@ void StreamingAvar::FoldWhileExtending() {
     for (int p = 0; p < plan.pieces; ++p) FoldPiece(plan, p);
   }
   folded_ = plan.to;
-  Extend(pending_, buf_.hi.data() + next_base, buf_.lo.data() + next_base, kept_, n_);
+  Extend(samples, buf_.hi.data() + next_base, buf_.lo.data() + next_base, kept_, n_);
   first_ = n_ + 1 - static_cast<std::int64_t>(kept_);
   n_ += static_cast<std::int64_t>(block);
   buf_.held = kept_ + block;
   buf_.base = next_base;
-  pending_.clear();
 }
 
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {

@@ -155,13 +155,13 @@ class StreamingAvar {
   // Makes the prefix sums of y into h[start ..], S_{n + 1} first, h[start - 1] holding S_n and the
   // ones before it (as far as the m = 2 lag needs); sums the short non-overlapping terms.
   void Extend(std::span<const double> y, double* h, double* l, std::size_t start, std::int64_t n);
-  // The window full and a whole block gathered in pending_: starts the window's fold (the helper
-  // takes it, see FinishFold), makes the gathered block's prefix sums beyond the window, where
-  // the buffer has room (else in the other buffer, behind a copy of the window's last kept_
-  // values), and moves the window over them. The caller reads the next block meanwhile: it
-  // joins the fold at the next block, or when the points are asked for. The sums are those of
-  // Fold then Add.
-  void FoldWhileExtending();
+  // The window full and a whole block of samples at hand (gathered in pending_, or a caller's span
+  // that holds one): starts the window's fold (the helper takes it, see FinishFold), makes the
+  // block's prefix sums beyond the window, where the buffer has room (else at its front, after
+  // the window's last kept_ values are moved there), and moves the window over them. The caller
+  // reads the next block meanwhile: it joins the fold at the next block, or when the points are
+  // asked for. The sums are those of Fold then Add.
+  void FoldWhileExtending(std::span<const double> samples);
   // How many samples pending_ gathers before TakePending: the window's room, or when it is full a
   // block.
   std::size_t Room() const;

@@ -33,7 +33,10 @@ namespace allanlab::app {
 namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 18;
-constexpr std::size_t kBlockValues = 4096;  // raw values decoded per block
+constexpr std::size_t kBlockValues = 4096;  // a mapped record's values checked per block
+// A raw stream's blocks: a whole chunk of float64 values each, which a consumer that works in
+// blocks of that size (estimators::StreamingAvar) takes where it lies instead of gathering.
+constexpr std::size_t kRawStreamBlockValues = kChunkBytes / sizeof(double);
 
 // The mean of a million printed steps carries its rounding in the last digits (100 Hz from
 // t = 0.00, 0.01, ... comes out as 99.99999999999993 Hz); ten digits are more than a time column
@@ -521,15 +524,22 @@ class Reader {
           AcceptBlock(values, first);
           return true;
         },
-        kBlockValues);
+        kRawStreamBlockValues);
     info_->column = type == RawSampleType::kFloat32 ? "float32 samples" : "float64 samples";
     // Storage of doubles, so that whole float64 samples read into it are passed on as they lie.
     std::vector<double> chunk(kChunkBytes / sizeof(double));
     const std::span<char> bytes(reinterpret_cast<char*>(chunk.data()), kChunkBytes);
     std::string why;
     while (true) {
+      // Whole chunks (a source may return less: the bytes its format check buffered, a pipe's),
+      // so that each block but the last is kRawStreamBlockValues values.
       std::size_t got = 0;
-      if (!source->Read(bytes, &got, &why)) return Runtime(error, why);
+      while (got < bytes.size()) {
+        std::size_t more = 0;
+        if (!source->Read(bytes.subspan(got), &more, &why)) return Runtime(error, why);
+        if (more == 0) break;
+        got += more;
+      }
       if (got == 0) break;
       if (got % sizeof(double) == 0) {
         decoder.FeedStorage({chunk.data(), got / sizeof(double)});

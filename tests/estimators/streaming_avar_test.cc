@@ -170,6 +170,31 @@ TEST(StreamingAvarTest, ThreadsAndSpansNeverChangeTheBits) {
   }
 }
 
+// Spans that hold whole blocks (a raw reader's chunks) are taken where they lie, not gathered:
+// spans of exactly a block, of several blocks and a part, and a mix, give the one-thread bits.
+TEST(StreamingAvarTest, BlocksTakenFromTheCallersSpanKeepTheBits) {
+  const std::vector<double> y = Record(150001, 19);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<StreamingAvarPoint> one = Stream(y, 1024).Points();  // blocks of 2048
+  omp_set_num_threads(std::max(threads, 2));
+  for (std::size_t span : {std::size_t{2048}, std::size_t{7000}, std::size_t{4096 + 1}}) {
+    StreamingAvar s(StreamingAvarOptions{1024});
+    for (std::size_t i = 0; i < y.size(); i += span) {
+      s.Add(std::span<const double>(y).subspan(i, std::min(span, y.size() - i)));
+    }
+    const std::vector<StreamingAvarPoint> two = s.Points();
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].overlapping), std::bit_cast<std::uint64_t>(two[k].overlapping))
+          << "span " << span << ", m = " << one[k].m;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].nonoverlapping), std::bit_cast<std::uint64_t>(two[k].nonoverlapping))
+          << "span " << span << ", m = " << one[k].m;
+    }
+  }
+  omp_set_num_threads(threads);
+}
+
 // A block's fold runs in the helper while the caller reads on (FoldWhileExtending): asking for the
 // points, copying the state or going on after either, mid-record and at every point of the
 // buffer's cycle (the kept prefix sums move to its front once per kRoomBlocks - 1 blocks), gives
