@@ -25,9 +25,10 @@
 // over contiguous memory the compiler vectorises: ~1 s for 1e8 samples instead of ~20 s term by
 // term). The first strided octave is seeded from that array when it has seen its first 2m
 // samples; each later one from its predecessor's ring (every other entry): the decimate-by-2
-// cascade. A full block is folded once the next block's samples are in: their prefix sums, which
-// wait on one chain of additions, are made beside the octaves' folds, as one more piece of the
-// work two threads share (a second block of state).
+// cascade. A full block is folded once the next block's samples are in, by a helper thread: the
+// caller meanwhile makes the next block's prefix sums, which wait on one chain of additions
+// (~15 cycles per sample, the pace of the whole), reads the block after it, and then takes the
+// fold's pieces the helper has not started (common/piece_sharing.h: Start, Finish).
 //
 // Precision: the first sample is subtracted (AVAR does not see a constant) and the prefix sum is
 // kept in double-double, so a large bias or drift does not eat the digits of the differences;
@@ -120,7 +121,7 @@ class StreamingAvar {
     const DoubleDouble& Back(std::int64_t k) const;  // k-th latest pushed value (0 = latest)
   };
   // The prefix sums a fold reads: S_t at hi[t - first], lo[t - first]. A fold in flight keeps its
-  // view while the next block's prefix sums are written beyond it or into the other buffer.
+  // view while the next block's prefix sums are written beyond it or at the buffer's front.
   struct Window {
     const double* hi = nullptr;
     const double* lo = nullptr;
@@ -191,7 +192,6 @@ class StreamingAvar {
       return *this;
     }
     void Finish() const;
-    PieceSharing* get() const { return sharing_.get(); }
     explicit operator bool() const { return sharing_ != nullptr; }
     PieceSharing* operator->() const { return sharing_.get(); }
     void Make();
