@@ -240,7 +240,7 @@ std::optional<Failure> CurveOfMappedValues(const Plan& plan, std::span<const dou
 }
 
 // The curve of a mapped record (MapRecordValuesUnchecked) once `checks` pass. Rate samples in SI
-// below kCheckpointMinSamples, with a second core: the checks run in a helper thread, which
+// from ~1e6 to kCheckpointMinSamples, with a second core: the checks run in a helper thread, which
 // first has the kernel fault in the pages of the integrated record, while this thread computes
 // the curve (none of it is used unless the checks pass): the two steps that came before the
 // Allan pass, on the core that had nothing to do (1e7 samples: ~8 ms of checks and ~8 ms of page
@@ -249,7 +249,10 @@ std::optional<Failure> CurveOfMappedValues(const Plan& plan, std::span<const dou
 std::optional<Failure> CurveOfMappedRecord(const Plan& plan, std::span<const double> values,
                                            const MappedRecordChecks& checks, AvarReport* report) {
   const bool si_rate = plan.input == InputKind::kRate && InputScale(plan.input, report->record.units).identity();
-  if (si_rate && values.size() < estimators::kCheckpointMinSamples && PieceSharing::Useful()) {
+  // Below ~1e6 samples the checks take well under a millisecond: no thread for them.
+  constexpr std::size_t kOverlappedChecksSamples = std::size_t{1} << 20;
+  if (si_rate && values.size() >= kOverlappedChecksSamples && values.size() < estimators::kCheckpointMinSamples &&
+      PieceSharing::Useful()) {
     const std::size_t size = values.size() + 1;
     const auto phase = std::make_unique_for_overwrite<double[]>(size);
     AdviseHugePages(phase.get(), size * sizeof(double));
