@@ -13,4 +13,12 @@ namespace allanlab {
 // left alone (at most one huge page would fit, and small blocks are reused from the heap).
 void AdviseHugePages(void* data, std::size_t bytes);
 
+// Has the kernel fault in the whole 4 KiB pages of [data, data + bytes) for writing (zeroing the
+// fresh ones) without writing to them, so that it may run in one thread while another writes the
+// memory: a page already written is left as it is. Why: first-touch page faults of a large
+// output array, taken in a thread that would otherwise wait, are not paid by the one that writes
+// it. A no-op where the kernel lacks MADV_POPULATE_WRITE (Linux < 5.14): the writer faults the
+// pages in as without the call.
+void PopulateForWrite(void* data, std::size_t bytes);
+
 }  // namespace allanlab

@@ -4,9 +4,11 @@
 // What a piece computes does not depend on which thread ran it, so neither does the result. The
 // caller never waits for the helper to start (on a shared machine it may be kept waiting: it then
 // costs at most the piece it holds), and the helper sleeps between runs (no spinning). Used for the
-// octaves of a streamed block (estimators/streaming_avar.h).
+// octaves of a streamed block (estimators/streaming_avar.h), which the helper folds while the caller
+// reads the next block (Start, Finish).
 #include <condition_variable>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -23,12 +25,26 @@ class PieceSharing {
   // have run. `piece` must not throw, and pieces must not touch each other's data.
   void Run(int count, const std::function<void(int)>& piece);
 
+  // Run in two halves, for a caller with work of its own to overlap: Start hands the pieces to the
+  // helper and returns at once; Finish takes, in the calling thread, those the helper has not
+  // started and returns when all have run. Between the two the caller must touch no piece's data.
+  // Start and Run finish a started run first; so does the destructor.
+  void Start(int count, std::function<void(int)> piece);
+  void Finish();
+
   // Whether a helper is worth having: more than one core, and OpenMP neither limited to one
   // thread (OMP_NUM_THREADS=1 runs everything in the calling thread) nor already running a team.
   static bool Useful();
 
  private:
   void Loop();
+  struct Claims;
+  // Hands take_pieces to the helper (starting it at the first run).
+  void Offer(std::function<void()> take_pieces);
+
+  // The run Start began, until Finish.
+  std::shared_ptr<Claims> started_;
+  std::function<void()> take_started_;
 
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -93,7 +93,8 @@ PointAlpha SteadyAlpha(const AvarOptions& options, const NoiseId& id, int previo
 // chain the taus (SteadyAlpha) are made in order: its noise identification and, for --ci auto,
 // the record's EDF where it is available (0 elsewhere). Each tau's measures depend neither on
 // the others nor on the thread, so on long records this thread and a helper share them
-// (common/piece_sharing.h), the costliest first: the record EDF at the longest lag windows.
+// (common/piece_sharing.h), the costliest first: the record EDF at the longest lag windows, then
+// the identifications from the longest m down.
 struct TauMeasures {
   std::vector<NoiseId> ids;         // empty when alpha is fixed
   std::vector<double> record_edfs;  // one per point
@@ -126,7 +127,9 @@ TauMeasures MeasureEveryTau(const AvarOptions& options, std::span<const double> 
       const std::size_t k = edf_points[static_cast<std::size_t>(p)];
       t.record_edfs[k] = RecordEdfOf(options.statistic, phase, n_rate, ms[k]);
     } else {
-      const auto k = static_cast<std::size_t>(p - edf_count);
+      // The longest m first: its identification reads the most (up to the whole record for
+      // R(n)), and a long piece left for last keeps the other thread waiting.
+      const std::size_t k = t.ids.size() - 1 - static_cast<std::size_t>(p - edf_count);
       t.ids[k] = IdentifyAt(options, rate, phase, ms[k]);
     }
   };
@@ -286,6 +289,16 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
   AllanFamilyWorkspace workspace;
   if (rate.size() >= kCheckpointMinSamples) workspace.KeepCheckpointsOnly();
   return Compute(options, rate, summary, &workspace);
+}
+
+bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary,
+                 std::span<double> phase) {
+  if (options.input != InputKind::kRate || data.size() >= kCheckpointMinSamples || phase.size() != data.size() + 1) {
+    return ComputeAvar(options, data, summary);
+  }
+  AllanFamilyWorkspace workspace;
+  workspace.AdoptPhase(phase);
+  return Compute(options, data, summary, &workspace);
 }
 
 bool ComputeAvarFromCheckpoints(const AvarOptions& options, PhaseCheckpoints checkpoints, AvarSummary* summary) {

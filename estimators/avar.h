@@ -24,6 +24,13 @@ bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarS
 bool ComputeAvarOnStorage(const AvarOptions& options, std::span<double> storage,
                           AvarSummary* summary);
 
+// ComputeAvar with the integrated record built in `phase` (data.size() + 1 doubles) where the
+// pass keeps one (rate input below kCheckpointMinSamples; else `phase` is not used): memory the
+// caller has had prepared meanwhile, e.g. its pages faulted in by another thread while this one
+// waits for nothing (app/input/record_curve.cc). The same results.
+bool ComputeAvar(const AvarOptions& options, std::span<const double> data, AvarSummary* summary,
+                 std::span<double> phase);
+
 // From this many samples on, ComputeAvar keeps checkpoints of the integrated record rather than
 // the record (AllanFamilyWorkspace::KeepCheckpointsOnly): the checkpoints are re-read from the
 // samples for every pass (about six, each a pass over the samples' memory), while a stored

@@ -141,12 +141,25 @@ StreamingAvar::StreamingAvar(StreamingAvarOptions options) : options_(options) {
   kept_ = static_cast<std::size_t>(kept);
   capacity_ = static_cast<std::size_t>(kept + block);
   const std::size_t reserved = std::min<std::size_t>(capacity_, std::size_t{1} << 17);
-  hi_.reserve(reserved);
-  lo_.reserve(reserved);
-  hi_.push_back(0.0);  // S_0
-  lo_.push_back(0.0);
+  buf_.hi.reserve(reserved);
+  buf_.lo.reserve(reserved);
+  buf_.hi.push_back(0.0);  // S_0
+  buf_.lo.push_back(0.0);
+  buf_.held = 1;
   short_nonoverlap_ = std::min<std::int64_t>(largest, 2);
-  if (PieceSharing::Useful()) sharing_ = std::make_shared<PieceSharing>();
+  if (PieceSharing::Useful()) sharing_.Make();
+}
+
+StreamingAvar::Buffers::Buffers(const Buffers& other)
+    : hi(other.hi.begin() + static_cast<std::ptrdiff_t>(other.base),
+         other.hi.begin() + static_cast<std::ptrdiff_t>(other.base + other.held)),
+      lo(other.lo.begin() + static_cast<std::ptrdiff_t>(other.base),
+         other.lo.begin() + static_cast<std::ptrdiff_t>(other.base + other.held)),
+      held(other.held) {}
+
+StreamingAvar::Buffers& StreamingAvar::Buffers::operator=(const Buffers& other) {
+  if (this != &other) *this = Buffers(other);
+  return *this;
 }
 
 const StreamingAvar::DoubleDouble& StreamingAvar::Octave::Back(std::int64_t k) const {
@@ -173,11 +186,11 @@ void StreamingAvar::Push(Octave* o, const DoubleDouble& s, std::int64_t n) {
   }
 }
 
-void StreamingAvar::PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last) {
+void StreamingAvar::PushRun(const Window& w, Octave* o, std::int64_t t_first, std::int64_t t_last) {
   const std::int64_t stride = o->stride;
   std::int64_t t = t_first;
   // Until the ring is full a push makes no term: these go one at a time (once per octave).
-  for (; t <= t_last && o->pushed + 1 < 2 * o->span + 1; t += stride) Push(o, PrefixAt(t), t);
+  for (; t <= t_last && o->pushed + 1 < 2 * o->span + 1; t += stride) Push(o, w.At(t), t);
   if (t > t_last) return;
   // The ring holds 2 span + 1 values, so with the new one written at h, Back(span) is at h - span
   // and Back(2 span) at h + 1 (mod its size): three positions that each advance by one per push,
@@ -189,11 +202,28 @@ void StreamingAvar::PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last
   std::int64_t c = h + 1 == size ? 0 : h + 1;
   const std::int64_t m_mask = o->m - 1;  // m is a power of two
   Sums sums = o->sums;
-  const double* const hi = hi_.data();
-  const double* const lo = lo_.data();
+  const double* const hi = w.hi;
+  const double* const lo = w.lo;
   std::int64_t pushes = 0;
-  for (; t <= t_last; t += stride, ++pushes) {
-    const auto i = static_cast<std::size_t>(t - first_);
+  while (t <= t_last) {
+    // A run of pushes in which no ring position wraps and none but the last can start a
+    // non-overlapping term (t a multiple of m; t is a multiple of the stride, which divides m):
+    // those go through a loop without either check, a third fewer instructions per push.
+    const std::int64_t left = (t_last - t) / stride + 1;
+    const std::int64_t to_start = ((-t) & m_mask) / stride + 1;
+    const std::int64_t run = std::min({left, to_start, size - h, size - b, size - c});
+    for (std::int64_t k = 1; k < run; ++k, t += stride) {
+      const auto i = static_cast<std::size_t>(t - w.first);
+      const double a_hi = hi[i], a_lo = lo[i];
+      ring[h] = {a_hi, a_lo};
+      const double d = SecondDifference(a_hi, a_lo, ring[b].hi, ring[b].lo, ring[c].hi, ring[c].lo);
+      CompensatedAdd(&sums.o_sum, &sums.o_comp, d * d);
+      ++h;
+      ++b;
+      ++c;
+    }
+    // The run's last push: it may start a non-overlapping term, and a position may wrap after it.
+    const auto i = static_cast<std::size_t>(t - w.first);
     const double a_hi = hi[i], a_lo = lo[i];
     ring[h] = {a_hi, a_lo};
     const double d = SecondDifference(a_hi, a_lo, ring[b].hi, ring[b].lo, ring[c].hi, ring[c].lo);
@@ -205,6 +235,8 @@ void StreamingAvar::PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last
     if (++h == size) h = 0;
     if (++b == size) b = 0;
     if (++c == size) c = 0;
+    t += stride;
+    pushes += run;
   }
   sums.o_terms += pushes;
   o->sums = sums;
@@ -213,12 +245,7 @@ void StreamingAvar::PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last
   o->last_index = t - stride;
 }
 
-StreamingAvar::DoubleDouble StreamingAvar::PrefixAt(std::int64_t n) const {
-  const auto i = static_cast<std::size_t>(n - first_);
-  return {hi_[i], lo_[i]};
-}
-
-void StreamingAvar::StartNextOctave() {
+void StreamingAvar::StartNextOctave(const Window& w) {
   Octave next;
   if (octaves_.empty()) {
     // The first strided octave: the block still holds S_0 .. S_{next.m}.
@@ -226,7 +253,7 @@ void StreamingAvar::StartNextOctave() {
     next.stride = 2;
     next.span = next.m / next.stride;
     next.ring.resize(static_cast<std::size_t>(2 * next.span + 1));
-    for (std::int64_t k = 0; k <= next.m; k += next.stride) Push(&next, PrefixAt(k), k);
+    for (std::int64_t k = 0; k <= next.m; k += next.stride) Push(&next, w.At(k), k);
     octaves_.push_back(std::move(next));
     return;
   }
@@ -244,34 +271,34 @@ void StreamingAvar::StartNextOctave() {
   octaves_.push_back(std::move(next));
 }
 
-void StreamingAvar::FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const {
+void StreamingAvar::FoldExact(const Window& w, ExactOctave* o, std::int64_t from, std::int64_t to) const {
   const std::int64_t m = o->m;
   const std::int64_t begin = std::max(from, 2 * m);
-  // Indices into the block: a = S_t, b = S_{t-m}, c = S_{t-2m}.
-  const std::int64_t first = begin - first_;
-  const std::int64_t last = to - first_;
+  // Indices into the window: a = S_t, b = S_{t-m}, c = S_{t-2m}.
+  const std::int64_t first = begin - w.first;
+  const std::int64_t last = to - w.first;
   const std::int64_t end = first + (last - first + 1) / 8 * 8;
   double lanes[8] = {};
-  BlockGroups(false)(hi_.data(), lo_.data(), first, end, m, lanes, nullptr);
-  AddBlockTerms(o, begin, to, LaneTotal(hi_.data(), lo_.data(), end, last, m, lanes));
+  BlockGroups(false)(w.hi, w.lo, first, end, m, lanes, nullptr);
+  AddBlockTerms(w, o, begin, to, LaneTotal(w.hi, w.lo, end, last, m, lanes));
 }
 
-void StreamingAvar::FoldExactPair(ExactOctave* o, ExactOctave* twice, std::int64_t from,
+void StreamingAvar::FoldExactPair(const Window& w, ExactOctave* o, ExactOctave* twice, std::int64_t from,
                                   std::int64_t to) const {
   const std::int64_t m = o->m;
-  const std::int64_t first = from - first_;
-  const std::int64_t last = to - first_;
+  const std::int64_t first = from - w.first;
+  const std::int64_t last = to - w.first;
   const std::int64_t end = first + (last - first + 1) / 8 * 8;
   double lanes_m[8] = {}, lanes_2m[8] = {};
-  BlockGroups(true)(hi_.data(), lo_.data(), first, end, m, lanes_m, lanes_2m);
-  AddBlockTerms(o, from, to, LaneTotal(hi_.data(), lo_.data(), end, last, m, lanes_m));
-  AddBlockTerms(twice, from, to, LaneTotal(hi_.data(), lo_.data(), end, last, 2 * m, lanes_2m));
+  BlockGroups(true)(w.hi, w.lo, first, end, m, lanes_m, lanes_2m);
+  AddBlockTerms(w, o, from, to, LaneTotal(w.hi, w.lo, end, last, m, lanes_m));
+  AddBlockTerms(w, twice, from, to, LaneTotal(w.hi, w.lo, end, last, 2 * m, lanes_2m));
 }
 
-void StreamingAvar::AddBlockTerms(ExactOctave* o, std::int64_t begin, std::int64_t to,
+void StreamingAvar::AddBlockTerms(const Window& w, ExactOctave* o, std::int64_t begin, std::int64_t to,
                                   double squares) const {
-  const double* hi = hi_.data();
-  const double* lo = lo_.data();
+  const double* hi = w.hi;
+  const double* lo = w.lo;
   const std::int64_t m = o->m;
   // The sums in a local: another thread may be writing the next octave's, beside them in memory.
   Sums sums = o->sums;
@@ -280,7 +307,7 @@ void StreamingAvar::AddBlockTerms(ExactOctave* o, std::int64_t begin, std::int64
   sums.o_terms += to - begin + 1;
   // m = 1 and 2 have theirs summed as the prefix sums are made (Extend).
   for (std::int64_t t = m <= short_nonoverlap_ ? to + 1 : (begin + m - 1) / m * m; t <= to; t += m) {
-    const std::int64_t a = t - first_;
+    const std::int64_t a = t - w.first;
     const double d =
         SecondDifference(hi[a], lo[a], hi[a - m], lo[a - m], hi[a - 2 * m], lo[a - 2 * m]);
     CompensatedAdd(&sums.n_sum, &sums.n_comp, d * d);
@@ -289,77 +316,83 @@ void StreamingAvar::AddBlockTerms(ExactOctave* o, std::int64_t begin, std::int64
   o->sums = sums;
 }
 
-void StreamingAvar::FoldStrided(std::int64_t from, std::int64_t to) {
+void StreamingAvar::FoldStrided(const Window& w, std::int64_t from, std::int64_t to) {
   const std::int64_t first_strided_start = 2 * exact_.back().m;
   if (octaves_.empty() && exact_.back().m <= std::numeric_limits<std::int64_t>::max() / 4 &&
       first_strided_start >= from && first_strided_start <= to) {
-    StartNextOctave();
+    StartNextOctave(w);
   }
   // Octaves may be added inside the loop: index, not iterators or references.
   for (std::size_t j = 0; j < octaves_.size(); ++j) {
     const std::int64_t first = octaves_[j].last_index + octaves_[j].stride;
     const std::int64_t seed_at = 2 * octaves_[j].m;  // the next octave starts from this ring
     if (j + 1 == octaves_.size() && first <= seed_at && seed_at <= to) {
-      PushRun(&octaves_[j], first, seed_at);
-      StartNextOctave();
+      PushRun(w, &octaves_[j], first, seed_at);
+      StartNextOctave(w);
     }
-    PushRun(&octaves_[j], octaves_[j].last_index + octaves_[j].stride, to);
+    PushRun(w, &octaves_[j], octaves_[j].last_index + octaves_[j].stride, to);
   }
 }
 
-void StreamingAvar::Fold(const std::function<void()>& extra) {
-  const std::int64_t from = folded_ + 1;
-  const std::int64_t to = n_;
-  if (from > to) return;
-  // Each exact octave with a term (2m <= to) is a piece, and the strided octaves together are
-  // one more (each starts from the one before it): pieces with sums of their own, which read the
-  // block and write nothing else, so two threads may share them.
-  std::size_t active = 0;
-  while (active < exact_.size() && 2 * exact_[active].m <= to) ++active;
-  // The octaves whose first term is in an earlier block (2m < from) go in pairs, m and 2m
-  // (FoldExactPair: one piece each pair); the rest one piece each.
+StreamingAvar::FoldPlan StreamingAvar::PlanFold() const {
+  FoldPlan plan;
+  plan.window = Current();
+  plan.from = folded_ + 1;
+  plan.to = n_;
+  if (plan.from > plan.to) return plan;
+  while (plan.active < exact_.size() && 2 * exact_[plan.active].m <= plan.to) ++plan.active;
   std::size_t settled = 0;
-  while (settled < active && 2 * exact_[settled].m < from) ++settled;
-  const std::size_t pairs = settled / 2;
-  // The extra piece, if any, is piece 0: the longest, so it is the first taken.
-  const int first_octave = extra ? 1 : 0;
-  const auto fold_piece = [&](int piece) {
-    if (piece < first_octave) {
-      extra();
-      return;
-    }
-    const auto q = static_cast<std::size_t>(piece - first_octave);
-    if (q < pairs) {
-      FoldExactPair(&exact_[2 * q], &exact_[2 * q + 1], from, to);
-      return;
-    }
-    const std::size_t p = q + pairs;  // the octaves after the pairs'
-    if (p < active) {
-      FoldExact(&exact_[p], from, to);
-    } else {
-      FoldStrided(from, to);
-    }
-  };
-  const int pieces = first_octave + static_cast<int>(active - pairs) + 1;
-  if (sharing_ && to - from + 1 >= kSharedFoldValues) {
-    sharing_->Run(pieces, fold_piece);
-  } else {
-    for (int p = 0; p < pieces; ++p) fold_piece(p);
+  while (settled < plan.active && 2 * exact_[settled].m < plan.from) ++settled;
+  plan.pairs = settled / 2;
+  plan.pieces = 1 + static_cast<int>(plan.active - plan.pairs);
+  return plan;
+}
+
+void StreamingAvar::FoldPiece(const FoldPlan& plan, int piece) {
+  if (piece == 0) {
+    FoldStrided(plan.window, plan.from, plan.to);
+    return;
   }
-  folded_ = to;
-  if (extra) return;  // FoldWhileExtending moves to the next buffer
-  // Keep S_{to - 2 largest} .. S_to for the next block's lags.
-  const std::int64_t held = to - first_ + 1;
-  const auto keep = static_cast<std::int64_t>(kept_);
-  if (held > keep) {
-    const std::int64_t drop = held - keep;
-    std::copy(hi_.begin() + drop, hi_.end(), hi_.begin());
-    std::copy(lo_.begin() + drop, lo_.end(), lo_.begin());
-    hi_.resize(static_cast<std::size_t>(keep));
-    lo_.resize(static_cast<std::size_t>(keep));
-    first_ += drop;
+  const auto q = static_cast<std::size_t>(piece - 1);
+  if (q < plan.pairs) {
+    FoldExactPair(plan.window, &exact_[2 * q], &exact_[2 * q + 1], plan.from, plan.to);
+  } else {
+    FoldExact(plan.window, &exact_[q + plan.pairs], plan.from, plan.to);  // the octaves after the pairs'
   }
 }
+
+void StreamingAvar::Fold() {
+  FinishFold();
+  const FoldPlan plan = PlanFold();
+  if (plan.pieces == 0) return;
+  const auto piece = [&](int p) { FoldPiece(plan, p); };
+  if (sharing_ && plan.to - plan.from + 1 >= kSharedFoldValues) {
+    sharing_->Run(plan.pieces, piece);
+  } else {
+    for (int p = 0; p < plan.pieces; ++p) piece(p);
+  }
+  folded_ = plan.to;
+  // Keep S_{to - 2 largest} .. S_to for the next block's lags, at the front of the buffer.
+  const auto keep = std::min(buf_.held, kept_);
+  const std::size_t drop = buf_.held - keep;
+  if (buf_.base + drop > 0) {
+    std::copy(buf_.hi.begin() + static_cast<std::ptrdiff_t>(buf_.base + drop),
+              buf_.hi.begin() + static_cast<std::ptrdiff_t>(buf_.base + buf_.held), buf_.hi.begin());
+    std::copy(buf_.lo.begin() + static_cast<std::ptrdiff_t>(buf_.base + drop),
+              buf_.lo.begin() + static_cast<std::ptrdiff_t>(buf_.base + buf_.held), buf_.lo.begin());
+  }
+  first_ += static_cast<std::int64_t>(drop);
+  buf_.base = 0;
+  buf_.held = keep;
+}
+
+void StreamingAvar::FinishFold() const { sharing_.Finish(); }
+
+void StreamingAvar::Helper::Finish() const {
+  if (sharing_) sharing_->Finish();
+}
+
+void StreamingAvar::Helper::Make() { sharing_ = std::make_shared<PieceSharing>(); }
 
 // Every sample is gathered first, and its prefix sum made with the others gathered (Extend runs
 // over many samples, whichever Add brought them): once there are as many as the buffer has room
@@ -374,6 +407,13 @@ void StreamingAvar::Add(std::span<const double> y) {
   if (y.empty()) return;
   if (n_ == 0 && pending_.empty()) reference_ = y.front();
   while (!y.empty()) {
+    if (pending_.empty() && buf_.held == capacity_ && y.size() >= Room()) {
+      // A whole block in the caller's span (a raw reader's chunk): used where it lies, not gathered.
+      const std::size_t block = Room();
+      FoldWhileExtending(y.first(block));
+      y = y.subspan(block);
+      continue;
+    }
     const std::size_t take = std::min(Room() - pending_.size(), y.size());
     pending_.insert(pending_.end(), y.begin(), y.begin() + static_cast<std::ptrdiff_t>(take));
     y = y.subspan(take);
@@ -382,19 +422,24 @@ void StreamingAvar::Add(std::span<const double> y) {
 }
 
 std::size_t StreamingAvar::Room() const {
-  return hi_.size() < capacity_ ? capacity_ - hi_.size() : capacity_ - kept_;
+  return buf_.held < capacity_ ? capacity_ - buf_.held : capacity_ - kept_;
 }
 
 void StreamingAvar::TakePending() {
-  if (hi_.size() == capacity_) {
-    FoldWhileExtending();
+  if (buf_.held == capacity_) {
+    FoldWhileExtending(pending_);
+    pending_.clear();
     return;
   }
-  // Room in the buffer (the record's first block, or its last): the prefix sums go straight in.
-  const std::size_t start = hi_.size();
-  hi_.resize(start + pending_.size());
-  lo_.resize(start + pending_.size());
-  Extend(pending_, hi_.data(), lo_.data(), start, n_);
+  // Room in the window (the record's first block, or its last): the prefix sums go straight in.
+  FinishFold();  // none is in flight before the first block, but the buffer may move here
+  const std::size_t start = buf_.base + buf_.held;
+  if (buf_.hi.size() < start + pending_.size()) {
+    buf_.hi.resize(start + pending_.size());
+    buf_.lo.resize(start + pending_.size());
+  }
+  Extend(pending_, buf_.hi.data() + buf_.base, buf_.lo.data() + buf_.base, buf_.held, n_);
+  buf_.held += pending_.size();
   n_ += static_cast<std::int64_t>(pending_.size());
   pending_.clear();
 }
@@ -447,24 +492,47 @@ void StreamingAvar::Extend(std::span<const double> y, double* h, double* l, std:
   short_sums_[1] = s2;
 }
 
-void StreamingAvar::FoldWhileExtending() {
-  // The next buffer starts with this one's last kept_ prefix sums: the lags its block needs.
-  next_hi_.resize(capacity_);
-  next_lo_.resize(capacity_);
-  std::copy(hi_.end() - static_cast<std::ptrdiff_t>(kept_), hi_.end(), next_hi_.begin());
-  std::copy(lo_.end() - static_cast<std::ptrdiff_t>(kept_), lo_.end(), next_lo_.begin());
-  const std::int64_t n = n_;
-  // One more piece for Fold: it reads only the gathered samples and writes only the next buffer,
-  // the prefix sum and the short non-overlapping sums, which no octave's piece touches.
-  Fold([&] { Extend(pending_, next_hi_.data(), next_lo_.data(), kept_, n); });
+void StreamingAvar::FoldWhileExtending(std::span<const double> samples) {
+  // The previous block's fold first: its octaves' sums come before this one's, and it may read
+  // the memory written below.
+  FinishFold();
+  const std::size_t block = samples.size();
+  const std::size_t room = kept_ + kRoomBlocks * (capacity_ - kept_);
+  static_assert(kRoomBlocks >= 4, "the window at the end and the next one at the front must not meet");
+  if (buf_.hi.size() < room) {  // sized before any fold reads it
+    buf_.hi.resize(room);
+    buf_.lo.resize(room);
+  }
+  // The next window starts with this one's last kept_ prefix sums (the lags its block needs):
+  // where they are when the block fits beyond this window, else moved to the front of the
+  // buffer, before the fold of this window (at the end of the buffer, clear of the front
+  // kept_ + block, since kept_ <= block + 1) starts reading.
+  std::size_t next_base = buf_.base + buf_.held - kept_;
+  if (next_base + kept_ + block > room) {
+    const auto tail = static_cast<std::ptrdiff_t>(buf_.base + buf_.held);
+    const auto keep = static_cast<std::ptrdiff_t>(kept_);
+    std::copy(buf_.hi.begin() + tail - keep, buf_.hi.begin() + tail, buf_.hi.begin());
+    std::copy(buf_.lo.begin() + tail - keep, buf_.lo.begin() + tail, buf_.lo.begin());
+    next_base = 0;
+  }
+  // The fold reads only this window and writes only the octaves' sums, which nothing below
+  // touches: with a helper it runs there (this thread joins it at the next block), else now.
+  const FoldPlan plan = PlanFold();
+  if (sharing_ && plan.to - plan.from + 1 >= kSharedFoldValues) {
+    sharing_->Start(plan.pieces, [this, plan](int p) { FoldPiece(plan, p); });
+  } else {
+    for (int p = 0; p < plan.pieces; ++p) FoldPiece(plan, p);
+  }
+  folded_ = plan.to;
+  Extend(samples, buf_.hi.data() + next_base, buf_.lo.data() + next_base, kept_, n_);
   first_ = n_ + 1 - static_cast<std::int64_t>(kept_);
-  n_ += static_cast<std::int64_t>(pending_.size());
-  hi_.swap(next_hi_);
-  lo_.swap(next_lo_);
-  pending_.clear();
+  n_ += static_cast<std::int64_t>(block);
+  buf_.held = kept_ + block;
+  buf_.base = next_base;
 }
 
 std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
+  FinishFold();
   if (folded_ < n_ || !pending_.empty()) {
     StreamingAvar folded = *this;
     folded.Fold();
@@ -504,9 +572,9 @@ std::vector<StreamingAvarPoint> StreamingAvar::Points() const {
 }
 
 std::size_t StreamingAvar::StateBytes() const {
+  FinishFold();  // the strided octaves may be growing
   std::size_t bytes = sizeof *this +
-                      (hi_.capacity() + lo_.capacity() + next_hi_.capacity() +
-                       next_lo_.capacity() + pending_.capacity()) * sizeof(double) +
+                      (buf_.hi.capacity() + buf_.lo.capacity() + pending_.capacity()) * sizeof(double) +
                       exact_.capacity() * sizeof(ExactOctave) +
                       octaves_.capacity() * sizeof(Octave);
   for (const Octave& o : octaves_) bytes += o.ring.capacity() * sizeof(DoubleDouble);

@@ -25,9 +25,10 @@
 // over contiguous memory the compiler vectorises: ~1 s for 1e8 samples instead of ~20 s term by
 // term). The first strided octave is seeded from that array when it has seen its first 2m
 // samples; each later one from its predecessor's ring (every other entry): the decimate-by-2
-// cascade. A full block is folded once the next block's samples are in: their prefix sums, which
-// wait on one chain of additions, are made beside the octaves' folds, as one more piece of the
-// work two threads share (a second block of state).
+// cascade. A full block is folded once the next block's samples are in, by a helper thread: the
+// caller meanwhile makes the next block's prefix sums, which wait on one chain of additions
+// (~15 cycles per sample, the pace of the whole), reads the block after it, and then takes the
+// fold's pieces the helper has not started (common/piece_sharing.h: Start, Finish).
 //
 // Precision: the first sample is subtracted (AVAR does not see a constant) and the prefix sum is
 // kept in double-double, so a large bias or drift does not eat the digits of the differences;
@@ -67,6 +68,16 @@ class StreamingAvar {
  public:
   // `options` must be valid (IsValid); an invalid value is replaced by the default.
   explicit StreamingAvar(StreamingAvarOptions options = {});
+  // Blocks the prefix-sum buffer holds beyond the kept ones: those are moved to its front once per
+  // kRoomBlocks - 1 blocks (it was 2 x 16 bytes copied per new value, every block). At least 4:
+  // the window being folded, at the end, and the next one, at the front, must not meet.
+  static constexpr std::size_t kRoomBlocks = 4;
+
+  // A fold may be running in the helper (FoldWhileExtending): it is finished before the state
+  // goes, and before a copy is made of it (Helper).
+  ~StreamingAvar() { FinishFold(); }
+  StreamingAvar(const StreamingAvar&) = default;
+  StreamingAvar& operator=(const StreamingAvar&) = default;
 
   // The next rate sample (finite: a NaN would poison every octave; the reader drops them).
   void Add(double y);
@@ -109,44 +120,105 @@ class StreamingAvar {
     Sums sums;
     const DoubleDouble& Back(std::int64_t k) const;  // k-th latest pushed value (0 = latest)
   };
+  // The prefix sums a fold reads: S_t at hi[t - first], lo[t - first]. A fold in flight keeps its
+  // view while the next block's prefix sums are written beyond it or at the buffer's front.
+  struct Window {
+    const double* hi = nullptr;
+    const double* lo = nullptr;
+    std::int64_t first = 0;
+    DoubleDouble At(std::int64_t n) const {
+      return {hi[n - first], lo[n - first]};
+    }
+  };
+  Window Current() const { return {buf_.hi.data() + buf_.base, buf_.lo.data() + buf_.base, first_}; }
   void Push(Octave* o, const DoubleDouble& s, std::int64_t n);
-  // Push of S_t for t = t_first, t_first + stride, ... <= t_last (held in the block).
-  void PushRun(Octave* o, std::int64_t t_first, std::int64_t t_last);
-  void StartNextOctave();
+  // Push of S_t for t = t_first, t_first + stride, ... <= t_last (held in the window).
+  void PushRun(const Window& w, Octave* o, std::int64_t t_first, std::int64_t t_last);
+  void StartNextOctave(const Window& w);
+  // One fold of S_from .. S_to into every octave, cut into pieces with sums of their own, which
+  // read the window and write nothing else, so two threads may share them: the strided octaves
+  // together (piece 0, the longest: each starts from the one before it), then each exact octave
+  // with a term, those whose first term is in an earlier block (2m < from) in pairs m and 2m
+  // (FoldExactPair: one piece each pair). The octaves' sums are the same whoever runs a piece.
+  struct FoldPlan {
+    Window window;
+    std::int64_t from = 0, to = 0;
+    std::size_t active = 0, pairs = 0;
+    int pieces = 0;
+  };
+  FoldPlan PlanFold() const;
+  void FoldPiece(const FoldPlan& plan, int piece);
   // Folds the prefix sums S_{folded_ + 1} .. S_{n_} into every octave and keeps the last
-  // 2 exact_overlap_max_m + 1 of them for the next block. A block of at least
-  // kSharedFoldValues new values is folded by two threads (common/piece_sharing.h): the octaves'
-  // sums are the same either way.
-  void Fold(const std::function<void()>& extra = {});
+  // 2 exact_overlap_max_m + 1 of them for the next block (in this thread and the helper).
+  void Fold();
+  // Waits for a fold that FoldWhileExtending started (taking its pieces not yet started).
+  void FinishFold() const;
   // Makes the prefix sums of y into h[start ..], S_{n + 1} first, h[start - 1] holding S_n and the
   // ones before it (as far as the m = 2 lag needs); sums the short non-overlapping terms.
   void Extend(std::span<const double> y, double* h, double* l, std::size_t start, std::int64_t n);
-  // The buffer full and a whole block gathered in pending_: folds the buffer, and as one more of
-  // the fold's pieces, on whichever thread takes it, makes the gathered block's prefix sums into
-  // the next buffer, which then takes the buffer's place. The sums are those of Fold then Add.
-  void FoldWhileExtending();
-  // How many samples pending_ gathers before TakePending: the buffer's room, or when it is full a
+  // The window full and a whole block of samples at hand (gathered in pending_, or a caller's span
+  // that holds one): starts the window's fold (the helper takes it, see FinishFold), makes the
+  // block's prefix sums beyond the window, where the buffer has room (else at its front, after
+  // the window's last kept_ values are moved there), and moves the window over them. The caller
+  // reads the next block meanwhile: it joins the fold at the next block, or when the points are
+  // asked for. The sums are those of Fold then Add.
+  void FoldWhileExtending(std::span<const double> samples);
+  // How many samples pending_ gathers before TakePending: the window's room, or when it is full a
   // block.
   std::size_t Room() const;
-  // Extends the buffer by pending_ (room permitting), or FoldWhileExtending when it is full.
+  // Extends the window by pending_ (room permitting), or FoldWhileExtending when it is full.
   void TakePending();
   static constexpr std::int64_t kSharedFoldValues = 4096;
   // Fold's pieces: one exact octave, and the strided octaves (from their rings, in order).
-  void FoldExact(ExactOctave* o, std::int64_t from, std::int64_t to) const;
+  void FoldExact(const Window& w, ExactOctave* o, std::int64_t from, std::int64_t to) const;
   // The exact octaves m and 2m (`twice`), each with its first term before the block (2m < from),
   // in one pass over the block: the same sums as FoldExact on each.
-  void FoldExactPair(ExactOctave* o, ExactOctave* twice, std::int64_t from, std::int64_t to) const;
+  void FoldExactPair(const Window& w, ExactOctave* o, ExactOctave* twice, std::int64_t from, std::int64_t to) const;
   // Adds a block's squares (starts begin .. to) and non-overlapping terms to the octave's sums.
-  void AddBlockTerms(ExactOctave* o, std::int64_t begin, std::int64_t to, double squares) const;
-  void FoldStrided(std::int64_t from, std::int64_t to);
-  DoubleDouble PrefixAt(std::int64_t n) const;  // S_n, held in the block
+  void AddBlockTerms(const Window& w, ExactOctave* o, std::int64_t begin, std::int64_t to, double squares) const;
+  void FoldStrided(const Window& w, std::int64_t from, std::int64_t to);
 
+  // Fold's second thread, when one is useful; a copy of the state (Points) shares it. The first
+  // member: members are copied in declaration order, so copying it finishes the source's fold in
+  // flight before any member that fold writes is copied.
+  class Helper {
+   public:
+    Helper() = default;
+    Helper(const Helper& other) : sharing_(other.sharing_) { other.Finish(); }
+    Helper& operator=(const Helper& other) {
+      other.Finish();
+      Finish();
+      sharing_ = other.sharing_;
+      return *this;
+    }
+    void Finish() const;
+    explicit operator bool() const { return sharing_ != nullptr; }
+    PieceSharing* operator->() const { return sharing_.get(); }
+    void Make();
+
+   private:
+    std::shared_ptr<PieceSharing> sharing_;
+  };
+  Helper sharing_;
   StreamingAvarOptions options_;
   std::int64_t n_ = 0;
   double reference_ = 0.0;
   DoubleDouble prefix_;
-  // S_{first_} .. S_{n_} as high and low parts; capacity history + block.
-  std::vector<double> hi_, lo_;
+  // S_{first_} .. S_{n_} as high and low parts, at hi[base ..], lo[base ..]: the window, held
+  // values, at most capacity_ (history + block). The buffers have room for kRoomBlocks blocks
+  // beyond the history and never move while a fold is in flight. A copy holds the window alone
+  // (at base 0): the room beyond it is no part of the state (Points folds a copy).
+  struct Buffers {
+    std::vector<double> hi, lo;
+    std::size_t base = 0;
+    std::size_t held = 1;
+    Buffers() = default;
+    Buffers(const Buffers& other);
+    Buffers& operator=(const Buffers& other);
+    Buffers(Buffers&&) = default;
+    Buffers& operator=(Buffers&&) = default;
+  };
+  Buffers buf_;
   std::int64_t first_ = 0;
   std::int64_t folded_ = 0;  // S up to this index are in every octave's sums
   std::size_t kept_ = 0;      // 2 exact_overlap_max_m + 1: S values a block needs before its own
@@ -156,12 +228,9 @@ class StreamingAvar {
   // the prefix sums, into short_sums_, not in Fold.
   std::int64_t short_nonoverlap_ = 0;
   Sums short_sums_[2];
-  // Samples gathered while the buffer is full, and the buffer their prefix sums go to.
+  // Samples gathered while the window is full.
   std::vector<double> pending_;
-  std::vector<double> next_hi_, next_lo_;
   std::vector<Octave> octaves_;  // strided, ascending m
-  // Fold's second thread, when one is useful; a copy of the state (Points) shares it.
-  std::shared_ptr<PieceSharing> sharing_;
 };
 
 }  // namespace allanlab::estimators

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
+#include <thread>
 #include <span>
 #include <utility>
 #include <vector>
@@ -11,6 +13,8 @@
 #include "app/input/constant_stretch.h"
 #include "app/input/imu_columns.h"
 #include "app/input/mapped_file.h"
+#include "common/huge_pages.h"
+#include "common/piece_sharing.h"
 #include "app/input/rate_units.h"
 #include "app/input/record_reader.h"
 #include "app/input/stated_units.h"
@@ -218,14 +222,15 @@ std::optional<Failure> CurveOfValues(const Plan& plan, std::span<double> storage
 // lie (on long records integrated as the reader checked them: `checkpoints`, complete); others
 // are copied behind a spare slot and converted as CurveOfValues converts them.
 std::optional<Failure> CurveOfMappedValues(const Plan& plan, std::span<const double> values,
-                                           std::optional<estimators::PhaseCheckpoints> checkpoints, AvarReport* report) {
+                                           std::optional<estimators::PhaseCheckpoints> checkpoints, AvarReport* report,
+                                           std::span<double> phase = {}) {
   if (plan.input == InputKind::kRate && InputScale(plan.input, report->record.units).identity()) {
     report->input_units = report->record.units;
     estimators::AvarOptions options = plan.avar;
     options.sample_clock = report->record.sample_clock;
     const bool ok = checkpoints && checkpoints->complete()
                         ? estimators::ComputeAvarFromCheckpoints(options, std::move(*checkpoints), &report->summary)
-                        : estimators::ComputeAvar(options, values, &report->summary);
+                        : estimators::ComputeAvar(options, values, &report->summary, phase);
     if (ok) return std::nullopt;
     // A failure is reported as the copied record's pass reports it (where the running sum overflows).
   }
@@ -234,32 +239,64 @@ std::optional<Failure> CurveOfMappedValues(const Plan& plan, std::span<const dou
   return CurveOfValues(plan, storage, report);
 }
 
+// The curve of a mapped record (MapRecordValuesUnchecked) once `checks` pass. Rate samples in SI
+// from ~1e6 to kCheckpointMinSamples, with a second core: the checks run in a helper thread, which
+// first has the kernel fault in the pages of the integrated record, while this thread computes
+// the curve (none of it is used unless the checks pass): the two steps that came before the
+// Allan pass, on the core that had nothing to do (1e7 samples: ~8 ms of checks and ~8 ms of page
+// zeroing). Longer records are integrated block by block as the checks pass them (while they are
+// in cache: estimators::kCheckpointMinSamples), which spares a pass over them.
+std::optional<Failure> CurveOfMappedRecord(const Plan& plan, std::span<const double> values,
+                                           const MappedRecordChecks& checks, AvarReport* report) {
+  const bool si_rate = plan.input == InputKind::kRate && InputScale(plan.input, report->record.units).identity();
+  // Below ~1e6 samples the checks take well under a millisecond: no thread for them.
+  constexpr std::size_t kOverlappedChecksSamples = std::size_t{1} << 20;
+  if (si_rate && values.size() >= kOverlappedChecksSamples && values.size() < estimators::kCheckpointMinSamples &&
+      PieceSharing::Useful()) {
+    const std::size_t size = values.size() + 1;
+    const auto phase = std::make_unique_for_overwrite<double[]>(size);
+    AdviseHugePages(phase.get(), size * sizeof(double));
+    RecordError check_error;
+    bool checked = false;
+    std::thread helper([&] {
+      PopulateForWrite(phase.get(), size * sizeof(double));
+      checked = checks(nullptr, &check_error);
+    });
+    std::optional<Failure> failure = CurveOfMappedValues(plan, values, std::nullopt, report, {phase.get(), size});
+    helper.join();
+    if (!checked) return Failure{check_error.exit_code, check_error.message};
+    return failure;
+  }
+  std::optional<estimators::PhaseCheckpoints> checkpoints;
+  bool integrate = plan.input == InputKind::kRate;
+  const BlockSink integrate_blocks = [&](std::span<const double> block) {
+    if (!integrate) return;
+    if (values.size() < estimators::kCheckpointMinSamples) {
+      integrate = false;
+      return;
+    }
+    if (!checkpoints) {
+      integrate = si_rate;
+      if (!integrate) return;
+      checkpoints.emplace(values, estimators::ReferenceLevel(values), estimators::PhaseCheckpoints::Deferred{});
+    }
+    checkpoints->IntegrateUpTo(block.data() + block.size() - values.data());
+  };
+  RecordError error;
+  if (!checks(&integrate_blocks, &error)) return Failure{error.exit_code, error.message};
+  return CurveOfMappedValues(plan, values, std::move(checkpoints), report);
+}
+
 // Reads the record and computes its curve in memory.
 std::optional<Failure> ComputeInMemory(const Plan& plan, AvarReport* report) {
   RecordError error;
   {
     MappedFile map;
     std::span<const double> values;
-    // Long records of rate samples in SI are integrated block by block while the reader's checks
-    // have them in cache (estimators::kCheckpointMinSamples), which spares a pass over them.
-    std::optional<estimators::PhaseCheckpoints> checkpoints;
-    bool integrate = plan.input == InputKind::kRate;
-    const BlockSink integrate_blocks = [&](std::span<const double> block) {
-      if (!integrate) return;
-      if (values.size() < estimators::kCheckpointMinSamples) {
-        integrate = false;
-        return;
-      }
-      if (!checkpoints) {
-        integrate = InputScale(plan.input, report->record.units).identity();
-        if (!integrate) return;
-        checkpoints.emplace(values, estimators::ReferenceLevel(values), estimators::PhaseCheckpoints::Deferred{});
-      }
-      checkpoints->IntegrateUpTo(block.data() + block.size() - values.data());
-    };
-    switch (MapRecordValues(plan.read, &map, &values, &report->record, &error, &integrate_blocks)) {
+    MappedRecordChecks checks;
+    switch (MapRecordValuesUnchecked(plan.read, &map, &values, &report->record, &error, &checks)) {
       case MapOutcome::kMapped:
-        return CurveOfMappedValues(plan, values, std::move(checkpoints), report);
+        return CurveOfMappedRecord(plan, values, checks, report);
       case MapOutcome::kFailed:
         return Failure{error.exit_code, error.message};
       case MapOutcome::kNotMapped:

@@ -33,7 +33,10 @@ namespace allanlab::app {
 namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 18;
-constexpr std::size_t kBlockValues = 4096;  // raw values decoded per block
+constexpr std::size_t kBlockValues = 4096;  // a mapped record's values checked per block
+// A raw stream's blocks: a whole chunk of float64 values each, which a consumer that works in
+// blocks of that size (estimators::StreamingAvar) takes where it lies instead of gathering.
+constexpr std::size_t kRawStreamBlockValues = kChunkBytes / sizeof(double);
 
 // The mean of a million printed steps carries its rounding in the last digits (100 Hz from
 // t = 0.00, 0.01, ... comes out as 99.99999999999993 Hz); ten digits are more than a time column
@@ -83,6 +86,14 @@ class Reader {
         map_(map), mapped_values_(values) {}
   // After Run returned false: the file was not mapped, nothing was reported (MapRecordValues).
   bool not_mapped() const { return not_mapped_; }
+  // A mapped file's values are not checked by Run but by CheckMapped (MapRecordValuesUnchecked).
+  void DeferChecks() { defer_checks_ = true; }
+  // The checks Run deferred, as ReadMapped makes them, the checked blocks to checked_blocks.
+  bool CheckMapped(const std::function<void(std::span<const double>)>* checked_blocks, RecordError* error) {
+    block_sink_ = checked_blocks != nullptr ? checked_blocks : &kNoBlockSink;
+    info_->samples = 0;
+    return ReadMapped(error);
+  }
 
   bool Run(RecordError* error) {
     *info_ = RecordInfo();
@@ -143,6 +154,16 @@ class Reader {
         return false;
       }
       info_->compression = Compression::kNone;
+      info_->column = "float64 samples";
+      if (defer_checks_) {
+        // The count the checks give when every value is finite; they are the caller's to make.
+        info_->samples = static_cast<std::int64_t>(mapped_values_->size());
+        if (Conclude(error)) return true;
+        // Without deferral the checks come first, and so does their failure.
+        RecordError check_error;
+        if (!CheckMapped(nullptr, &check_error)) *error = check_error;
+        return false;
+      }
       if (!ReadMapped(error)) return false;
       return Conclude(error);
     }
@@ -482,7 +503,6 @@ class Reader {
   // The mapped values checked block by block as ReadRaw checks them (the sink, when there is one,
   // sees them in place).
   bool ReadMapped(RecordError* error) {
-    info_->column = "float64 samples";
     const std::span<const double> values = *mapped_values_;
     for (std::size_t first = 0; first < values.size(); first += kBlockValues) {
       AcceptBlock(values.subspan(first, std::min(kBlockValues, values.size() - first)),
@@ -504,15 +524,22 @@ class Reader {
           AcceptBlock(values, first);
           return true;
         },
-        kBlockValues);
+        kRawStreamBlockValues);
     info_->column = type == RawSampleType::kFloat32 ? "float32 samples" : "float64 samples";
     // Storage of doubles, so that whole float64 samples read into it are passed on as they lie.
     std::vector<double> chunk(kChunkBytes / sizeof(double));
     const std::span<char> bytes(reinterpret_cast<char*>(chunk.data()), kChunkBytes);
     std::string why;
     while (true) {
+      // Whole chunks (a source may return less: the bytes its format check buffered, a pipe's),
+      // so that each block but the last is kRawStreamBlockValues values.
       std::size_t got = 0;
-      if (!source->Read(bytes, &got, &why)) return Runtime(error, why);
+      while (got < bytes.size()) {
+        std::size_t more = 0;
+        if (!source->Read(bytes.subspan(got), &more, &why)) return Runtime(error, why);
+        if (more == 0) break;
+        got += more;
+      }
       if (got == 0) break;
       if (got % sizeof(double) == 0) {
         decoder.FeedStorage({chunk.data(), got / sizeof(double)});
@@ -655,6 +682,7 @@ class Reader {
   MappedFile* map_ = nullptr;
   std::span<const double>* mapped_values_ = nullptr;
   bool not_mapped_ = false;
+  bool defer_checks_ = false;
 };
 
 }  // namespace
@@ -743,6 +771,27 @@ MapOutcome MapRecordValues(const RecordReaderOptions& options, MappedFile* map, 
   Reader reader(options, map, values, info, checked_blocks);
   if (reader.Run(error)) return MapOutcome::kMapped;
   return reader.not_mapped() ? MapOutcome::kNotMapped : MapOutcome::kFailed;
+}
+
+MapOutcome MapRecordValuesUnchecked(const RecordReaderOptions& options, MappedFile* map,
+                                    std::span<const double>* values, RecordInfo* info, RecordError* error,
+                                    MappedRecordChecks* checks) {
+  // The reader outlives this call in *checks, with its own copy of the options it refers to.
+  struct Unchecked {
+    Unchecked(const RecordReaderOptions& o, MappedFile* map, std::span<const double>* values, RecordInfo* info)
+        : options(o), reader(options, map, values, info, nullptr) {}
+    RecordReaderOptions options;
+    Reader reader;
+  };
+  const auto unchecked = std::make_shared<Unchecked>(options, map, values, info);
+  unchecked->reader.DeferChecks();
+  if (unchecked->reader.Run(error)) {
+    *checks = [unchecked](const BlockSink* checked_blocks, RecordError* check_error) {
+      return unchecked->reader.CheckMapped(checked_blocks, check_error);
+    };
+    return MapOutcome::kMapped;
+  }
+  return unchecked->reader.not_mapped() ? MapOutcome::kNotMapped : MapOutcome::kFailed;
 }
 
 bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,

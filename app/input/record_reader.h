@@ -154,6 +154,19 @@ class MappedFile;
 MapOutcome MapRecordValues(const RecordReaderOptions& options, MappedFile* map, std::span<const double>* values,
                            RecordInfo* info, RecordError* error, const BlockSink* checked_blocks = nullptr);
 
+// MapRecordValues with the checks of the samples (every one finite; the longest constant
+// stretch) left to the caller, for another thread to make while this one uses the samples:
+// *checks makes them and gives what MapRecordValues would have given (false with *error when a
+// value is not finite), handing each block that passes to checked_blocks (optional). Until it has
+// returned true the samples may not be finite, and info->samples and
+// info->longest_constant_stretch are not final (it writes no other field of *info). A failure
+// MapRecordValues would report after the checks is reported here, after them. *map, *values and
+// *info must outlive *checks.
+using MappedRecordChecks = std::function<bool(const BlockSink* checked_blocks, RecordError* error)>;
+MapOutcome MapRecordValuesUnchecked(const RecordReaderOptions& options, MappedFile* map,
+                                    std::span<const double>* values, RecordInfo* info, RecordError* error,
+                                    MappedRecordChecks* checks);
+
 // Several columns (options.columns or options.imu) read in one pass: values[k] holds column k's
 // kept samples in file units, every column the same length.
 bool ReadRecordColumns(const RecordReaderOptions& options, std::vector<std::vector<double>>* values,

@@ -93,6 +93,82 @@ TEST_F(MappedRecordTest, NonFiniteValuesFailAsWhenStreamed) {
   EXPECT_EQ(map_error.exit_code, read_error.exit_code);
 }
 
+// The checks left to the caller (MapRecordValuesUnchecked, made in a helper thread while the
+// curve is computed) give what MapRecordValues gives: the same description once they pass, the
+// same blocks to the sink, the same error when a value is not finite, and that error first when
+// the file is wrong in another way too.
+TEST_F(MappedRecordTest, UncheckedMappingChecksLaterAsMapRecordValues) {
+  const std::string path = WriteRaw("r.f64", Rate(100003));
+  RecordInfo checked_info, info;
+  RecordError error;
+  MappedFile checked_map, map;
+  std::span<const double> checked, mapped;
+  ASSERT_EQ(MapRecordValues(Options(path), &checked_map, &checked, &checked_info, &error), MapOutcome::kMapped);
+  MappedRecordChecks checks;
+  ASSERT_EQ(MapRecordValuesUnchecked(Options(path), &map, &mapped, &info, &error, &checks), MapOutcome::kMapped);
+  EXPECT_EQ(mapped.size(), checked.size());
+  std::int64_t blocks_seen = 0;
+  const BlockSink count_blocks = [&](std::span<const double> block) {
+    EXPECT_EQ(block.data(), mapped.data() + blocks_seen);
+    blocks_seen += static_cast<std::int64_t>(block.size());
+  };
+  ASSERT_TRUE(checks(&count_blocks, &error)) << error.message;
+  EXPECT_EQ(blocks_seen, 100003);
+  EXPECT_EQ(info.samples, checked_info.samples);
+  EXPECT_EQ(info.column, checked_info.column);
+  EXPECT_EQ(info.units, checked_info.units);
+  EXPECT_EQ(info.rate_source, checked_info.rate_source);
+  EXPECT_EQ(info.longest_constant_stretch.first, checked_info.longest_constant_stretch.first);
+  EXPECT_EQ(info.longest_constant_stretch.length, checked_info.longest_constant_stretch.length);
+
+  std::vector<double> y = Rate(20000);
+  y[123] = std::numeric_limits<double>::quiet_NaN();
+  const std::string nan = WriteRaw("nan.f64", y);
+  RecordError map_error, check_error;
+  MappedFile nan_map, nan_unchecked;
+  EXPECT_EQ(MapRecordValues(Options(nan), &nan_map, &checked, &checked_info, &map_error), MapOutcome::kFailed);
+  ASSERT_EQ(MapRecordValuesUnchecked(Options(nan), &nan_unchecked, &mapped, &info, &error, &checks), MapOutcome::kMapped);
+  EXPECT_FALSE(checks(nullptr, &check_error));
+  EXPECT_EQ(check_error.message, map_error.message);
+  EXPECT_EQ(check_error.exit_code, map_error.exit_code);
+
+  // A sidecar that miscounts the samples: the non-finite value is still what is reported.
+  std::ofstream(nan + ".json") << R"({"dtype": "<f8", "num_samples": 7})";
+  MappedFile side_map, side_unchecked;
+  EXPECT_EQ(MapRecordValues(Options(nan), &side_map, &checked, &checked_info, &map_error), MapOutcome::kFailed);
+  EXPECT_EQ(MapRecordValuesUnchecked(Options(nan), &side_unchecked, &mapped, &info, &check_error, &checks),
+            MapOutcome::kFailed);
+  EXPECT_EQ(check_error.message, map_error.message);
+  EXPECT_NE(check_error.message.find("non-finite"), std::string::npos) << check_error.message;
+  // Without the non-finite value, the miscount.
+  y[123] = 0.01;
+  WriteRaw("nan.f64", y);
+  MappedFile count_map, count_unchecked;
+  EXPECT_EQ(MapRecordValues(Options(nan), &count_map, &checked, &checked_info, &map_error), MapOutcome::kFailed);
+  EXPECT_EQ(MapRecordValuesUnchecked(Options(nan), &count_unchecked, &mapped, &info, &check_error, &checks),
+            MapOutcome::kFailed);
+  EXPECT_EQ(check_error.message, map_error.message);
+  EXPECT_NE(check_error.message.find("sidecar"), std::string::npos) << check_error.message;
+}
+
+// Through the command: a long mapped record with a value that is not finite fails as the same
+// bytes on standard input do, though its curve is computed while it is checked.
+TEST_F(MappedRecordTest, NonFiniteValueFailsTheOverlappedRun) {
+  std::vector<double> y = Rate(std::size_t{1} << 21);
+  y[1500000] = std::numeric_limits<double>::infinity();
+  WriteRaw("inf.f64", y);
+  const std::string args = " --format f64 --rate 100 --units rad/s";
+  const int mapped_code = Run("avar " + Path("inf.f64") + args);
+  const std::string mapped = Read("err.txt");
+  const int streamed_code = Run("avar -" + args + " < " + Path("inf.f64"));
+  const std::string streamed = Read("err.txt");
+  EXPECT_EQ(mapped_code, 1);
+  EXPECT_EQ(mapped_code, streamed_code);
+  EXPECT_NE(mapped.find("1500000"), std::string::npos) << mapped;
+  // The message names the input: inf.f64 against stdin.
+  EXPECT_EQ(mapped.substr(mapped.find("inf.f64") + 7), streamed.substr(streamed.find("stdin") + 5)) << mapped << streamed;
+}
+
 TEST_F(MappedRecordTest, OtherFilesAreLeftToTheStream) {
   const std::vector<double> y = Rate(1000);
   RecordInfo info;

@@ -77,6 +77,29 @@ TEST(AvarCheckpoints, SameSummaryAsTheStoredRecord) {
   }
 }
 
+// The integrated record built in memory the caller supplies (ComputeAvar with `phase`: its pages
+// faulted in by a helper thread in app/input/record_curve.cc): the summary of a buffer of its own,
+// bit for bit; a buffer of the wrong size is not used.
+TEST(AvarCheckpoints, CallersPhaseBufferGivesTheSameSummary) {
+  for (int kind : {0, 1, 2}) {
+    const std::vector<double> y = Record(kind, (std::size_t{1} << 20) + 3, 20 + static_cast<std::uint64_t>(kind));
+    AvarOptions options;
+    options.sample_clock = SampleClock::FromPeriodS(0.01);
+    options.confidence_method = ConfidenceMethod::kAuto;
+    AvarSummary own, supplied, wrong_size;
+    ASSERT_TRUE(ComputeAvar(options, y, &own)) << own.message;
+    std::vector<double> phase(y.size() + 1, -1.0);
+    ASSERT_TRUE(ComputeAvar(options, y, &supplied, phase)) << supplied.message;
+    ExpectSameSummary(own, supplied, "supplied phase");
+    EXPECT_EQ(phase[0], 0.0);  // the integrated record is there
+    EXPECT_NE(phase.back(), -1.0);
+    std::vector<double> short_phase(y.size(), -1.0);
+    ASSERT_TRUE(ComputeAvar(options, y, &wrong_size, short_phase));
+    ExpectSameSummary(own, wrong_size, "wrong size");
+    EXPECT_EQ(short_phase.back(), -1.0);
+  }
+}
+
 TEST(AvarCheckpoints, ModifiedToAllanRatioFromCheckpointsHasTheStoredBits) {
   const std::vector<double> y = Record(2, 100003, 5);
   const double reference = ReferenceLevel(y);

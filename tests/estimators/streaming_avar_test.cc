@@ -127,10 +127,10 @@ TEST(StreamingAvarTest, StateIsBoundedByTheOctaveCount) {
   const std::size_t per_octave = (2 * exact_max_m + 1) * 16 + 256;
   EXPECT_LE(s.StateBytes() - bytes_at_1e5, 5 * per_octave)
       << "state grew from " << bytes_at_1e5 << " to " << s.StateBytes() << " bytes";
-  // Plus the next block's buffer (2 * 256 + 1 kept and 2048 new prefix sums, high and low parts)
-  // and the 2048 samples gathered for it while the current block is folded.
-  const std::size_t next_block = (2 * (2 * exact_max_m + 1 + 2048) + 2048) * 8;
-  EXPECT_LE(s.StateBytes(), 23 * per_octave + next_block);
+  // Plus the prefix-sum buffer (2 * 256 + 1 kept and room for kRoomBlocks blocks of 2048, high and
+  // low parts) and the 2048 samples gathered for the next block while the current one is folded.
+  const std::size_t buffers = (2 * (2 * exact_max_m + 1 + StreamingAvar::kRoomBlocks * 2048) + 2048) * 8;
+  EXPECT_LE(s.StateBytes(), 23 * per_octave + buffers);
 }
 
 TEST(StreamingAvarTest, FewSamplesAndInvalidOptions) {
@@ -167,6 +167,65 @@ TEST(StreamingAvarTest, ThreadsAndSpansNeverChangeTheBits) {
     EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].nonoverlapping), std::bit_cast<std::uint64_t>(two[k].nonoverlapping)) << one[k].m;
     EXPECT_EQ(one[k].overlapping_terms, two[k].overlapping_terms);
     EXPECT_EQ(one[k].nonoverlapping_terms, two[k].nonoverlapping_terms);
+  }
+}
+
+// Spans that hold whole blocks (a raw reader's chunks) are taken where they lie, not gathered:
+// spans of exactly a block, of several blocks and a part, and a mix, give the one-thread bits.
+TEST(StreamingAvarTest, BlocksTakenFromTheCallersSpanKeepTheBits) {
+  const std::vector<double> y = Record(150001, 19);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<StreamingAvarPoint> one = Stream(y, 1024).Points();  // blocks of 2048
+  omp_set_num_threads(std::max(threads, 2));
+  for (std::size_t span : {std::size_t{2048}, std::size_t{7000}, std::size_t{4096 + 1}}) {
+    StreamingAvar s(StreamingAvarOptions{1024});
+    for (std::size_t i = 0; i < y.size(); i += span) {
+      s.Add(std::span<const double>(y).subspan(i, std::min(span, y.size() - i)));
+    }
+    const std::vector<StreamingAvarPoint> two = s.Points();
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].overlapping), std::bit_cast<std::uint64_t>(two[k].overlapping))
+          << "span " << span << ", m = " << one[k].m;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].nonoverlapping), std::bit_cast<std::uint64_t>(two[k].nonoverlapping))
+          << "span " << span << ", m = " << one[k].m;
+    }
+  }
+  omp_set_num_threads(threads);
+}
+
+// A block's fold runs in the helper while the caller reads on (FoldWhileExtending): asking for the
+// points, copying the state or going on after either, mid-record and at every point of the
+// buffer's cycle (the kept prefix sums move to its front once per kRoomBlocks - 1 blocks), gives
+// the bits of the one-thread run.
+TEST(StreamingAvarTest, FoldsInFlightNeverChangeTheBits) {
+  const std::vector<double> y = Record(200000, 17);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<StreamingAvarPoint> one = Stream(y, 1024).Points();
+  omp_set_num_threads(std::max(threads, 2));
+  StreamingAvar stream(StreamingAvarOptions{1024});  // blocks of 2048: shared
+  std::vector<StreamingAvar> copies;
+  for (std::size_t i = 0; i < y.size(); i += 1000) {
+    stream.Add(std::span<const double>(y).subspan(i, std::min<std::size_t>(1000, y.size() - i)));
+    if (i % 7000 == 0) {
+      EXPECT_FALSE(stream.Points().empty());
+      copies.push_back(stream);
+      copies.back().Add(std::span<const double>(y).subspan(i + 1000));
+    }
+  }
+  omp_set_num_threads(threads);
+  ASSERT_FALSE(copies.empty());
+  copies.push_back(stream);
+  for (const StreamingAvar& s : copies) {
+    const std::vector<StreamingAvarPoint> two = s.Points();
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].overlapping), std::bit_cast<std::uint64_t>(two[k].overlapping)) << one[k].m;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[k].nonoverlapping), std::bit_cast<std::uint64_t>(two[k].nonoverlapping)) << one[k].m;
+      EXPECT_EQ(one[k].overlapping_terms, two[k].overlapping_terms);
+    }
   }
 }
 
