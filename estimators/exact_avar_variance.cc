@@ -37,7 +37,11 @@ namespace {
 template <class Variogram>
 long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count) {
   const std::int64_t last = count - 1 + m;  // A is read up to k + m
-  std::vector<double> a(static_cast<std::size_t>(last + 1));
+  // Every A(0..last) is written before it is read: a buffer kept per thread, not a zeroed
+  // record-sized vector per m (zeroing it was about a sixth of ModelAvarMoments).
+  thread_local std::vector<double> kept;
+  if (kept.size() < static_cast<std::size_t>(last + 1)) kept.resize(static_cast<std::size_t>(last + 1));
+  double* const a = kept.data();
   for (std::int64_t j = 0; j <= last; ++j) {
     a[static_cast<std::size_t>(j)] = static_cast<double>(v(j + m) - 2.0L * v(j) + v(std::llabs(j - m)));
   }
