@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <vector>
 
 namespace allanlab::estimators {
@@ -33,15 +34,29 @@ namespace {
 // and kept in double, being of the size of the covariances rather than of V; D and the sum then
 // run in double, several times faster than the five long-double terms per k, and no less accurate
 // (A's rounding is relative to A, not to V).
+constexpr std::size_t kMaxKeptLags = std::size_t{1} << 22;
+// Variograms split into double pairs up to this many lags (the pairs double the variogram's
+// memory: beyond, the long doubles are read, as before).
+constexpr std::size_t kMaxSplitLags = std::size_t{1} << 24;
+
 // `v(j)` is V(j) as a long double (read from the variogram or from its split: the same value).
 template <class Variogram>
 long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count) {
   const std::int64_t last = count - 1 + m;  // A is read up to k + m
   // Every A(0..last) is written before it is read: a buffer kept per thread, not a zeroed
-  // record-sized vector per m (zeroing it was about a sixth of ModelAvarMoments).
+  // record-sized vector per m (zeroing it was about a sixth of ModelAvarMoments). Beyond
+  // kMaxKeptLags (32 MB) the buffer is the call's own, so long records keep no memory.
+  const auto size = static_cast<std::size_t>(last + 1);
   thread_local std::vector<double> kept;
-  if (kept.size() < static_cast<std::size_t>(last + 1)) kept.resize(static_cast<std::size_t>(last + 1));
-  double* const a = kept.data();
+  std::unique_ptr<double[]> own;
+  double* a = nullptr;
+  if (size <= kMaxKeptLags) {
+    if (kept.size() < size) kept.resize(size);
+    a = kept.data();
+  } else {
+    own = std::make_unique_for_overwrite<double[]>(size);
+    a = own.get();
+  }
   for (std::int64_t j = 0; j <= last; ++j) {
     a[static_cast<std::size_t>(j)] = static_cast<double>(v(j + m) - 2.0L * v(j) + v(std::llabs(j - m)));
   }
@@ -65,6 +80,7 @@ long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t c
 }  // namespace
 
 SplitVariogram SplitPhaseVariogram(std::span<const long double> variogram) {
+  if (variogram.size() > kMaxSplitLags) return {};
   SplitVariogram split;
   split.hi.resize(variogram.size());
   split.lo.resize(variogram.size());

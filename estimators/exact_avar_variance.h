@@ -36,7 +36,8 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
 // significand leaves lo at most 11 bits). The overlapping estimator's O(N) loop per m was bound by
 // its three 80-bit loads per lag; two double loads and an exact long-double addition give the same
 // long double in about half the time, so the same bits. Empty when some V does not split exactly
-// (not finite, or outside double's range): the long doubles are read then.
+// (not finite, or outside double's range), or beyond 2^24 lags (memory): the long doubles are
+// read then.
 struct SplitVariogram {
   std::vector<double> hi, lo;
 };

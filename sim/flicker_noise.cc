@@ -124,9 +124,19 @@ void FlickerNoise::AddTo(Engine& engine, double, std::span<double> rate) const {
 
 void FlickerNoise::FillAutocovariance(double, std::span<double> r) const {
   const double scale = 2.0 * bias_instability_rad_per_s * bias_instability_rad_per_s / std::numbers::pi;
-  const std::shared_ptr<const std::vector<double>> harmonic_odd = OddHarmonicSums(r.size());
-  for (std::size_t k = 0; k < r.size(); ++k) r[k] = -scale * (*harmonic_odd)[k];
+  if (const auto harmonic_odd = OddHarmonicSums(r.size())) {
+    for (std::size_t k = 0; k < r.size(); ++k) r[k] = -scale * (*harmonic_odd)[k];
+    return;
+  }
+  long double harmonic_odd = 0.0L;  // too long to keep: summed here, the same way
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    if (k > 0) harmonic_odd += 1.0L / (2.0L * k - 1.0L);
+    r[k] = -scale * static_cast<double>(harmonic_odd);
+  }
 }
+
+// Kept up to 32 MB (the autocovariance of a few million samples); longer ones are not kept.
+constexpr std::size_t kMaxKeptHarmonicSums = std::size_t{1} << 22;
 
 std::shared_ptr<const std::vector<double>> OddHarmonicSums(std::size_t n) {
   // The long-double sum is a serial chain of divisions (a record-sized autocovariance for every
@@ -135,6 +145,7 @@ std::shared_ptr<const std::vector<double>> OddHarmonicSums(std::size_t n) {
   // Each thread holds the last vector it saw, so a long enough one is read without the lock.
   thread_local std::shared_ptr<const std::vector<double>> seen;
   if (seen && seen->size() >= n) return seen;
+  if (n > kMaxKeptHarmonicSums) return nullptr;
   static std::mutex mutex;
   static std::shared_ptr<const std::vector<double>> kept = std::make_shared<const std::vector<double>>();
   static long double running = 0.0L;

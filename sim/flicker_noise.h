@@ -56,7 +56,7 @@ struct FlickerNoise {
 
 // sum_{i=1}^{k} 1/(2i - 1) summed in long double in order and rounded to double, k = 0..n-1 (at
 // least n values): FillAutocovariance's sums, computed once per process and extended on demand.
-// Thread-safe; the returned vector is never modified.
+// Thread-safe; the returned vector is never modified. nullptr for n beyond 2^22 (not kept).
 std::shared_ptr<const std::vector<double>> OddHarmonicSums(std::size_t n);
 
 // Kasdin-Walter coefficients h_0..h_{n-1} for alpha = 1.

@@ -39,5 +39,18 @@ TEST(OddHarmonicSums, AutocovarianceIsTheScaledSum) {
   for (std::size_t k = 0; k < r.size(); ++k) ASSERT_EQ(r[k], -scale * fresh[k]) << k;
 }
 
+// Beyond the kept length the sums are not kept, and the autocovariance is summed in place alike.
+TEST(OddHarmonicSums, LongerThanKeptIsSummedInPlace) {
+  const std::size_t n = (std::size_t{1} << 22) + 3;
+  EXPECT_EQ(OddHarmonicSums(n), nullptr);
+  const FlickerNoise f{1.1e-5};
+  std::vector<double> r(n);
+  f.FillAutocovariance(0.01, r);
+  const std::vector<double> fresh = Fresh(n);
+  const double scale = 2.0 * f.bias_instability_rad_per_s * f.bias_instability_rad_per_s / std::numbers::pi;
+  for (std::size_t k = 0; k < n; k += 997) ASSERT_EQ(r[k], -scale * fresh[k]) << k;
+  ASSERT_EQ(r[n - 1], -scale * fresh[n - 1]);
+}
+
 }  // namespace
 }  // namespace allanlab::sim
