@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <vector>
 
 namespace allanlab::estimators {
@@ -33,13 +34,31 @@ namespace {
 // and kept in double, being of the size of the covariances rather than of V; D and the sum then
 // run in double, several times faster than the five long-double terms per k, and no less accurate
 // (A's rounding is relative to A, not to V).
-long double OverlappingLagSum(std::span<const long double> variogram, std::int64_t m, std::int64_t count) {
+constexpr std::size_t kMaxKeptLags = std::size_t{1} << 22;
+// Variograms split into double pairs up to this many lags (the pairs double the variogram's
+// memory: beyond, the long doubles are read, as before).
+constexpr std::size_t kMaxSplitLags = std::size_t{1} << 24;
+
+// `v(j)` is V(j) as a long double (read from the variogram or from its split: the same value).
+template <class Variogram>
+long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count) {
   const std::int64_t last = count - 1 + m;  // A is read up to k + m
-  std::vector<double> a(static_cast<std::size_t>(last + 1));
+  // Every A(0..last) is written before it is read: a buffer kept per thread, not a zeroed
+  // record-sized vector per m (zeroing it was about a sixth of ModelAvarMoments). Beyond
+  // kMaxKeptLags (32 MB) the buffer is the call's own, so long records keep no memory.
+  const auto size = static_cast<std::size_t>(last + 1);
+  thread_local std::vector<double> kept;
+  std::unique_ptr<double[]> own;
+  double* a = nullptr;
+  if (size <= kMaxKeptLags) {
+    if (kept.size() < size) kept.resize(size);
+    a = kept.data();
+  } else {
+    own = std::make_unique_for_overwrite<double[]>(size);
+    a = own.get();
+  }
   for (std::int64_t j = 0; j <= last; ++j) {
-    a[static_cast<std::size_t>(j)] = static_cast<double>(variogram[static_cast<std::size_t>(j + m)] -
-                                                         2.0L * variogram[static_cast<std::size_t>(j)] +
-                                                         variogram[static_cast<std::size_t>(std::llabs(j - m))]);
+    a[static_cast<std::size_t>(j)] = static_cast<double>(v(j + m) - 2.0L * v(j) + v(std::llabs(j - m)));
   }
   // Four partial sums in a fixed order: the same bits on every run.
   constexpr int kLanes = 4;
@@ -60,8 +79,28 @@ long double OverlappingLagSum(std::span<const long double> variogram, std::int64
 
 }  // namespace
 
+SplitVariogram SplitPhaseVariogram(std::span<const long double> variogram) {
+  if (variogram.size() > kMaxSplitLags) return {};
+  SplitVariogram split;
+  split.hi.resize(variogram.size());
+  split.lo.resize(variogram.size());
+  for (std::size_t j = 0; j < variogram.size(); ++j) {
+    const double hi = static_cast<double>(variogram[j]);
+    const double lo = static_cast<double>(variogram[j] - hi);
+    if (!(static_cast<long double>(hi) + lo == variogram[j])) return {};
+    split.hi[j] = hi;
+    split.lo[j] = lo;
+  }
+  return split;
+}
+
 AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
                                           const sim::RecordShape& shape) {
+  return ExactAvarMomentsFromVariogram(variogram, SplitVariogram{}, m, shape);
+}
+
+AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, const SplitVariogram& split,
+                                          std::int64_t m, const sim::RecordShape& shape) {
   const sim::AllanStarts starts = sim::AllanDifferenceStarts(m, shape);
   if (starts.count == 0) return {};
   auto v = [&](std::int64_t k) { return variogram[static_cast<std::size_t>(std::llabs(k))]; };
@@ -72,7 +111,18 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
   const long double c0 = cov_d(0);
   long double sum = starts.count * c0 * c0;
   if (starts.stride == 1) {
-    sum += 2.0L * scale * scale * OverlappingLagSum(variogram, m, starts.count);
+    const std::int64_t last = starts.count - 1 + 2 * m;  // the largest lag the sum reads
+    long double lag_sum;
+    if (static_cast<std::int64_t>(split.hi.size()) > last) {
+      const double* hi = split.hi.data();
+      const double* lo = split.lo.data();
+      lag_sum = OverlappingLagSum([&](std::int64_t j) { return static_cast<long double>(hi[j]) + lo[j]; }, m,
+                                  starts.count);
+    } else {
+      lag_sum = OverlappingLagSum(
+          [&](std::int64_t j) { return variogram[static_cast<std::size_t>(j)]; }, m, starts.count);
+    }
+    sum += 2.0L * scale * scale * lag_sum;
   } else {
     for (std::int64_t i = 1; i < starts.count; ++i) {
       const long double c = cov_d(i * starts.stride);

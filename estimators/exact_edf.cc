@@ -20,6 +20,7 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
   const std::vector<double> r = model.GaussianAutocovariance(shape.num_samples + 2 * max_m);
   // Every m's longest lag, (count - 1) stride + 2m, is at most N: one variogram serves them all.
   const std::vector<long double> variogram = PhaseVariogram(r, shape.num_samples + 1);
+  const SplitVariogram split = SplitPhaseVariogram(variogram);
   // O(N) per m and the m independent: shared across threads when the caller runs none (inside
   // a parallel region this runs in the caller's thread alone). Each m's value lands in its own
   // slot, so the result is the same bits for any thread count.
@@ -27,7 +28,7 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
 #pragma omp parallel for schedule(dynamic, 1) if (count > 1)
   for (std::int64_t i = 0; i < count; ++i) {
     if (sim::IsValidAveragingFactor(ms[i], shape, nullptr)) {
-      moments[i] = ExactAvarMomentsFromVariogram(variogram, ms[i], shape);
+      moments[i] = ExactAvarMomentsFromVariogram(variogram, split, ms[i], shape);
     }
   }
   return moments;

@@ -74,6 +74,26 @@ double BoxFilter::Step(double x) {
   return static_cast<double>((sum_ + frac_ * static_cast<long double>(leaving)) * inv_w_);
 }
 
+void BoxFilter::FilterInPlace(std::span<double> x) {
+  double* ring = ring_.data();
+  const std::size_t size = ring_.size();
+  std::size_t pos = pos_;
+  long double sum = sum_;
+  const double frac = frac_, inv_w = inv_w_;
+  for (double& v : x) {
+    const std::size_t next = pos + 1 == size ? 0 : pos + 1;
+    const double leaving = ring[next];
+    const double in = v;
+    ring[pos] = in;
+    pos = next;
+    sum += in;
+    sum -= leaving;
+    v = static_cast<double>((sum + frac * static_cast<long double>(leaving)) * inv_w);
+  }
+  pos_ = pos;
+  sum_ = sum;
+}
+
 bool BandLimit::IsValid(double output_rate_hz, std::string* why) const {
   auto fail = [&](const std::string& msg) {
     if (why) *why = msg;

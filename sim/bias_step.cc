@@ -1,6 +1,10 @@
 #include "sim/bias_step.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <map>
+#include <tuple>
 
 namespace allanlab::sim {
 
@@ -27,6 +31,20 @@ void BiasStep::AddTo(Engine&, double tau0_s, std::span<double> rate,
 
 double BiasStep::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape,
                               const std::vector<double>& held_response) const {
+  if (!held_response.empty()) return ExpectedAvarUncached(m, tau0_s, shape, held_response);
+  using Key = std::tuple<std::uint64_t, std::int64_t, std::int64_t, std::int64_t, int>;
+  constexpr std::size_t kMaxEntries = 1 << 14;
+  thread_local std::map<Key, double> memo;
+  const Key key{std::bit_cast<std::uint64_t>(size_rad_per_s), StepIndex(tau0_s), m, shape.num_samples, static_cast<int>(shape.estimator)};
+  if (const auto it = memo.find(key); it != memo.end()) return it->second;
+  const double value = ExpectedAvarUncached(m, tau0_s, shape, held_response);
+  if (memo.size() >= kMaxEntries) memo.clear();
+  memo.emplace(key, value);
+  return value;
+}
+
+double BiasStep::ExpectedAvarUncached(std::int64_t m, double tau0_s, const RecordShape& shape,
+                                      const std::vector<double>& held_response) const {
   const std::int64_t s = StepIndex(tau0_s);
   std::vector<double> step_response(held_response.size() + 1, 1.0);  // cumulative sum of q
   double acc = 0.0;

@@ -26,8 +26,13 @@ struct BiasStep {
              std::int64_t first_index = 0) const;
   // Exact estimator value on the record; with `held_response` (a band-limit's q_j), of the
   // filtered step.
+  // Without a band-limit the value is memoised per thread by (b, step index, m, shape): a held
+  // step is assessed at the same curve in every pass of a refit and fit evaluation, O(m) each.
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape,
                       const std::vector<double>& held_response = {}) const;
+  // The same computed afresh (no memo).
+  double ExpectedAvarUncached(std::int64_t m, double tau0_s, const RecordShape& shape,
+                              const std::vector<double>& held_response = {}) const;
   std::int64_t StepIndex(double tau0_s) const;
 };
 

@@ -64,7 +64,36 @@ class Twiddle {
   std::complex<double> step_ = std::polar(1.0, -2.0 * std::numbers::pi / n_);
 };
 
+// Twiddles kept up to this many (16 MB: records of a few million samples); longer transforms
+// rotate as they go, so memory per sample stays as it was.
+constexpr std::size_t kMaxKeptTwiddles = std::size_t{1} << 20;
+
 }  // namespace
+
+std::shared_ptr<const std::vector<std::complex<double>>> RealFftTwiddles(std::size_t n) {
+  using Table = std::shared_ptr<const std::vector<std::complex<double>>>;
+  if (n / 4 > kMaxKeptTwiddles) return nullptr;
+  thread_local std::size_t last_n = 0;
+  thread_local Table last;
+  if (last && last_n == n) return last;
+  static std::mutex mutex;
+  static std::map<std::size_t, Table> tables;  // a few sizes per process
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = tables.find(n); it != tables.end()) {
+      last_n = n;
+      last = it->second;
+      return last;
+    }
+  }
+  auto table = std::make_shared<std::vector<std::complex<double>>>(n / 4 + 1, std::complex<double>(1.0, 0.0));
+  Twiddle twiddle(n);
+  for (std::size_t k = 1; k <= n / 4; ++k) (*table)[k] = twiddle(k);
+  const std::lock_guard<std::mutex> lock(mutex);
+  last = tables.emplace(n, std::move(table)).first->second;
+  last_n = n;
+  return last;
+}
 
 FftBuffer::FftBuffer(std::size_t size) : size_(size) {
   data_ = static_cast<double*>(fftw_malloc(sizeof(double) * size));
@@ -100,7 +129,9 @@ void ForwardRealFft(std::size_t n, double* data) {
   const std::complex<double> z0 = x[0];
   x[0] = z0.real() + z0.imag();
   x[half] = z0.real() - z0.imag();
-  Twiddle twiddle(n);
+  const auto twiddles = RealFftTwiddles(n);
+  Twiddle rotating(n);  // beyond the kept sizes
+  auto twiddle = [&](std::size_t k) { return twiddles ? (*twiddles)[k] : rotating(k); };
   for (std::size_t k = 1; k <= half / 2; ++k) {
     const std::complex<double> zk = x[k], zc = std::conj(x[half - k]);
     const std::complex<double> even = 0.5 * (zk + zc);
@@ -116,7 +147,9 @@ void InverseRealFft(std::size_t n, double* data) {
   auto* x = reinterpret_cast<std::complex<double>*>(data);
   const double x0 = x[0].real(), xn = x[half].real();
   x[0] = std::complex<double>(x0 + xn, x0 - xn);
-  Twiddle twiddle(n);
+  const auto twiddles = RealFftTwiddles(n);
+  Twiddle rotating(n);  // beyond the kept sizes
+  auto twiddle = [&](std::size_t k) { return twiddles ? (*twiddles)[k] : rotating(k); };
   for (std::size_t k = 1; k <= half / 2; ++k) {
     const std::complex<double> xk = x[k], xc = std::conj(x[half - k]);
     const std::complex<double> even = xk + xc;                        // 2 E_k

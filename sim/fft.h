@@ -5,6 +5,7 @@
 #include <complex>
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 namespace allanlab::sim {
 
@@ -43,5 +44,12 @@ std::size_t GoodFftSize(std::size_t n);
 // unnormalised (FFTW convention): Inverse(Forward(x)) = n x.
 void ForwardRealFft(std::size_t n, double* data);
 void InverseRealFft(std::size_t n, double* data);
+
+// W^k = e^{-2 pi i k / n} for k = 0..n/4 as the real transforms' split uses them: by rotation from
+// k = 1, re-anchored with sin/cos every 512 steps. The rotation is a serial chain of complex
+// products (a sixth of a 2^14-point PSD segment's transform, each time), so the values are made
+// once per n and kept; the same chain, so the same bits. Thread-safe; never modified. nullptr
+// for n / 4 beyond 2^20 (those are not kept: the transforms rotate as they go).
+std::shared_ptr<const std::vector<std::complex<double>>> RealFftTwiddles(std::size_t n);
 
 }  // namespace allanlab::sim

@@ -124,11 +124,43 @@ void FlickerNoise::AddTo(Engine& engine, double, std::span<double> rate) const {
 
 void FlickerNoise::FillAutocovariance(double, std::span<double> r) const {
   const double scale = 2.0 * bias_instability_rad_per_s * bias_instability_rad_per_s / std::numbers::pi;
-  long double harmonic_odd = 0.0L;
+  if (const auto harmonic_odd = OddHarmonicSums(r.size())) {
+    for (std::size_t k = 0; k < r.size(); ++k) r[k] = -scale * (*harmonic_odd)[k];
+    return;
+  }
+  long double harmonic_odd = 0.0L;  // too long to keep: summed here, the same way
   for (std::size_t k = 0; k < r.size(); ++k) {
     if (k > 0) harmonic_odd += 1.0L / (2.0L * k - 1.0L);
     r[k] = -scale * static_cast<double>(harmonic_odd);
   }
+}
+
+// Kept up to 32 MB (the autocovariance of a few million samples); longer ones are not kept.
+constexpr std::size_t kMaxKeptHarmonicSums = std::size_t{1} << 22;
+
+std::shared_ptr<const std::vector<double>> OddHarmonicSums(std::size_t n) {
+  // The long-double sum is a serial chain of divisions (a record-sized autocovariance for every
+  // exact OAVAR curve and block-mean view of a flicker model); it does not depend on B, so it is
+  // summed once as far as asked and kept, with its running long double to extend it by.
+  // Each thread holds the last vector it saw, so a long enough one is read without the lock.
+  thread_local std::shared_ptr<const std::vector<double>> seen;
+  if (seen && seen->size() >= n) return seen;
+  if (n > kMaxKeptHarmonicSums) return nullptr;
+  static std::mutex mutex;
+  static std::shared_ptr<const std::vector<double>> kept = std::make_shared<const std::vector<double>>();
+  static long double running = 0.0L;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (kept->size() < n) {
+    auto longer = std::make_shared<std::vector<double>>(*kept);
+    longer->reserve(n);
+    for (std::size_t k = longer->size(); k < n; ++k) {
+      if (k > 0) running += 1.0L / (2.0L * k - 1.0L);
+      longer->push_back(static_cast<double>(running));
+    }
+    kept = std::move(longer);
+  }
+  seen = kept;
+  return kept;
 }
 
 double FlickerNoise::ExpectedAvar(std::int64_t m, double, const RecordShape& shape) const {

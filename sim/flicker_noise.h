@@ -3,6 +3,7 @@
 // Kasdin-Walter fractional-difference filter with alpha = 1, y = (1 - z^-1)^{-1/2} w, by FFT
 // convolution from a zero initial state (Kasdin & Walter 1992; docs/theory.md §2.5.1).
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -52,6 +53,11 @@ struct FlickerNoise {
   // IEEE 952 floor: (2 ln2 / pi) B^2.
   double AsymptoticAvar(double tau_s) const;
 };
+
+// sum_{i=1}^{k} 1/(2i - 1) summed in long double in order and rounded to double, k = 0..n-1 (at
+// least n values): FillAutocovariance's sums, computed once per process and extended on demand.
+// Thread-safe; the returned vector is never modified. nullptr for n beyond 2^22 (not kept).
+std::shared_ptr<const std::vector<double>> OddHarmonicSums(std::size_t n);
 
 // Kasdin-Walter coefficients h_0..h_{n-1} for alpha = 1.
 std::vector<double> KasdinCoefficients(std::int64_t n);

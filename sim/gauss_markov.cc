@@ -1,6 +1,8 @@
 #include "sim/gauss_markov.h"
 
+#include <array>
 #include <cmath>
+#include <unordered_map>
 #include <vector>
 
 #include <boost/random/normal_distribution.hpp>
@@ -23,6 +25,25 @@ long double PowerSum(int p, long double n) {
     binomial = binomial * static_cast<long double>(p + 1 - k) / static_cast<long double>(k + 1);
   }
   return sum / static_cast<long double>(p + 1);
+}
+
+// M_p = sum_j w(j) j^p for p = 1..9 (Ar1Avar's series), which depend on m alone: a fit evaluates
+// the series at the same curve's small m for every correlation time it tries, and the power sums
+// were most of its cost. Kept per thread (no lock), the same long doubles as computed in place.
+const std::array<long double, 9>& SeriesMoments(std::int64_t m) {
+  constexpr std::size_t kMaxEntries = 4096;
+  thread_local std::unordered_map<std::int64_t, std::array<long double, 9>> kept;
+  if (const auto it = kept.find(m); it != kept.end()) return it->second;
+  if (kept.size() >= kMaxEntries) kept.clear();
+  const long double ml = static_cast<long double>(m);
+  std::array<long double, 9> moments;
+  for (int p = 1; p <= 9; ++p) {
+    const long double upper_p = PowerSum(p, 2.0L * ml - 1.0L) - PowerSum(p, ml);
+    const long double upper_p1 = PowerSum(p + 1, 2.0L * ml - 1.0L) - PowerSum(p + 1, ml);
+    moments[static_cast<std::size_t>(p - 1)] =
+        2.0L * ml * PowerSum(p, ml) - 3.0L * PowerSum(p + 1, ml) + upper_p1 - 2.0L * ml * upper_p;
+  }
+  return kept.emplace(m, moments).first->second;
 }
 
 }  // namespace
@@ -48,13 +69,11 @@ double Ar1Avar(std::int64_t m, double phi, double variance) {
   // sum this replaces was O(m) expm1 calls: with Tc >> record, a third of a diagnosis).
   const long double x = -static_cast<long double>(log_phi);
   const long double ml = static_cast<long double>(m);
+  const std::array<long double, 9>& moments = SeriesMoments(m);
   long double sum = 0.0L, power = 1.0L;  // power = (-x)^p / p!
   for (int p = 1; p <= 9; ++p) {
     power *= -x / static_cast<long double>(p);
-    const long double upper_p = PowerSum(p, 2.0L * ml - 1.0L) - PowerSum(p, ml);
-    const long double upper_p1 = PowerSum(p + 1, 2.0L * ml - 1.0L) - PowerSum(p + 1, ml);
-    const long double moment = 2.0L * ml * PowerSum(p, ml) - 3.0L * PowerSum(p + 1, ml) + upper_p1 - 2.0L * ml * upper_p;
-    sum += power * moment;
+    sum += power * moments[static_cast<std::size_t>(p - 1)];
   }
   return static_cast<double>(variance * sum / (ml * ml));
 }

@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <numbers>
 
 namespace allanlab::sim {
@@ -165,6 +167,20 @@ double KasdinCumulative(double v) {
 }
 
 double KasdinOverlappingAvar(std::int64_t m, std::int64_t n) {
+  if (m < 1 || 2 * m > n) return 0.0;
+  // A few record lengths (a record, its halves) times their curves' m: a small map, one per
+  // thread (fits call this per m of every evaluation from both threads: a shared lock contended).
+  constexpr std::size_t kMaxEntries = 1 << 16;
+  thread_local std::map<std::pair<std::int64_t, std::int64_t>, double> memo;
+  const std::pair<std::int64_t, std::int64_t> key{m, n};
+  if (const auto it = memo.find(key); it != memo.end()) return it->second;
+  const double value = KasdinOverlappingAvarUncached(m, n);
+  if (memo.size() >= kMaxEntries) memo.clear();
+  memo.emplace(key, value);
+  return value;
+}
+
+double KasdinOverlappingAvarUncached(std::int64_t m, std::int64_t n) {
   if (m < 1 || 2 * m > n) return 0.0;
   const double total = SumPiece({m, n, 1}, 0, m - 1) + SumPiece({m, n, 2}, m, 2 * m - 1) +
                        SumPiece({m, n, 3}, 2 * m, n - 1);

@@ -21,7 +21,11 @@
 namespace allanlab::sim {
 
 // E[OAVAR(m)] / B^2 for a record of n samples. Precondition: 1 <= m, 2m <= n.
+// Memoised per (m, n): fits evaluate a flicker term's AVAR at the same curve for every B they try
+// (it is B^2 times this), so each value is computed once and then read back, the same bits.
 double KasdinOverlappingAvar(std::int64_t m, std::int64_t n);
+// The same computed afresh (no memo).
+double KasdinOverlappingAvarUncached(std::int64_t m, std::int64_t n);
 
 // S(v) = sum_{k=0}^{v} h_k, h_0 = 1, h_k = h_{k-1} (k - 1/2) / k, continued analytically to real
 // v >= 0 by 2 Gamma(v + 3/2) / (sqrt(pi) Gamma(v + 1)); S(v) = 0 for v < 0 (the zero state).

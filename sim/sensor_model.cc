@@ -305,15 +305,9 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     } pole{filter.b0, filter.a1};
     const bool first_order = filter.b1 == 0.0 && filter.b2 == 0.0 && filter.a2 == 0.0;
     // The box kinds (moving average, CIC): running boxes in cascade, O(1) per internal sample.
-    struct BoxCascade {
-      std::vector<BoxFilter> stages;
-      double Step(double x) {
-        for (BoxFilter& b : stages) x = b.Step(x);
-        return x;
-      }
-    } cascade;
+    std::vector<BoxFilter> cascade;
     const std::vector<double>& boxes = chain->box_lengths();
-    for (double w : boxes) cascade.stages.emplace_back(w);
+    for (double w : boxes) cascade.emplace_back(w);
     constexpr std::int64_t kChunk = 4096;
     const bool average = band_limit.sampling == OutputSampling::kAverage;
     const bool per_period = options.white_per_output_period && first_order && boxes.empty() && harmonics.empty();
@@ -356,7 +350,20 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
         }
       };
       if (!boxes.empty()) {
-        run(cascade);
+        // Box by box over the whole chunk: each box is causal, so its outputs are those of the
+        // sample-by-sample cascade, with its state in registers (FilterInPlace).
+        for (std::int64_t k = k0; k < k1; ++k) {
+          const double held = out[k];
+          double* u = chunk.data() + (k - k0) * l;
+          for (int i = 0; i < l; ++i) u[i] = held + u[i];
+        }
+        for (BoxFilter& box : cascade) box.FilterInPlace(chunk);
+        for (std::int64_t k = k0; k < k1; ++k) {
+          const double* f = chunk.data() + (k - k0) * l;
+          double acc = 0.0;
+          for (int i = 0; i < l; ++i) acc += f[i];
+          if (k >= burn_in) out[k - burn_in] = average ? acc / l : f[l - 1];
+        }
       } else if (first_order) {
         run(pole);
       } else {

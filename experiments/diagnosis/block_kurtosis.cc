@@ -11,6 +11,13 @@ constexpr int kLanes = 4;  // independent partial sums: chains of additions over
 std::vector<double> BlockSums(std::span<const double> rate, std::int64_t m) {
   const std::int64_t blocks = static_cast<std::int64_t>(rate.size()) / m;
   std::vector<double> sums(static_cast<std::size_t>(blocks));
+  if (m == 1) {
+    // The loop below for one-sample blocks, without its per-block set-up (the first octave is a
+    // record-sized pass): its sum (lane[0] + 0) + (0 + 0) with lane[0] = 0 + x is x + 0, the
+    // sample itself with -0 made +0.
+    for (std::int64_t b = 0; b < blocks; ++b) sums[static_cast<std::size_t>(b)] = rate[static_cast<std::size_t>(b)] + 0.0;
+    return sums;
+  }
   for (std::int64_t b = 0; b < blocks; ++b) {
     double lane[kLanes] = {};
     std::int64_t k = 0;

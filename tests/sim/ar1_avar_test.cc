@@ -52,5 +52,48 @@ TEST(Ar1AvarTest, SeriesIsTheLagSumBelowTheThreshold) {
   }
 }
 
+// The series as it was before its moments were kept per m (sim/gauss_markov.cc): the kept
+// moments must give the same bits, on first use and on reuse.
+long double PowerSumReference(int p, long double n) {
+  static constexpr long double kBernoulli[12] = {1.0L, 0.5L, 1.0L / 6, 0.0L, -1.0L / 30, 0.0L,
+                                                 1.0L / 42, 0.0L, -1.0L / 30, 0.0L, 5.0L / 66, 0.0L};
+  long double sum = 0.0L, binomial = 1.0L;
+  for (int k = 0; k <= p; ++k) {
+    if (kBernoulli[k] != 0.0L) {
+      long double power = 1.0L;
+      for (int e = 0; e < p + 1 - k; ++e) power *= n;
+      sum += binomial * kBernoulli[k] * power;
+    }
+    binomial = binomial * static_cast<long double>(p + 1 - k) / static_cast<long double>(k + 1);
+  }
+  return sum / static_cast<long double>(p + 1);
+}
+
+double SeriesReference(std::int64_t m, double phi, double variance) {
+  const long double x = -static_cast<long double>(std::log(phi));
+  const long double ml = static_cast<long double>(m);
+  long double sum = 0.0L, power = 1.0L;
+  for (int p = 1; p <= 9; ++p) {
+    power *= -x / static_cast<long double>(p);
+    const long double upper_p = PowerSumReference(p, 2.0L * ml - 1.0L) - PowerSumReference(p, ml);
+    const long double upper_p1 = PowerSumReference(p + 1, 2.0L * ml - 1.0L) - PowerSumReference(p + 1, ml);
+    const long double moment =
+        2.0L * ml * PowerSumReference(p, ml) - 3.0L * PowerSumReference(p + 1, ml) + upper_p1 - 2.0L * ml * upper_p;
+    sum += power * moment;
+  }
+  return static_cast<double>(variance * sum / (ml * ml));
+}
+
+TEST(Ar1AvarTest, KeptSeriesMomentsGiveTheSameBits) {
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::int64_t m : {1, 2, 3, 7, 64, 1000, 31623}) {
+      for (double mq : {1e-9, 1e-4, 0.0099}) {
+        const double phi = 1.0 - mq / static_cast<double>(m);
+        EXPECT_EQ(Ar1Avar(m, phi, 2.5), SeriesReference(m, phi, 2.5)) << "m " << m << " m q " << mq;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace allanlab::sim

@@ -40,4 +40,23 @@ TEST(GoodFftSize, SevenSmoothAndMinimal) {
 }
 
 }  // namespace
+// The kept twiddles are the rotation the transforms ran before they were kept: from k = 1 by
+// products with e^{-2 pi i / n}, re-anchored with sin/cos every 512 steps, the same bits.
+TEST(RealFftTwiddles, KeptTableIsTheRotationsBits) {
+  for (std::size_t n : {std::size_t{1000}, std::size_t{16384}, std::size_t{2000000}}) {
+    const auto table = RealFftTwiddles(n);
+    ASSERT_TRUE(table != nullptr);
+    ASSERT_EQ(table->size(), n / 4 + 1);
+    const std::complex<double> step = std::polar(1.0, -2.0 * std::numbers::pi / static_cast<double>(n));
+    std::complex<double> current = 1.0;
+    for (std::size_t k = 1; k <= n / 4; ++k) {
+      current = k == 1 || k % 512 == 0 ? std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n))
+                                       : MulFinite(current, step);
+      ASSERT_EQ((*table)[k], current) << "n " << n << " k " << k;
+    }
+    EXPECT_EQ(RealFftTwiddles(n), table);  // kept, not remade
+  }
+  EXPECT_EQ(RealFftTwiddles((std::size_t{1} << 22) + 8), nullptr);  // too long to keep
+}
+
 }  // namespace allanlab::sim

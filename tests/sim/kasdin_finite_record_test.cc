@@ -55,5 +55,18 @@ TEST(KasdinFiniteRecord, FlickerNoiseUsesIt) {
   EXPECT_NEAR(f.ExpectedAvar(999, 1.0, shape), 4.0 * KasdinOverlappingAvar(999, 50000), 1e-15);
 }
 
+// The memo gives back the bits of a fresh computation, on the first call and on later ones.
+TEST(KasdinFiniteRecord, MemoisedValuesAreTheFreshBits) {
+  for (std::int64_t n : {4099, 777777}) {
+    for (std::int64_t m : {std::int64_t{1}, std::int64_t{2}, std::int64_t{3}, std::int64_t{129}, std::int64_t{1001}, n / 3, n / 2}) {
+      const double fresh = KasdinOverlappingAvarUncached(m, n);
+      EXPECT_EQ(KasdinOverlappingAvar(m, n), fresh) << "m " << m << " n " << n;
+      EXPECT_EQ(KasdinOverlappingAvar(m, n), fresh) << "m " << m << " n " << n;
+    }
+  }
+  EXPECT_EQ(KasdinOverlappingAvar(0, 100), 0.0);
+  EXPECT_EQ(KasdinOverlappingAvar(51, 100), 0.0);
+}
+
 }  // namespace
 }  // namespace allanlab::sim
