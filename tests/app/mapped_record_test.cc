@@ -50,6 +50,17 @@ std::vector<double> Rate(std::size_t n) {
   return y;
 }
 
+// The facts a mapped read reports must be those of the streamed read of the same file.
+void ExpectSameRecordInfo(const RecordInfo& a, const RecordInfo& b) {
+  EXPECT_EQ(a.samples, b.samples);
+  EXPECT_EQ(a.column, b.column);
+  EXPECT_EQ(a.units, b.units);
+  EXPECT_EQ(a.rate_source, b.rate_source);
+  EXPECT_EQ(a.compression, b.compression);
+  EXPECT_EQ(a.longest_constant_stretch.first, b.longest_constant_stretch.first);
+  EXPECT_EQ(a.longest_constant_stretch.length, b.longest_constant_stretch.length);
+}
+
 TEST_F(MappedRecordTest, MappedAndStreamedReadsAgree) {
   const std::vector<double> y = Rate(100003);
   const std::string path = WriteRaw("r.f64", y);
@@ -67,13 +78,7 @@ TEST_F(MappedRecordTest, MappedAndStreamedReadsAgree) {
   ASSERT_EQ(MapRecordValues(Options(path), &map, &mapped, &map_info, &map_error, &count_blocks), MapOutcome::kMapped);
   EXPECT_EQ(std::vector<double>(mapped.begin(), mapped.end()), read);
   EXPECT_EQ(blocks_seen, 100003);
-  EXPECT_EQ(map_info.samples, read_info.samples);
-  EXPECT_EQ(map_info.column, read_info.column);
-  EXPECT_EQ(map_info.units, read_info.units);
-  EXPECT_EQ(map_info.rate_source, read_info.rate_source);
-  EXPECT_EQ(map_info.compression, read_info.compression);
-  EXPECT_EQ(map_info.longest_constant_stretch.first, read_info.longest_constant_stretch.first);
-  EXPECT_EQ(map_info.longest_constant_stretch.length, read_info.longest_constant_stretch.length);
+  ExpectSameRecordInfo(map_info, read_info);
   EXPECT_EQ(map_info.longest_constant_stretch.length, 300);
 }
 
@@ -114,12 +119,7 @@ TEST_F(MappedRecordTest, UncheckedMappingChecksLaterAsMapRecordValues) {
   };
   ASSERT_TRUE(checks(&count_blocks, &error)) << error.message;
   EXPECT_EQ(blocks_seen, 100003);
-  EXPECT_EQ(info.samples, checked_info.samples);
-  EXPECT_EQ(info.column, checked_info.column);
-  EXPECT_EQ(info.units, checked_info.units);
-  EXPECT_EQ(info.rate_source, checked_info.rate_source);
-  EXPECT_EQ(info.longest_constant_stretch.first, checked_info.longest_constant_stretch.first);
-  EXPECT_EQ(info.longest_constant_stretch.length, checked_info.longest_constant_stretch.length);
+  ExpectSameRecordInfo(info, checked_info);
 
   std::vector<double> y = Rate(20000);
   y[123] = std::numeric_limits<double>::quiet_NaN();
