@@ -19,6 +19,7 @@
 #include "sim/quantization_noise.h"
 #include "sim/random_walk_rate.h"
 #include "sim/white_rate_noise.h"
+#include "common/thread_memo.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -225,14 +226,10 @@ EstimateQuantiles EstimateQuantilesAt(Statistic s, int alpha, std::int64_t m, st
                                       double confidence) {
   using Key = std::tuple<Statistic, int, std::int64_t, std::int64_t, double>;
   thread_local std::map<Key, EstimateQuantiles> remembered;
-  const Key key{s, alpha, m, n_rate, confidence};
-  if (const auto it = remembered.find(key); it != remembered.end()) return it->second;
-  const std::optional<EstimateQuantiles> tabulated = TabulatedEstimateQuantiles(s, alpha, m, n_rate, confidence);
-  const EstimateQuantiles q =
-      tabulated ? *tabulated : ComputeEstimateQuantiles(s, alpha, m, n_rate, confidence);
-  if (remembered.size() >= 1024) remembered.clear();
-  remembered.emplace(key, q);
-  return q;
+  return ThreadMemo(remembered, 1024, Key{s, alpha, m, n_rate, confidence}, [&] {
+    const std::optional<EstimateQuantiles> tabulated = TabulatedEstimateQuantiles(s, alpha, m, n_rate, confidence);
+    return tabulated ? *tabulated : ComputeEstimateQuantiles(s, alpha, m, n_rate, confidence);
+  });
 }
 
 }  // namespace allanlab::estimators

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <tuple>
+#include "common/thread_memo.h"
 
 namespace allanlab::sim {
 
@@ -36,11 +37,7 @@ double BiasStep::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& 
   constexpr std::size_t kMaxEntries = 1 << 14;
   thread_local std::map<Key, double> memo;
   const Key key{std::bit_cast<std::uint64_t>(size_rad_per_s), StepIndex(tau0_s), m, shape.num_samples, static_cast<int>(shape.estimator)};
-  if (const auto it = memo.find(key); it != memo.end()) return it->second;
-  const double value = ExpectedAvarUncached(m, tau0_s, shape, held_response);
-  if (memo.size() >= kMaxEntries) memo.clear();
-  memo.emplace(key, value);
-  return value;
+  return ThreadMemo(memo, kMaxEntries, key, [&] { return ExpectedAvarUncached(m, tau0_s, shape, held_response); });
 }
 
 double BiasStep::ExpectedAvarUncached(std::int64_t m, double tau0_s, const RecordShape& shape,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <boost/random/normal_distribution.hpp>
+#include "common/thread_memo.h"
 
 namespace allanlab::sim {
 
@@ -33,17 +34,17 @@ long double PowerSum(int p, long double n) {
 const std::array<long double, 9>& SeriesMoments(std::int64_t m) {
   constexpr std::size_t kMaxEntries = 4096;
   thread_local std::unordered_map<std::int64_t, std::array<long double, 9>> kept;
-  if (const auto it = kept.find(m); it != kept.end()) return it->second;
-  if (kept.size() >= kMaxEntries) kept.clear();
-  const long double ml = static_cast<long double>(m);
-  std::array<long double, 9> moments;
-  for (int p = 1; p <= 9; ++p) {
-    const long double upper_p = PowerSum(p, 2.0L * ml - 1.0L) - PowerSum(p, ml);
-    const long double upper_p1 = PowerSum(p + 1, 2.0L * ml - 1.0L) - PowerSum(p + 1, ml);
-    moments[static_cast<std::size_t>(p - 1)] =
-        2.0L * ml * PowerSum(p, ml) - 3.0L * PowerSum(p + 1, ml) + upper_p1 - 2.0L * ml * upper_p;
-  }
-  return kept.emplace(m, moments).first->second;
+  return ThreadMemo(kept, kMaxEntries, m, [m] {
+    const long double ml = static_cast<long double>(m);
+    std::array<long double, 9> moments;
+    for (int p = 1; p <= 9; ++p) {
+      const long double upper_p = PowerSum(p, 2.0L * ml - 1.0L) - PowerSum(p, ml);
+      const long double upper_p1 = PowerSum(p + 1, 2.0L * ml - 1.0L) - PowerSum(p + 1, ml);
+      moments[static_cast<std::size_t>(p - 1)] =
+          2.0L * ml * PowerSum(p, ml) - 3.0L * PowerSum(p + 1, ml) + upper_p1 - 2.0L * ml * upper_p;
+    }
+    return moments;
+  });
 }
 
 }  // namespace

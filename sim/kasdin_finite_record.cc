@@ -5,6 +5,7 @@
 #include <map>
 #include <utility>
 #include <numbers>
+#include "common/thread_memo.h"
 
 namespace allanlab::sim {
 namespace {
@@ -172,12 +173,7 @@ double KasdinOverlappingAvar(std::int64_t m, std::int64_t n) {
   // thread (fits call this per m of every evaluation from both threads: a shared lock contended).
   constexpr std::size_t kMaxEntries = 1 << 16;
   thread_local std::map<std::pair<std::int64_t, std::int64_t>, double> memo;
-  const std::pair<std::int64_t, std::int64_t> key{m, n};
-  if (const auto it = memo.find(key); it != memo.end()) return it->second;
-  const double value = KasdinOverlappingAvarUncached(m, n);
-  if (memo.size() >= kMaxEntries) memo.clear();
-  memo.emplace(key, value);
-  return value;
+  return ThreadMemo(memo, kMaxEntries, {m, n}, [&] { return KasdinOverlappingAvarUncached(m, n); });
 }
 
 double KasdinOverlappingAvarUncached(std::int64_t m, std::int64_t n) {
