@@ -84,6 +84,14 @@ void RateQuantizer::Apply(std::span<double> rate, double offset_lsb) const {
   for (double& v : rate) v = lsb_rad_per_s * std::nearbyint(v / lsb_rad_per_s + offset_lsb);
 }
 
+void RateQuantizer::ApplySubtractiveDither(Engine& engine, std::span<double> rate) const {
+  boost::random::uniform_real_distribution<double> dither(-0.5, 0.5);
+  for (double& v : rate) {
+    const double d = dither(engine);
+    v = lsb_rad_per_s * (std::nearbyint(v / lsb_rad_per_s + d) - d);
+  }
+}
+
 double RateQuantizer::ApproximateAvar(std::int64_t m) const {
   return lsb_rad_per_s * lsb_rad_per_s / (12.0 * static_cast<double>(m));
 }
@@ -94,6 +102,7 @@ std::vector<double> RateQuantizer::ErrorAutocovariance(std::span<const double> r
   std::vector<double> out(r.size(), 0.0);
   if (r.empty()) return out;
   out[0] = lsb2 / 12.0;
+  if (subtractive_dither) return out;
   // Beyond kMaxK the series is summed as its tail integral; terms below 1e-17 of lsb^2 stop it.
   constexpr int kMaxK = 2000;
   for (std::size_t j = 1; j < r.size(); ++j) {

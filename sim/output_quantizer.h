@@ -7,7 +7,10 @@
 //  * RateQuantizer: each rate sample rounded to an LSB; it adds white noise of variance lsb^2/12
 //    when the rate noise spans several LSBs, and correlated error that distorts the curve when it
 //    does not (a band-limited or slowly wandering signal crosses few levels between samples).
-//    ErrorAutocovariance gives the error's exact second moments for a Gaussian signal.
+//    ErrorAutocovariance gives the error's exact second moments for a Gaussian signal. With
+//    subtractive dither (a uniform value added before rounding and removed after, as some
+//    digital front ends do) the error is uniform, white and independent of the signal whatever
+//    the signal does: lsb^2/12 at lag 0 exactly, and the samples sit on no value grid.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -50,9 +53,14 @@ struct RateQuantizer {
   // offset, so with it the theory is exact for a Gaussian signal; without it (offset 0) the
   // theory holds when the signal wanders over several LSBs during the record.
   bool random_offset = false;
+  // Subtractive dither: rate[k] <- lsb * round(rate[k] / lsb + d_k) - lsb * d_k, d_k ~ U[-1/2, 1/2)
+  // drawn per sample (ApplySubtractiveDither). random_offset is then moot.
+  bool subtractive_dither = false;
   bool IsValid(std::string* why) const;
   // rate[k] <- lsb * round(rate[k] / lsb + offset_lsb).
   void Apply(std::span<double> rate_rad_per_s, double offset_lsb = 0.0) const;
+  // The dithered quantizer, its dither drawn from `engine`.
+  void ApplySubtractiveDither(Engine& engine, std::span<double> rate_rad_per_s) const;
   // Approximate added AVAR for busy noise: (lsb^2 / 12) / m.
   double ApproximateAvar(std::int64_t m) const;
   // Autocovariance R_e(j), j = 0..n-1, of the error e = Qz(x) - x for a Gaussian signal x of
@@ -62,7 +70,8 @@ struct RateQuantizer {
   //   R_e(j) = sum_{k >= 1} lsb^2 / (2 pi^2 k^2) exp(-2 pi^2 k^2 D(j) / lsb^2),  R_e(0) = lsb^2/12.
   // Under the same average e is uncorrelated with x, so the output's autocovariance is R + R_e and
   // its AVAR is AVAR_x + AvarFromAutocovariance(R_e) (docs/theory.md §1.2). When D(j) >> lsb^2 at j = 1
-  // this is the white lsb^2/12 of ApproximateAvar.
+  // this is the white lsb^2/12 of ApproximateAvar. With subtractive dither: lsb^2/12 at lag 0,
+  // 0 beyond (Schuchman's condition holds for uniform dither), for any signal.
   std::vector<double> ErrorAutocovariance(std::span<const double> signal_autocovariance) const;
 };
 

@@ -389,7 +389,10 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     Engine engine = engine_for(kQuantizerStream);
     angle_quantizer->Apply(engine, tau0, out);
   }
-  if (rate_quantizer) {
+  if (rate_quantizer && rate_quantizer->subtractive_dither) {
+    Engine engine = engine_for(kRateQuantizerStream);
+    rate_quantizer->ApplySubtractiveDither(engine, out);
+  } else if (rate_quantizer) {
     double offset = 0.0;
     if (rate_quantizer->random_offset) {
       Engine engine = engine_for(kRateQuantizerStream);

@@ -59,8 +59,8 @@ struct SensorModel {
   bool IsValid(std::string* why) const;
 
   // A record of n samples for (seed, trial). Term i draws from stream i of (seed, trial); the
-  // angle quantizer from stream kQuantizerStream, the rate quantizer's offset from
-  // kRateQuantizerStream. Bit-identical for the same arguments whatever
+  // angle quantizer from stream kQuantizerStream, the rate quantizer's offset (or its dither)
+  // from kRateQuantizerStream. Bit-identical for the same arguments whatever
   // the thread. Precondition: IsValid().
   std::vector<double> Generate(std::uint64_t seed, std::uint64_t trial, std::int64_t n) const;
   // The same with `options` (the first white term's stream then feeds the period draws).
@@ -70,14 +70,15 @@ struct SensorModel {
   // Exact E[AVAR_hat(m)] of Generate()'s records (rad/s)^2, band-limit and finite record
   // included. The quantizers' shares come from their error autocovariances on the Gaussian
   // part's (output_quantizer.h): the angle quantizer's exact (its initial residual is uniform),
-  // the rate quantizer's exact with random_offset, the busy-noise limit otherwise.
+  // the rate quantizer's exact with random_offset or subtractive dither, the busy-noise limit
+  // otherwise.
   // ExpectedAvarIsExact() says which.
   double ExpectedAvar(std::int64_t m, const RecordShape& shape) const;
   // The same for a list of averaging factors (shares the per-term set-up work).
   std::vector<double> ExpectedAvar(std::span<const std::int64_t> ms, const RecordShape& shape,
                                    FlickerBandLimit flicker = FlickerBandLimit::kExact) const;
   bool ExpectedAvarIsExact() const {
-    return !rate_quantizer || rate_quantizer->random_offset;
+    return !rate_quantizer || rate_quantizer->random_offset || rate_quantizer->subtractive_dither;
   }
 
   // Generalised autocovariance of the Gaussian (linear) part of the output at lags 0..lags-1,
@@ -91,7 +92,7 @@ struct SensorModel {
   double AsymptoticAvar(double tau_s) const;
 
   static constexpr std::uint64_t kQuantizerStream = 1000;
-  static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset
+  static constexpr std::uint64_t kRateQuantizerStream = 1001;  // its random offset or dither
   static constexpr std::uint64_t kSharedFlickerStream = 1002;  // GenerateOptions::flicker_cache
 
  private:

@@ -446,7 +446,7 @@ bool ReadBandLimit(const YAML::Node& node, double sample_rate_hz, ErrorSink* sin
 }
 
 bool ReadOutput(const YAML::Node& node, ErrorSink* sink, SensorModel* model) {
-  auto map = MapReader::Open(node, "output", "output", {"angle_lsb", "rate_lsb"}, sink);
+  auto map = MapReader::Open(node, "output", "output", {"angle_lsb", "rate_lsb", "rate_dither"}, sink);
   if (!map) return false;
   if (map->Has("angle_lsb")) {
     AngleQuantizer q;
@@ -455,10 +455,16 @@ bool ReadOutput(const YAML::Node& node, ErrorSink* sink, SensorModel* model) {
   }
   if (map->Has("rate_lsb")) {
     RateQuantizer q;
-    if (!map->Quantity("rate_lsb", Dimension::kRate, Sign::kPositive, &q.lsb_rad_per_s)) {
+    static const std::vector<std::string_view> kDither = {"none", "subtractive"};
+    std::size_t dither = 0;
+    if (!map->Quantity("rate_lsb", Dimension::kRate, Sign::kPositive, &q.lsb_rad_per_s) ||
+        !map->Choice("rate_dither", false, kDither, &dither)) {
       return false;
     }
+    q.subtractive_dither = dither == 1;
     model->rate_quantizer = q;
+  } else if (map->Has("rate_dither")) {
+    return sink->Fail(node.Mark(), "output.rate_dither", "a dither needs rate_lsb");
   }
   return true;
 }

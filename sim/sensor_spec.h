@@ -21,7 +21,8 @@
 //     - {type: outliers, rate: 0.01 Hz, size: 2 deg/s}
 //   band_limit: {type: first_order|butterworth2|none, cutoff: 100 Hz, oversampling: 8,
 //                sampling: point|average}
-//   output: {angle_lsb: 1 urad, rate_lsb: 0.05 deg/s}   # both optional
+//   output: {angle_lsb: 1 urad, rate_lsb: 0.05 deg/s,     # both optional
+//            rate_dither: none|subtractive}              # optional, default none
 //
 // Unknown keys, missing units, wrong units and invalid values are rejected with the key's path
 // (e.g. "terms[2].N: ...").

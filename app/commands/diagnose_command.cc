@@ -124,6 +124,7 @@ Json ParamsJson(const std::vector<EffectInstance>& effects, const DiagnoseUnits&
     Json p = Json::object();
     for (const std::string& name : EffectParameterNames(e.effect)) p[ParameterName(units, name)] = e.params.at(name);
     if (const std::string family = FilterFamilyName(e); !family.empty()) p["filter"] = family;
+    if (HasSubtractiveDither(e)) p["dither"] = "subtractive";
     return p;
   };
   if (effects.size() == 1) return one(effects[0]);

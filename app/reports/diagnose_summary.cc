@@ -180,7 +180,7 @@ std::string QuantitiesText(const PlainEffect& e) {
 
 PlainEffect MakePlainEffect(const EffectInstance& e, const DiagnoseUnits& units, SampleClock sample_clock) {
   PlainEffect pe{std::string(EffectId(e.effect)), Describe(e.effect, units), {}};
-  if (const std::string family = FilterFamilyName(e); !family.empty()) pe.description += " (" + family + ")";
+  if (const std::string variant = EffectVariant(e); !variant.empty()) pe.description += " (" + variant + ")";
   for (const std::string& name : EffectParameterNames(e.effect)) {
     pe.quantities.push_back(Quantity(name, e.params.at(name), units));
     AddCaveat(sample_clock, &pe.quantities.back());

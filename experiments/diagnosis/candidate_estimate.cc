@@ -271,6 +271,28 @@ std::optional<EffectInstance> Harmonic(std::span<const double> y, double tau0, s
                          {"frequency_hz", static_cast<double>(best) / (static_cast<double>(n) * tau0)}}};
 }
 
+// The first differences' variance and excess kurtosis: what the kurtosis view sees at the
+// shortest tau.
+struct Moments {
+  double variance = 0.0;
+  double excess_kurtosis = 0.0;
+};
+Moments DifferenceMoments(std::span<const double> y) {
+  const std::size_t n = y.size() - 1;
+  double mean = 0.0;
+  for (std::size_t k = 0; k < n; ++k) mean += y[k + 1] - y[k];
+  mean /= static_cast<double>(n);
+  double m2 = 0.0, m4 = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double c = (y[k + 1] - y[k] - mean) * (y[k + 1] - y[k] - mean);
+    m2 += c;
+    m4 += c * c;
+  }
+  m2 /= static_cast<double>(n);
+  m4 /= static_cast<double>(n);
+  return {m2, m4 / (m2 * m2) - 3.0};
+}
+
 // The value grid of a quantized record: the smallest positive gap between distinct values, if
 // (nearly) every value sits on it.
 std::optional<double> ValueGrid(std::span<const double> y, std::string* why) {
@@ -310,6 +332,25 @@ std::optional<double> LsbFromBaselineQ(const sim::SensorModel* baseline, std::st
   }
   *why += "; the baseline has no quantization noise either";
   return std::nullopt;
+}
+
+// Without a value grid, a quantizer with subtractive dither: its error is uniform, white and
+// independent of the signal (sim/output_quantizer.h), so it leaves the Allan curve as more white
+// noise and shows only in the law of the samples. The first differences carry the error's
+// triangular law (excess kurtosis -0.6) at variance 2 s2, s2 = lsb^2 / 12, beside the Gaussian
+// signal's: their excess kurtosis is -2.4 s2^2 / V^2 (V their variance), which gives s2 when it
+// stands 3 of its standard errors (sqrt(24 / n)) below 0. At most -0.6: all of V the error's.
+std::optional<EffectInstance> DitheredRateQuantization(std::span<const double> y, std::string* why) {
+  if (y.size() < 3) return std::nullopt;
+  const auto [v, excess] = DifferenceMoments(y);
+  const double n = static_cast<double>(y.size() - 1);
+  if (!(excess < -3.0 * std::sqrt(24.0 / n))) {
+    *why += "; the first differences are not lighter-tailed than Gaussian (no dithered quantizer)";
+    return std::nullopt;
+  }
+  const double s2 = v * std::sqrt(std::min(-excess, 0.6) / 2.4);
+  return EffectInstance{Effect::kRateQuantization,
+                        {{"lsb_rad_per_s", std::sqrt(12.0 * s2)}, {"subtractive_dither", 1.0}}};
 }
 
 // Least squares of block means on [1, E_b(tw)], E_b the exact mean of e^{-k tau0 / tw} over block
@@ -481,24 +522,7 @@ std::optional<EffectInstance> Spikes(std::span<const double> y, double tau0, std
   for (std::size_t k = 1; k + 1 < a.size(); ++k) {
     if (a[k] > threshold && a[k] >= a[k - 1] && a[k] >= a[k + 1]) sizes.push_back(a[k]);
   }
-  // The first differences' variance and excess kurtosis: what the kurtosis view sees at the
-  // shortest tau.
-  double m2 = 0.0, excess = 0.0;
-  {
-    const std::size_t n = y.size() - 1;
-    double mean = 0.0;
-    for (std::size_t k = 0; k < n; ++k) mean += y[k + 1] - y[k];
-    mean /= static_cast<double>(n);
-    double m4 = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double c = (y[k + 1] - y[k] - mean) * (y[k + 1] - y[k] - mean);
-      m2 += c;
-      m4 += c * c;
-    }
-    m2 /= static_cast<double>(n);
-    m4 /= static_cast<double>(n);
-    excess = m4 / (m2 * m2) - 3.0;
-  }
+  const auto [m2, excess] = DifferenceMoments(y);
   if (sizes.size() < 3) {
     // Heavy tails without isolated spikes: the white noise's law is wider than a Gaussian (a
     // contaminated normal). Its excess kurtosis fixes p a^4 only, so a is set at 3 sd of the
@@ -573,9 +597,10 @@ std::optional<EffectInstance> AngleQuantizationStart(const EstimateInputs& in, s
   return EffectInstance{Effect::kAngleQuantization, {{"lsb_rad", *lsb}}};
 }
 std::optional<EffectInstance> RateQuantizationStart(const EstimateInputs& in, std::string* why) {
-  const auto lsb = ValueGrid(in.rate_rad_per_s, why);
-  if (!lsb) return std::nullopt;
-  return EffectInstance{Effect::kRateQuantization, {{"lsb_rad_per_s", *lsb}}};
+  if (const auto lsb = ValueGrid(in.rate_rad_per_s, why)) {
+    return EffectInstance{Effect::kRateQuantization, {{"lsb_rad_per_s", *lsb}}};
+  }
+  return DitheredRateQuantization(in.rate_rad_per_s, why);
 }
 std::optional<EffectInstance> ExponentialDriftStart(const EstimateInputs& in, std::string* why) {
   return Drift(in.rate_rad_per_s, in.curve->sample_clock.period_s(), why);

@@ -14,7 +14,8 @@
 //   random_telegraph    amplitude_rad_per_s, mean_dwell_s
 //   harmonic            amplitude_rad_per_s, frequency_hz
 //   angle_quantization  lsb_rad
-//   rate_quantization   lsb_rad_per_s
+//   rate_quantization   lsb_rad_per_s; optional subtractive_dither (1: the error uniform and
+//                       independent of the signal, the samples on no grid; 0 or absent: rounding)
 //   exponential_drift   amplitude_rad_per_s, time_constant_s
 //   bias_step           size_rad_per_s, time_s
 //   outliers            rate_hz, size_rad_per_s
@@ -111,8 +112,13 @@ std::vector<std::string> EffectParameterNames(Effect e);
 // A band-limit's filter family (sim::BandLimitFamilies() name: "moving_average", "analog1_point",
 // ...); empty for other effects.
 std::string FilterFamilyName(const EffectInstance& effect);
-// The effect's name as a report gives it: the id, and for a band-limit its filter family
-// ("bandwidth (moving_average)").
+// A rate quantizer with subtractive dither.
+bool HasSubtractiveDither(const EffectInstance& effect);
+// Which member of its effect's family: a band-limit's filter family, "subtractive dither" for a
+// dithered quantizer; empty otherwise.
+std::string EffectVariant(const EffectInstance& effect);
+// The effect's name as a report gives it: the id and its variant in parentheses
+// ("bandwidth (moving_average)", "rate_quantization (subtractive dither)").
 std::string EffectLabel(const EffectInstance& effect);
 bool AddEffect(const EffectInstance& effect, sim::SensorModel* model, std::string* why);
 bool IsOneOffEvent(Effect e);

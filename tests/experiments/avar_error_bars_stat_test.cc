@@ -144,7 +144,8 @@ TEST_F(AvarErrorBarsTest, ExactEdfIntervalsCoverAtTheNominalRate) {
 }
 
 TEST_F(AvarErrorBarsTest, ReportWritesCsvMarkdownAndPlotsWithProvenance) {
-  const std::string dir = testing_support::FreshDirectory("allanlab_avar_error_bars_test");
+  const testing_support::ScratchDirectory scratch("allanlab_avar_error_bars_test");
+  const std::string dir = scratch.path();
   ReportContext context;
   context.output_dir = dir;
   context.git_sha = "abc1234";

@@ -61,14 +61,28 @@ inline experiments::PointStats Stats(const DriverRun& run, int point) {
   return stats;
 }
 
-inline std::string FreshDirectory(const std::string& name) {
-  // With the process id: two checkouts' suites running at once must not share a folder.
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
-  dir += "_";
-  dir += std::to_string(::getpid());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
+// An empty folder under the temp directory, removed with everything in it when the object goes:
+// a report test must not leave its files behind on the machine.
+class ScratchDirectory {
+ public:
+  explicit ScratchDirectory(const std::string& name) {
+    // With the process id: two checkouts' suites running at once must not share a folder.
+    path_ = std::filesystem::temp_directory_path() / name;
+    path_ += "_";
+    path_ += std::to_string(::getpid());
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  std::string path() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace allanlab::testing_support

@@ -87,7 +87,8 @@ TEST(SeedPaperDriver, ReadingsAgreeWithTheExactCurveAndTheReportIsWritten) {
   const double n_expected = std::sqrt(expected) * kRadPerSToDegPerH / 60.0;
   EXPECT_GT(n_expected / truth.n_deg_per_sqrt_h, 1.0);
 
-  const std::string dir = testing_support::FreshDirectory("allanlab_seed_paper_test");
+  const testing_support::ScratchDirectory scratch("allanlab_seed_paper_test");
+  const std::string dir = scratch.path();
   ReportContext context;
   context.output_dir = dir;
   context.git_sha = "abc1234";

@@ -1,7 +1,11 @@
-// `diagnose` on white noise with a heavier law than the Gaussian and no isolated spikes, made by
-// the independent generator (Student-t draws of the same variance): the kurtosis view flags it at
+// `diagnose` on white noise whose law is not Gaussian, made by the independent generator: heavier
+// (Student-t draws of the same variance, no isolated spikes), where the kurtosis view flags it at
 // the shortest taus and the outliers candidate, started from the first differences' excess
-// kurtosis (a contaminated normal), names it. Fixed seed, 3.6e4-sample record (seconds).
+// kurtosis (a contaminated normal), names it; and lighter (a rate quantizer with subtractive
+// dither adds uniform error and leaves no value grid), where the dithered quantizer candidate,
+// started from the kurtosis deficit, names it. Fixed seeds, 3.6e4-sample records (seconds).
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "experiments/diagnosis/diagnose.h"
@@ -30,6 +34,30 @@ TEST(DiagnoseHeavyTailsStatTest, StudentTWhiteNoiseIsNamedOutliers) {
   ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
   ASSERT_TRUE(s.significant);
   EXPECT_EQ(s.verdict, "outliers") << testing::DescribeVerdict(s);
+}
+
+// An LSB of 4 per-sample standard deviations: the first differences' excess kurtosis is
+// -2.4 (4^2/12)^2 / (2 (1 + 4^2/12))^2 = -0.20, 7.6 standard errors below 0; the Allan curve only
+// sees more white noise, which the baseline's N takes.
+TEST(DiagnoseHeavyTailsStatTest, SubtractivelyDitheredRateQuantizerIsNamed) {
+  independent::Recipe r;
+  r.rate_hz = 100.0;
+  r.noise.arw_rad_per_sqrt_s = 1e-4;
+  r.noise.rrw_rad_per_s_per_sqrt_s = 1e-6;
+  r.rate_quantizer = independent::RateQuantizer{4.0 * 1e-4 * std::sqrt(r.rate_hz), true};
+  const std::vector<double> record = independent::Generate(r, testing::kDiagnosisTestSamples, 73, 0);
+  DiagnoseOptions options;
+  options.trials = 12;
+  DiagnosisSummary s;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
+  ASSERT_TRUE(s.significant);
+  EXPECT_EQ(s.verdict, "rate_quantization") << testing::DescribeVerdict(s);
+  ASSERT_GE(s.verdict_candidate, 0);
+  const EffectInstance& e = s.candidates[s.verdict_candidate].effects.front();
+  EXPECT_TRUE(HasSubtractiveDither(e));
+  // The LSB from the kurtosis deficit goes as its fourth root: the excess's relative standard
+  // error 1/7.6 becomes ~3.3 %; within 6 of them.
+  EXPECT_NEAR(e.params.at("lsb_rad_per_s") / r.rate_quantizer->lsb_rad_per_s, 1.0, 0.2);
 }
 
 }  // namespace
