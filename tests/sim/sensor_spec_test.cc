@@ -144,6 +144,26 @@ TEST(SensorSpec, OptionalPartsTakeTheirDefaults) {
   EXPECT_EQ(m.band_limit.sampling, OutputSampling::kPoint);
 }
 
+TEST(SensorSpec, RateDitherIsReadAndNeedsAnLsb) {
+  SensorModel m;
+  std::string why;
+  ASSERT_TRUE(LoadSensorModelYaml("name: x\nsample_rate: 100 Hz\nterms: []\n"
+                                  "output: {rate_lsb: 0.05 deg/s, rate_dither: subtractive}\n",
+                                  "test", &m, &why))
+      << why;
+  ASSERT_TRUE(m.rate_quantizer.has_value());
+  EXPECT_TRUE(m.rate_quantizer->subtractive_dither);
+  ASSERT_TRUE(LoadSensorModelYaml("name: x\nsample_rate: 100 Hz\nterms: []\noutput: {rate_lsb: 0.05 deg/s}\n",
+                                  "test", &m, &why))
+      << why;
+  EXPECT_FALSE(m.rate_quantizer->subtractive_dither) << "rounding by default";
+  ExpectErrorMentions("name: x\nsample_rate: 100 Hz\nterms: []\noutput: {rate_dither: subtractive}\n",
+                      {"output.rate_dither", "needs rate_lsb"});
+  ExpectErrorMentions("name: x\nsample_rate: 100 Hz\nterms: []\n"
+                      "output: {rate_lsb: 0.05 deg/s, rate_dither: triangular}\n",
+                      {"rate_dither", "subtractive"});
+}
+
 TEST(SensorSpec, UnknownKeyIsReportedWithItsPath) {
   ExpectErrorMentions(R"(name: x
 sample_rate: 100 Hz
