@@ -1,6 +1,7 @@
 #include "estimators/record_edf.h"
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "estimators/lag_products.h"
@@ -28,6 +29,27 @@ std::int64_t MeasuredTerms(Statistic s, std::int64_t m, std::int64_t n, std::int
 // Lags (in terms) at which two terms of the estimate still share samples: k stride < d m.
 std::int64_t LagWindow(Statistic s, std::int64_t m) {
   return (DifferenceOrder(s) * m + Stride(s, m) - 1) / Stride(s, m);
+}
+
+// a[j] = the order-kOrder difference at lag m starting at x[j stride]. The overlapping
+// estimators' stride of 1 gets its own loop, which the compiler vectorises, in AVX2 where the CPU
+// has it (half the instructions of the baseline's SSE2; AVX2 has no fused multiply-add, so the
+// same bits).
+template <int kOrder>
+__attribute__((target_clones("avx2", "default"))) void DifferenceTerms(const double* x, std::int64_t stride, std::int64_t m, std::span<double> a) {
+  const auto term = [m](const double* t) {
+    if constexpr (kOrder == 2) {
+      return (t[2 * m] - t[m]) - (t[m] - t[0]);
+    } else {
+      return (t[3 * m] - t[0]) - 3.0 * (t[2 * m] - t[m]);
+    }
+  };
+  const auto used = static_cast<std::int64_t>(a.size());
+  if (stride == 1) {
+    for (std::int64_t j = 0; j < used; ++j) a[static_cast<std::size_t>(j)] = term(x + j);
+  } else {
+    for (std::int64_t j = 0; j < used; ++j) a[static_cast<std::size_t>(j)] = term(x + j * stride);
+  }
 }
 
 }  // namespace
@@ -65,13 +87,14 @@ double RecordEdfFromStretch(Statistic s, std::int64_t n, std::span<const double>
   const std::int64_t used = MeasuredTerms(s, m, n, max_terms);
   // The measured terms: a_j = sum_i c_i x_{t + i m}, t = (first + j) stride for the middle
   // `used` terms, binomial c with alternating signs (order 2: 1, -2, 1; order 3: -1, 3, -3, 1);
-  // stretch[0] is x_{first stride} (RecordEdfReads).
-  std::vector<double> a(static_cast<std::size_t>(used));
-  for (std::int64_t j = 0; j < used; ++j) {
-    const double* x = stretch.data() + j * stride;
-    a[static_cast<std::size_t>(j)] =
-        d == 2 ? (x[2 * m] - x[m]) - (x[m] - x[0])
-               : ((x[3 * m] - x[0]) - 3.0 * (x[2 * m] - x[m]));
+  // stretch[0] is x_{first stride} (RecordEdfReads). Every term is written below, so the
+  // buffer is not zeroed first.
+  const auto a_buffer = std::make_unique_for_overwrite<double[]>(static_cast<std::size_t>(used));
+  const std::span<double> a(a_buffer.get(), static_cast<std::size_t>(used));
+  if (d == 2) {
+    DifferenceTerms<2>(stretch.data(), stride, m, a);
+  } else {
+    DifferenceTerms<3>(stretch.data(), stride, m, a);
   }
   const std::int64_t window = LagWindow(s, m);
   // Raw (not mean-removed) lag products: the estimate averages raw squares, so these are the
