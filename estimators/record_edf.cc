@@ -1,7 +1,6 @@
 #include "estimators/record_edf.h"
 
 #include <algorithm>
-#include <memory>
 #include <vector>
 
 #include "estimators/lag_products.h"
@@ -87,10 +86,12 @@ double RecordEdfFromStretch(Statistic s, std::int64_t n, std::span<const double>
   const std::int64_t used = MeasuredTerms(s, m, n, max_terms);
   // The measured terms: a_j = sum_i c_i x_{t + i m}, t = (first + j) stride for the middle
   // `used` terms, binomial c with alternating signs (order 2: 1, -2, 1; order 3: -1, 3, -3, 1);
-  // stretch[0] is x_{first stride} (RecordEdfReads). Every term is written below, so the
-  // buffer is not zeroed first.
-  const auto a_buffer = std::make_unique_for_overwrite<double[]>(static_cast<std::size_t>(used));
-  const std::span<double> a(a_buffer.get(), static_cast<std::size_t>(used));
+  // stretch[0] is x_{first stride} (RecordEdfReads). Their buffer is kept per thread from one
+  // call to the next: a fresh one (2 MB at the default cap) for every tau costs more in page
+  // faults than forming the terms. Every term is written before it is read.
+  static thread_local std::vector<double> terms;
+  if (terms.size() < static_cast<std::size_t>(used)) terms.resize(static_cast<std::size_t>(used));
+  const std::span<double> a(terms.data(), static_cast<std::size_t>(used));
   if (d == 2) {
     DifferenceTerms<2>(stretch.data(), stride, m, a);
   } else {
