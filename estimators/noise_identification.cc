@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "estimators/difference_kernel.h"  // CompensatedSum
@@ -440,6 +441,11 @@ NoiseId StreamedAcfIdentification(std::size_t count, MeanAt&& mean_at) {
   }
 }
 
+// Up to this many m-averages (8 MB; identification reads at most 32768 by default) are stored for
+// the passes of the ACF identification; more (at m = 1 a second copy of the record) are
+// recomputed in every pass. Variable for the test that both give the same bits.
+std::size_t max_stored_averages = std::size_t{1} << 20;
+
 // count m-averages from the integrated record sampled every m-th index, x_at(k) = x_{k m}.
 template <typename XAt>
 NoiseId IdentifyFromSampledPhase(std::size_t count, std::int64_t m, XAt&& x_at,
@@ -450,10 +456,18 @@ NoiseId IdentifyFromSampledPhase(std::size_t count, std::int64_t m, XAt&& x_at,
     for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
     return IdentifyFromMeans(ratio, m, std::move(means));
   }
-  if (m == 1) return StreamedAcfIdentification(count, [&](std::size_t k) { return x_at(k + 1) - x_at(k); });
   // 1/m is exact for the octave grid's powers of two; elsewhere it is one rounding.
   const double inverse = 1.0 / static_cast<double>(m);
-  return StreamedAcfIdentification(count, [&](std::size_t k) { return (x_at(k + 1) - x_at(k)) * inverse; });
+  const auto average = [&](std::size_t k) { return m == 1 ? x_at(k + 1) - x_at(k) : (x_at(k + 1) - x_at(k)) * inverse; };
+  if (count > max_stored_averages) return StreamedAcfIdentification(count, average);
+  // Few enough to keep: formed once into a buffer kept per thread rather than in each of the two
+  // to four passes, which on a long record re-read it at stride m, a cache miss per read; the
+  // same values.
+  static thread_local std::vector<double> averages;
+  if (averages.size() < count) averages.resize(count);
+  for (std::size_t k = 0; k < count; ++k) averages[k] = average(k);
+  const double* stored = averages.data();
+  return StreamedAcfIdentification(count, [stored](std::size_t k) { return stored[k]; });
 }
 
 }  // namespace
@@ -471,6 +485,8 @@ double ModifiedToAllanRatioOfCheckpoints(const PhaseCheckpoints& x, std::int64_t
     return static_cast<const double*>(out.data());
   });
 }
+
+std::size_t SetMaxStoredAveragesForTesting(std::size_t count) { return std::exchange(max_stored_averages, count); }
 
 NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
   if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};
