@@ -9,6 +9,7 @@
 
 #include "estimators/difference_kernel.h"  // CompensatedSum
 #include "estimators/phase_checkpoints.h"
+#include "estimators/ratio_window_steps.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -227,33 +228,21 @@ double ModifiedToAllanRatioOfStretches(std::int64_t n, std::int64_t m, Stretch&&
       const std::int64_t i = u - u0;
       return (x2[i] - x1[i]) - (x1[i] - x0[i]);
     };
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    double q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
-    for (; t + 4 <= end && t + 4 <= last; t += 4) {
-      const double in0 = lead(t + 1), in1 = lead(t + 2), in2 = lead(t + 3), in3 = lead(t + 4);
-      const double d0 = in0 - trail(t + 1), d1 = in1 - trail(t + 2);
-      const double d2 = in2 - trail(t + 3), d3 = in3 - trail(t + 4);
-      const double w1 = window + d0, w2 = window + (d0 + d1), w3 = window + ((d0 + d1) + d2);
-      s0 += window * window;
-      s1 += w1 * w1;
-      s2 += w2 * w2;
-      s3 += w3 * w3;
-      q0 += in0 * in0;
-      q1 += in1 * in1;
-      q2 += in2 * in2;
-      q3 += in3 * in3;
-      window += ((d0 + d1) + (d2 + d3));
-    }
+    // Groups of four steps while t + 4 <= min(end, last) (ratio_window_steps.h), then one at a time.
+    double s[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0};
+    const std::int64_t groups = len > 0 ? len / 4 : 0;
+    if (groups > 0) window = RatioWindowSteps(x0, x1, x2, x3, groups, window, s, q);
+    t += 4 * groups;
     for (; t < end; ++t) {
-      s0 += window * window;
+      s[0] += window * window;
       if (t < last) {
         const double in = lead(t + 1);
-        q0 += in * in;
+        q[0] += in * in;
         window += in - trail(t + 1);
       }
     }
-    mvar_total.Add((s0 + s1) + (s2 + s3));
-    avar_total.Add((q0 + q1) + (q2 + q3));
+    mvar_total.Add((s[0] + s[1]) + (s[2] + s[3]));
+    avar_total.Add((q[0] + q[1]) + (q[2] + q[3]));
   }
   const double avar = avar_total.Value() / static_cast<double>(count);
   const double md = static_cast<double>(m);
