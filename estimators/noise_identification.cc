@@ -445,9 +445,10 @@ NoiseId IdentifyFromSampledPhase(std::size_t count, std::int64_t m, XAt&& x_at,
     for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
     return IdentifyFromMeans(ratio, m, std::move(means));
   }
-  // 1/m is exact for the octave grid's powers of two; elsewhere it is one rounding.
+  // 1/m is exact for the octave grid's powers of two (at m = 1 the product is the difference
+  // itself); elsewhere it is one rounding.
   const double inverse = 1.0 / static_cast<double>(m);
-  const auto average = [&](std::size_t k) { return m == 1 ? x_at(k + 1) - x_at(k) : (x_at(k + 1) - x_at(k)) * inverse; };
+  const auto average = [&](std::size_t k) { return (x_at(k + 1) - x_at(k)) * inverse; };
   if (count > max_stored_averages) return StreamedAcfIdentification(count, average);
   // Few enough to keep: formed once into a buffer kept per thread rather than in each of the two
   // to four passes, which on a long record re-read it at stride m, a cache miss per read; the
