@@ -4,10 +4,12 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "estimators/difference_kernel.h"  // CompensatedSum
 #include "estimators/phase_checkpoints.h"
+#include "estimators/ratio_window_steps.h"
 
 namespace allanlab::estimators {
 namespace {
@@ -226,33 +228,21 @@ double ModifiedToAllanRatioOfStretches(std::int64_t n, std::int64_t m, Stretch&&
       const std::int64_t i = u - u0;
       return (x2[i] - x1[i]) - (x1[i] - x0[i]);
     };
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    double q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0;
-    for (; t + 4 <= end && t + 4 <= last; t += 4) {
-      const double in0 = lead(t + 1), in1 = lead(t + 2), in2 = lead(t + 3), in3 = lead(t + 4);
-      const double d0 = in0 - trail(t + 1), d1 = in1 - trail(t + 2);
-      const double d2 = in2 - trail(t + 3), d3 = in3 - trail(t + 4);
-      const double w1 = window + d0, w2 = window + (d0 + d1), w3 = window + ((d0 + d1) + d2);
-      s0 += window * window;
-      s1 += w1 * w1;
-      s2 += w2 * w2;
-      s3 += w3 * w3;
-      q0 += in0 * in0;
-      q1 += in1 * in1;
-      q2 += in2 * in2;
-      q3 += in3 * in3;
-      window += ((d0 + d1) + (d2 + d3));
-    }
+    // Groups of four steps while t + 4 <= min(end, last) (ratio_window_steps.h), then one at a time.
+    double s[4] = {0, 0, 0, 0}, q[4] = {0, 0, 0, 0};
+    const std::int64_t groups = len > 0 ? len / 4 : 0;
+    if (groups > 0) window = RatioWindowSteps(x0, x1, x2, x3, groups, window, s, q);
+    t += 4 * groups;
     for (; t < end; ++t) {
-      s0 += window * window;
+      s[0] += window * window;
       if (t < last) {
         const double in = lead(t + 1);
-        q0 += in * in;
+        q[0] += in * in;
         window += in - trail(t + 1);
       }
     }
-    mvar_total.Add((s0 + s1) + (s2 + s3));
-    avar_total.Add((q0 + q1) + (q2 + q3));
+    mvar_total.Add((s[0] + s[1]) + (s[2] + s[3]));
+    avar_total.Add((q[0] + q[1]) + (q[2] + q[3]));
   }
   const double avar = avar_total.Value() / static_cast<double>(count);
   const double md = static_cast<double>(m);
@@ -440,6 +430,11 @@ NoiseId StreamedAcfIdentification(std::size_t count, MeanAt&& mean_at) {
   }
 }
 
+// Up to this many m-averages (8 MB; identification reads at most 32768 by default) are stored for
+// the passes of the ACF identification; more (at m = 1 a second copy of the record) are
+// recomputed in every pass. Variable for the test that both give the same bits.
+std::size_t max_stored_averages = std::size_t{1} << 20;
+
 // count m-averages from the integrated record sampled every m-th index, x_at(k) = x_{k m}.
 template <typename XAt>
 NoiseId IdentifyFromSampledPhase(std::size_t count, std::int64_t m, XAt&& x_at,
@@ -450,10 +445,19 @@ NoiseId IdentifyFromSampledPhase(std::size_t count, std::int64_t m, XAt&& x_at,
     for (std::size_t k = 0; k < count; ++k) means[k] = mean_at(k);
     return IdentifyFromMeans(ratio, m, std::move(means));
   }
-  if (m == 1) return StreamedAcfIdentification(count, [&](std::size_t k) { return x_at(k + 1) - x_at(k); });
-  // 1/m is exact for the octave grid's powers of two; elsewhere it is one rounding.
+  // 1/m is exact for the octave grid's powers of two (at m = 1 the product is the difference
+  // itself); elsewhere it is one rounding.
   const double inverse = 1.0 / static_cast<double>(m);
-  return StreamedAcfIdentification(count, [&](std::size_t k) { return (x_at(k + 1) - x_at(k)) * inverse; });
+  const auto average = [&](std::size_t k) { return (x_at(k + 1) - x_at(k)) * inverse; };
+  if (count > max_stored_averages) return StreamedAcfIdentification(count, average);
+  // Few enough to keep: formed once into a buffer kept per thread rather than in each of the two
+  // to four passes, which on a long record re-read it at stride m, a cache miss per read; the
+  // same values.
+  static thread_local std::vector<double> averages;
+  if (averages.size() < count) averages.resize(count);
+  for (std::size_t k = 0; k < count; ++k) averages[k] = average(k);
+  const double* stored = averages.data();
+  return StreamedAcfIdentification(count, [stored](std::size_t k) { return stored[k]; });
 }
 
 }  // namespace
@@ -471,6 +475,8 @@ double ModifiedToAllanRatioOfCheckpoints(const PhaseCheckpoints& x, std::int64_t
     return static_cast<const double*>(out.data());
   });
 }
+
+std::size_t SetMaxStoredAveragesForTesting(std::size_t count) { return std::exchange(max_stored_averages, count); }
 
 NoiseId IdentifyNoise(std::span<const double> rate, std::int64_t m) {
   if (m < 1 || rate.size() < static_cast<std::size_t>(m)) return {};

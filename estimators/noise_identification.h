@@ -2,6 +2,7 @@
 // Power-law noise identification per tau (Riley & Greenhall 2004, "Power law noise
 // identification using the lag 1 autocorrelation"; NIST SP 1065 §5.6), with the B1 ratio
 // (Barnes) as fallback when too few points remain. alpha: S_y(f) ~ f^alpha, rate as frequency.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -37,6 +38,11 @@ NoiseId IdentifyNoise(std::span<const double> rate, std::span<const double> phas
 // IdentifyNoise's with that record, bit for bit, without the record in memory.
 NoiseId IdentifyNoiseFromSampledPhase(std::span<const double> sampled, std::int64_t m,
                                       const std::function<double()>& modified_to_allan_ratio);
+
+// Identification from the integrated record keeps up to `count` m-averages in memory for its
+// passes (default 2^20) and recomputes more in every pass: the same bits either way. Sets the
+// limit and returns the previous one, so that a test can compare the two; not thread-safe.
+std::size_t SetMaxStoredAveragesForTesting(std::size_t count);
 
 // R(n) = MVAR(m) / OAVAR(m) of a record from its integrated record (phase.size() = N + 1), as
 // identification computes it.

@@ -30,6 +30,27 @@ std::int64_t LagWindow(Statistic s, std::int64_t m) {
   return (DifferenceOrder(s) * m + Stride(s, m) - 1) / Stride(s, m);
 }
 
+// a[j] = the order-kOrder difference at lag m starting at x[j stride]. The overlapping
+// estimators' stride of 1 gets its own loop, which the compiler vectorises, in AVX2 where the CPU
+// has it (half the instructions of the baseline's SSE2; AVX2 has no fused multiply-add, so the
+// same bits).
+template <int kOrder>
+__attribute__((target_clones("avx2", "default"))) void DifferenceTerms(const double* x, std::int64_t stride, std::int64_t m, std::span<double> a) {
+  const auto term = [m](const double* t) {
+    if constexpr (kOrder == 2) {
+      return (t[2 * m] - t[m]) - (t[m] - t[0]);
+    } else {
+      return (t[3 * m] - t[0]) - 3.0 * (t[2 * m] - t[m]);
+    }
+  };
+  const auto used = static_cast<std::int64_t>(a.size());
+  if (stride == 1) {
+    for (std::int64_t j = 0; j < used; ++j) a[static_cast<std::size_t>(j)] = term(x + j);
+  } else {
+    for (std::int64_t j = 0; j < used; ++j) a[static_cast<std::size_t>(j)] = term(x + j * stride);
+  }
+}
+
 }  // namespace
 
 bool RecordEdfAvailable(Statistic s, std::int64_t m, std::int64_t n, std::int64_t max_terms) {
@@ -65,13 +86,16 @@ double RecordEdfFromStretch(Statistic s, std::int64_t n, std::span<const double>
   const std::int64_t used = MeasuredTerms(s, m, n, max_terms);
   // The measured terms: a_j = sum_i c_i x_{t + i m}, t = (first + j) stride for the middle
   // `used` terms, binomial c with alternating signs (order 2: 1, -2, 1; order 3: -1, 3, -3, 1);
-  // stretch[0] is x_{first stride} (RecordEdfReads).
-  std::vector<double> a(static_cast<std::size_t>(used));
-  for (std::int64_t j = 0; j < used; ++j) {
-    const double* x = stretch.data() + j * stride;
-    a[static_cast<std::size_t>(j)] =
-        d == 2 ? (x[2 * m] - x[m]) - (x[m] - x[0])
-               : ((x[3 * m] - x[0]) - 3.0 * (x[2 * m] - x[m]));
+  // stretch[0] is x_{first stride} (RecordEdfReads). Their buffer is kept per thread from one
+  // call to the next: a fresh one (2 MB at the default cap) for every tau costs more in page
+  // faults than forming the terms. Every term is written before it is read.
+  static thread_local std::vector<double> terms;
+  if (terms.size() < static_cast<std::size_t>(used)) terms.resize(static_cast<std::size_t>(used));
+  const std::span<double> a(terms.data(), static_cast<std::size_t>(used));
+  if (d == 2) {
+    DifferenceTerms<2>(stretch.data(), stride, m, a);
+  } else {
+    DifferenceTerms<3>(stretch.data(), stride, m, a);
   }
   const std::int64_t window = LagWindow(s, m);
   // Raw (not mean-removed) lag products: the estimate averages raw squares, so these are the

@@ -40,13 +40,24 @@ TEST(LagProductsTest, MatchLongDoubleSums) {
   }
 }
 
-TEST(LagProductsTest, VectorAndPortableCodeAgreeBitForBit) {
-  for (std::size_t n : {std::size_t{4096 + 3}, std::size_t{5 * 4096 + 7}, std::size_t{1 << 18}}) {
+// Every kernel this CPU runs against the portable code: lengths that leave a short last block,
+// lag counts that leave groups of every size (1 .. 8 lags), series shorter than a block.
+TEST(LagProductsTest, EveryKernelGivesThePortableBitsBitForBit) {
+  for (std::size_t n : {std::size_t{37}, std::size_t{4096 + 3}, std::size_t{5 * 4096 + 7}, std::size_t{1 << 18}}) {
     const std::vector<double> a = Series(n, 3);
-    std::vector<double> vector(257), portable(257);
-    LagProducts(a, vector, true);
-    LagProducts(a, portable, false);
-    EXPECT_EQ(std::memcmp(vector.data(), portable.data(), vector.size() * sizeof(double)), 0) << n;
+    for (std::size_t lags : {std::size_t{1}, std::size_t{3}, std::size_t{5}, std::size_t{9}, std::size_t{17},
+                             std::size_t{30}, std::size_t{257}}) {
+      if (lags > n) continue;
+      std::vector<double> portable(lags);
+      LagProducts(a, portable, LagKernel::kPortable);
+      for (LagKernel kernel : {LagKernel::kBest, LagKernel::kAvx512, LagKernel::kAvx2}) {
+        if (!LagKernelRuns(kernel)) continue;
+        std::vector<double> vector(lags);
+        LagProducts(a, vector, kernel);
+        EXPECT_EQ(std::memcmp(vector.data(), portable.data(), lags * sizeof(double)), 0)
+            << "n " << n << " lags " << lags << " kernel " << static_cast<int>(kernel);
+      }
+    }
   }
 }
 
