@@ -5,6 +5,7 @@
 // dither adds uniform error and leaves no value grid), where the dithered quantizer candidate,
 // started from the kurtosis deficit, names it. Fixed seeds, 3.6e4-sample records (seconds).
 #include <cmath>
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -16,22 +17,35 @@
 namespace allanlab::experiments {
 namespace {
 
+// White noise of 1e-4 rad/sqrt(s) at 100 Hz and a little rate random walk, whose law `vary`
+// changes; the diagnosis (12 Monte Carlo trials) of one record under `seed`.
+DiagnosisSummary DiagnoseWhiteRecord(const std::function<void(independent::Recipe*)>& vary, std::uint64_t seed,
+                                     independent::Recipe* recipe) {
+  independent::Recipe& r = *recipe;
+  r.rate_hz = 100.0;
+  r.noise.arw_rad_per_sqrt_s = 1e-4;
+  r.noise.rrw_rad_per_s_per_sqrt_s = 1e-6;
+  vary(&r);
+  const std::vector<double> record = independent::Generate(r, testing::kDiagnosisTestSamples, seed, 0);
+  DiagnoseOptions options;
+  options.trials = 12;
+  DiagnosisSummary s;
+  EXPECT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
+  return s;
+}
+
 // Student-t with 12 degrees of freedom: excess kurtosis 0.75 in the draws, 0.375 in the first
 // differences (the sum of two), 14 standard errors of a Gaussian's (sqrt(24 / n) = 0.026); fewer
 // than 3 draws beyond 7 sigma of the MAD, so the spike count alone does not start the candidate
 // (the record was 'unexplained' when it did not).
 TEST(DiagnoseHeavyTailsStatTest, StudentTWhiteNoiseIsNamedOutliers) {
   independent::Recipe r;
-  r.rate_hz = 100.0;
-  r.noise.arw_rad_per_sqrt_s = 1e-4;
-  r.noise.white_law = independent::WhiteLaw::kStudentT;
-  r.noise.student_t_dof = 12.0;
-  r.noise.rrw_rad_per_s_per_sqrt_s = 1e-6;
-  const std::vector<double> record = independent::Generate(r, testing::kDiagnosisTestSamples, 71, 0);
-  DiagnoseOptions options;
-  options.trials = 12;
-  DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
+  const DiagnosisSummary s = DiagnoseWhiteRecord(
+      [](independent::Recipe* x) {
+        x->noise.white_law = independent::WhiteLaw::kStudentT;
+        x->noise.student_t_dof = 12.0;
+      },
+      71, &r);
   ASSERT_TRUE(s.significant);
   EXPECT_EQ(s.verdict, "outliers") << testing::DescribeVerdict(s);
 }
@@ -41,15 +55,11 @@ TEST(DiagnoseHeavyTailsStatTest, StudentTWhiteNoiseIsNamedOutliers) {
 // sees more white noise, which the baseline's N takes.
 TEST(DiagnoseHeavyTailsStatTest, SubtractivelyDitheredRateQuantizerIsNamed) {
   independent::Recipe r;
-  r.rate_hz = 100.0;
-  r.noise.arw_rad_per_sqrt_s = 1e-4;
-  r.noise.rrw_rad_per_s_per_sqrt_s = 1e-6;
-  r.rate_quantizer = independent::RateQuantizer{4.0 * 1e-4 * std::sqrt(r.rate_hz), true};
-  const std::vector<double> record = independent::Generate(r, testing::kDiagnosisTestSamples, 73, 0);
-  DiagnoseOptions options;
-  options.trials = 12;
-  DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(r.rate_hz), &s)) << s.message;
+  const DiagnosisSummary s = DiagnoseWhiteRecord(
+      [](independent::Recipe* x) {
+        x->rate_quantizer = independent::RateQuantizer{4.0 * x->noise.arw_rad_per_sqrt_s * std::sqrt(x->rate_hz), true};
+      },
+      73, &r);
   ASSERT_TRUE(s.significant);
   EXPECT_EQ(s.verdict, "rate_quantization") << testing::DescribeVerdict(s);
   ASSERT_GE(s.verdict_candidate, 0);
