@@ -8,9 +8,9 @@
 //    when the rate noise spans several LSBs, and correlated error that distorts the curve when it
 //    does not (a band-limited or slowly wandering signal crosses few levels between samples).
 //    ErrorAutocovariance gives the error's exact second moments for a Gaussian signal. With
-//    subtractive dither (a uniform value added before rounding and removed after, as some
-//    digital front ends do) the error is uniform, white and independent of the signal whatever
-//    the signal does: lsb^2/12 at lag 0 exactly, and the samples sit on no value grid.
+//    subtractive dither (a uniform value of one LSB's width added before rounding and removed
+//    after) the error is uniform, white and independent of the signal whatever the signal does:
+//    lsb^2/12 at lag 0 exactly, and the samples sit on no value grid.
 #include <cstdint>
 #include <span>
 #include <string>
