@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/cpu_features.h"
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define ALLANLAB_HAVE_AVX2_KERNEL 1
@@ -304,11 +306,10 @@ struct Kernel {
 std::vector<Kernel> AvailableKernels() {
   std::vector<Kernel> kernels;
 #ifdef ALLANLAB_HAVE_AVX2_KERNEL
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+  if (CpuHasAvx2() && CpuHasFma()) {
     // The single-lag loops stay AVX2: with three loads per term they gain nothing from wider
     // registers; the chain does.
-    if (__builtin_cpu_supports("avx512f")) {
+    if (CpuHasAvx512f()) {
       kernels.push_back({Avx2Accumulate1, Avx2Accumulate2, Avx2Accumulate3, Avx512Chain, "avx512"});
     }
     kernels.push_back({Avx2Accumulate1, Avx2Accumulate2, Avx2Accumulate3, Avx2Chain, "avx2+fma"});

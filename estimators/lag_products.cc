@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/cpu_features.h"
 #include "estimators/difference_kernel.h"  // CompensatedSum
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -168,13 +169,8 @@ constexpr Groups GroupsOf(const GroupFn (&fns)[kSize]) {
 
 bool Supports(LagKernel kernel) {
 #ifdef ALLANLAB_HAVE_VECTOR_LAGS
-  static const bool avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  static const bool avx512 = __builtin_cpu_supports("avx512f") != 0;
-  if (kernel == LagKernel::kAvx2) return avx2;
-  if (kernel == LagKernel::kAvx512) return avx512;
+  if (kernel == LagKernel::kAvx2) return CpuHasAvx2();
+  if (kernel == LagKernel::kAvx512) return CpuHasAvx512f();
 #endif
   return kernel == LagKernel::kBest || kernel == LagKernel::kPortable;
 }

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 
+#include "common/cpu_features.h"
 #include "estimators/difference_kernel.h"  // Lanes, CompensatedSum
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -87,11 +88,7 @@ double ReferenceLevel(std::span<const double> values) {
 void ContinueIntegral(std::span<const double> values, double reference, std::span<double> out) {
   const auto n = static_cast<std::int64_t>(values.size());
 #ifdef ALLANLAB_HAVE_AVX2_SCAN
-  static const bool have_avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  if (have_avx2) {
+  if (CpuHasAvx2()) {
     Avx2Integrate(values.data(), n, reference, out.data());
     return;
   }

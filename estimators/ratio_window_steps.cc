@@ -1,5 +1,7 @@
 #include "estimators/ratio_window_steps.h"
 
+#include "common/cpu_features.h"
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define ALLANLAB_HAVE_AVX2_RATIO 1
@@ -75,11 +77,7 @@ __attribute__((target("avx2"))) double Avx2Steps(const double* x0, const double*
 
 bool Supports(RatioStepsKernel kernel) {
 #ifdef ALLANLAB_HAVE_AVX2_RATIO
-  static const bool avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  if (kernel == RatioStepsKernel::kAvx2) return avx2;
+  if (kernel == RatioStepsKernel::kAvx2) return CpuHasAvx2();
 #endif
   return kernel != RatioStepsKernel::kAvx2;
 }

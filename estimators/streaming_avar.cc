@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 
+#include "common/cpu_features.h"
 #include "common/piece_sharing.h"
 
 namespace allanlab::estimators {
@@ -103,11 +104,7 @@ __attribute__((target("avx2"))) void Avx2Groups(const double* hi, const double* 
 // The squares of one lag (pair false) or of the lags m and 2m (pair true).
 GroupsFn BlockGroups(bool pair) {
 #if defined(__x86_64__) && defined(__GNUC__)
-  static const bool avx2 = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  if (avx2) return pair ? Avx2Groups<true> : Avx2Groups<false>;
+  if (CpuHasAvx2()) return pair ? Avx2Groups<true> : Avx2Groups<false>;
 #endif
   return pair ? PortableGroups<true> : PortableGroups<false>;
 }
