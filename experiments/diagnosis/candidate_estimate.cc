@@ -341,7 +341,10 @@ std::optional<double> LsbFromBaselineQ(const sim::SensorModel* baseline, std::st
 // signal's: their excess kurtosis is -2.4 s2^2 / V^2 (V their variance), which gives s2 when it
 // stands 3 of its standard errors (sqrt(24 / n)) below 0. At most -0.6: all of V the error's.
 std::optional<EffectInstance> DitheredRateQuantization(std::span<const double> y, std::string* why) {
-  if (y.size() < 3) return std::nullopt;
+  if (y.size() < 3) {
+    *why += "; too few samples for the law of their differences";
+    return std::nullopt;
+  }
   const auto [v, excess] = DifferenceMoments(y);
   const double n = static_cast<double>(y.size() - 1);
   if (!(excess < -3.0 * std::sqrt(24.0 / n))) {
