@@ -13,13 +13,13 @@
 #include <boost/math/quadrature/ooura_fourier_integrals.hpp>
 #include <boost/math/tools/roots.hpp>
 
+#include "common/thread_memo.h"
 #include "estimators/estimate_quantile_table.h"
 #include "estimators/exact_quadratic_moments.h"
 #include "sim/flicker_noise.h"
 #include "sim/quantization_noise.h"
 #include "sim/random_walk_rate.h"
 #include "sim/white_rate_noise.h"
-#include "common/thread_memo.h"
 
 namespace allanlab::estimators {
 namespace {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <tuple>
+
 #include "common/thread_memo.h"
 
 namespace allanlab::sim {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <boost/random/normal_distribution.hpp>
+
 #include "common/thread_memo.h"
 
 namespace allanlab::sim {

@@ -3,8 +3,9 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <utility>
 #include <numbers>
+#include <utility>
+
 #include "common/thread_memo.h"
 
 namespace allanlab::sim {
