@@ -96,6 +96,10 @@ bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int ov
 // Narrowband resonance, sim::Resonance: parameters sigma (rad/s; deg/h), f0 (Hz) and zeta
 // (damping ratio). f0 is bounded below the output Nyquist frequency (a line above it is not a
 // resonance the record can locate), zeta by [1e-3, 0.95].
+// The resonance term's damping range: a fit at the floor has found a line narrower than it can
+// describe (over the record, a sinusoid).
+inline constexpr double kResonanceMinDamping = 1e-3;
+inline constexpr double kResonanceMaxDamping = 0.95;
 std::unique_ptr<ParametricTerm> MakeResonanceTerm();
 
 // By CLI name ("GM", "RTS", "H", "RES", "BW", "BW2") or id ("gauss_markov", "random_telegraph",

@@ -19,15 +19,15 @@ class ResonanceTerm final : public ParametricTerm {
   ResonanceTerm() {
     specs_ = {{"sigma", "rad/s", "deg/h", units::DegPerHour(1.0), 0.0, std::numeric_limits<double>::infinity(), true},
               {"f0", "Hz", "Hz", 1.0, 0.0, std::numeric_limits<double>::infinity(), true},
-              {"zeta", "1", "1", 1.0, 1e-3, 0.95, true}};
+              {"zeta", "1", "1", 1.0, kResonanceMinDamping, kResonanceMaxDamping, true}};
   }
   std::string_view id() const override { return sim::Resonance::kId; }
   std::string_view short_name() const override { return "RES"; }
   const std::vector<ParameterSpec>& parameters() const override { return specs_; }
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
     const auto [lo, hi] = std::minmax_element(c.avar.begin(), c.avar.end());
-    *lower = {std::sqrt(*lo) * 1e-4, 0.1 / c.tau_s.back(), 1e-3};
-    *upper = {std::sqrt(*hi) * 30.0, 0.499 / c.sample_clock.period_s(), 0.95};
+    *lower = {std::sqrt(*lo) * 1e-4, 0.1 / c.tau_s.back(), kResonanceMinDamping};
+    *upper = {std::sqrt(*hi) * 30.0, 0.499 / c.sample_clock.period_s(), kResonanceMaxDamping};
   }
   // The (f0, zeta) on a grid whose exact unit AVAR, scaled by the weighted projection onto the
   // residual (weights nu / (2 AVAR^2)), lowers the weighted SSE most.

@@ -95,7 +95,10 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
                                             std::string* why) {
   CandidateResult c;
   c.effects = effects;
-  if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why)) return std::nullopt;
+  if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why,
+                 ctx.have_record ? ctx.rate : std::span<const double>())) {
+    return std::nullopt;
+  }
   if (!PhysicallyPossible(c.effects, ctx.curve.sample_clock,
                           ctx.curve.sample_clock.period_s() * static_cast<double>(ctx.curve.num_samples), why)) {
     return std::nullopt;

@@ -30,8 +30,8 @@
 //    within the threshold) with a positive score and a held-out improvement; of candidates
 //    within 2 of the best penalised score (which the record cannot tell apart), the one with the
 //    largest held-out shrink. Else the one that explains most of it (explains_all false): held-out
-//    chi2 and the chi2 of every view where the baseline departs down by `partial_shrink`, what
-//    remains listed (`remaining`). Else "unexplained".
+//    chi2 and the chi2 summed over the views where the baseline departs down by `partial_shrink`
+//    (each of them at least halved), what remains listed (`remaining`). Else "unexplained".
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -69,7 +69,7 @@ struct DiagnoseOptions {
   int envelope_candidates = 3;  // best candidates that also get the Monte Carlo views
   int max_effects = 3;        // members of a set verdict (1: single effects only)
   double set_margin = 0.2;    // relative chi2 drop an added member must bring (see GrowSet)
-  double partial_shrink = 5.0;  // held-out and per-view chi2 shrink that names a partial verdict
+  double partial_shrink = 5.0;  // held-out and departing views' chi2 shrink naming a partial verdict
   std::vector<Effect> effects = {std::begin(kAllEffects), std::end(kAllEffects)};
   // Told as the diagnosis advances: the stage ("baseline", "views", "candidates", "Monte Carlo
   // views", "sets of 2", "sets of 2: Monte Carlo views", ...), and how many of its steps are done

@@ -4,6 +4,10 @@
 #include <numbers>
 #include <sstream>
 
+#include "estimators/fit/parametric_term.h"
+#include "sim/band_limit.h"
+#include "sim/sensor_model.h"
+
 namespace allanlab::experiments {
 
 bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, double record_length_s, std::string* why) {
@@ -16,12 +20,21 @@ bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, doubl
   os << EffectLabel(e) << ": ";
   bool ok = true;
   switch (e.effect) {
-    case Effect::kBandwidth:
-      if (!(p("cutoff_hz") < nyquist)) {
-        os << "cutoff " << p("cutoff_hz") << " Hz is not below the Nyquist frequency " << nyquist << " Hz";
+    case Effect::kBandwidth: {
+      // The chain the filter runs in: L x fs internally, before the output's decimation.
+      sim::SensorModel probe;
+      probe.sample_clock = sample_clock;
+      std::string ignored;
+      const int oversampling = AddEffect(e, &probe, &ignored) ? probe.band_limit.oversampling : 1;
+      const double internal_rate_hz = oversampling * sample_clock.rate_hz();
+      const double edge_hz = kBoundShare * (sim::IsFirLowPass(probe.band_limit.kind) ? 0.3 : 0.45) * internal_rate_hz;
+      if (!(p("cutoff_hz") < edge_hz)) {
+        os << "cutoff " << p("cutoff_hz") << " Hz is at the highest cutoff its filter running at " << internal_rate_hz
+           << " Hz can take (" << edge_hz << " Hz): the fit ran to its edge, the cutoff is not determined";
         ok = false;
       }
       break;
+    }
     case Effect::kGaussMarkov:
       if (!(p("correlation_time_s") >= tau0)) {
         os << "correlation time " << p("correlation_time_s") << " s is below the sample period " << tau0 << " s";
@@ -49,6 +62,11 @@ bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, doubl
       } else if (!(p("damping") < 1.0) || !(decay_s >= tau0)) {
         os << "decay time " << decay_s << " s (damping " << p("damping") << ") is below the sample period " << tau0
            << " s: not a line";
+        ok = false;
+      } else if (!(p("damping") > estimators::kResonanceMinDamping / kBoundShare)) {
+        // The fit ran to its floor: the record's line is narrower than any damping it may take.
+        os << "damping " << p("damping") << " is at the fit's floor " << estimators::kResonanceMinDamping
+           << ": a line of constant amplitude over the record, a sinusoid, the harmonic";
         ok = false;
       } else if (!(2.0 * p("damping") * p("frequency_hz") * record_length_s >= 1.0)) {
         // A line narrower than the record's frequency resolution keeps its amplitude over the

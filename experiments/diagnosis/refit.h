@@ -21,10 +21,13 @@ bool WithEffects(sim::SensorModel model, const std::vector<EffectInstance>& effe
 
 // The effects added to `start` (a fit without them) by the best of the refits (see refit.cc);
 // `edf`: the exact EDFs of `curve` under the start model. *effects receives the fitted
-// parameters.
+// parameters. `record_rate`: the record `curve` was computed from [rad/s] (empty in curve mode);
+// when given and an effect places a deterministic path (a bias step, a warm-up drift, held at its
+// estimate), the terms and the other effects are fitted to the curve of the record less that
+// path instead (docs/theory.md §6.4).
 bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                std::span<const double> edf, const estimators::FitSummary& start,
                std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
-               sim::SensorModel* model, std::string* why);
+               sim::SensorModel* model, std::string* why, std::span<const double> record_rate = {});
 
 }  // namespace allanlab::experiments::detail

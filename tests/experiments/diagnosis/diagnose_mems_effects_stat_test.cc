@@ -57,14 +57,17 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
     const char* reason;
   };
   const Case cases[] = {
-      {{Effect::kBandwidth, {{"cutoff_hz", 60.0}, {"order", 1.0}}}, "not below the Nyquist frequency 50 Hz"},
+      // The first-order family's chain runs at 8 x 100 Hz: its highest cutoff is 0.45 x 800 Hz.
+      {{Effect::kBandwidth, {{"cutoff_hz", 359.0}, {"order", 1.0}}}, "the fit ran to its edge"},
       {{Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.004}}}, "below the sample period"},
       {{Effect::kRandomTelegraph, {{"amplitude_rad_per_s", 1e-3}, {"mean_dwell_s", 0.015}}}, "below the sample period"},
       {{Effect::kHarmonic, {{"amplitude_rad_per_s", 1e-3}, {"frequency_hz", 50.0}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 70.0}, {"damping", 0.05}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 40.0}, {"damping", 0.9}}}, "not a line"},
-      // Line width 2 zeta f0 = 1e-4 Hz against the record's resolution 1 / 3600 s.
-      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.05}, {"damping", 0.001}}}, "the harmonic"},
+      // Line width 2 zeta f0 = 1.5e-4 Hz against the record's resolution 1 / 3600 s.
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.05}, {"damping", 0.0015}}}, "the harmonic"},
+      // At the fit's floor: a sinusoid.
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 2.0}, {"damping", 0.001}}}, "at the fit's floor"},
       {{Effect::kExponentialDrift, {{"amplitude_rad_per_s", 1e-3}, {"time_constant_s", 1e-3}}}, "below the sample period"},
       {{Effect::kBiasStep, {{"size_rad_per_s", 1e-3}, {"time_s", 4000.0}}}, "outside the record"},
   };
@@ -78,7 +81,9 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
       {Effect::kBandwidth, {{"cutoff_hz", 30.0}, {"order", 2.0}}},
       {Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.05}}},
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 20.0}, {"damping", 0.04}}},
-      {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.5}, {"damping", 0.001}}},  // 1e-3 Hz wide
+      {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.5}, {"damping", 0.002}}},  // 2e-3 Hz wide
+      // Above the output's Nyquist frequency, below the 800 Hz chain's: a real sensor's filter.
+      {Effect::kBandwidth, {{"cutoff_hz", 85.0}, {"order", 2.0}}},
       {Effect::kBiasStep, {{"size_rad_per_s", 1e-3}, {"time_s", 100.0}}},
   };
   for (const EffectInstance& e : fine) {
