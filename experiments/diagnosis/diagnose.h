@@ -16,7 +16,8 @@
 //    are refitted on the curve corrected by E[linear] / E[linear + effect] (three passes). Ranked by the
 //    penalised improvement score = chi2_before - chi2_after - 2 k (k the effect's parameters,
 //    AIC with -2 ln L ~ sum z^2), exact OAVAR view; the best `envelope_candidates` also get the
-//    Monte Carlo views. Held-out: the same refit on one half, scored on the other (the half
+//    Monte Carlo views (those already beyond the threshold on their exact views only when no
+//    candidate is acceptable without them: monte_carlo_deferred). Held-out: the same refit on one half, scored on the other (the half
 //    holding a one-off event such as a step, which is located there; else the second half), on
 //    OAVAR and, for the candidates with Monte Carlo views, on the views in which that half
 //    departs from the other half's baseline.
@@ -67,6 +68,10 @@ struct DiagnoseOptions {
   int trials = 30;            // simulated records per Monte Carlo envelope (>= 3; 0: OAVAR only)
   std::uint64_t seed = 1;     // of the simulated records
   int envelope_candidates = 3;  // best candidates that also get the Monte Carlo views
+  // Leave the Monte Carlo views of candidates already beyond the threshold on their exact views
+  // until no candidate is acceptable without them (CandidateResult::monte_carlo_deferred); the
+  // verdict is the same either way. false: simulate them at once (the tests compare the two).
+  bool defer_envelopes = true;
   int max_effects = 3;        // members of a set verdict (1: single effects only)
   double set_margin = 0.2;    // relative chi2 drop an added member must bring (see GrowSet)
   double partial_shrink = 5.0;  // held-out and departing views' chi2 shrink naming a partial verdict
@@ -110,6 +115,10 @@ struct CandidateResult {
   double full_score = 0.0;       // all assessed views: chi2 improvement - 2 k
   bool full_views = false;       // Monte Carlo views assessed
   bool closes_gap = false;       // every assessed |z| <= threshold
+  // Due the Monte Carlo views but already beyond the threshold on its exact views (OAVAR,
+  // change_point, trend), so never acceptable: left without them because another candidate was
+  // acceptable (they are simulated when none is, for a partial verdict or a set).
+  bool monte_carlo_deferred = false;
   // What each member added, in the order forward selection took them: the held-out chi2 before
   // (the baseline, then the set so far, scored on this candidate's half and views) and after.
   struct Step {

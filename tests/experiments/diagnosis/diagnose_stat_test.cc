@@ -105,6 +105,44 @@ TEST(DiagnoseStatTest, GaussMarkovBumpIsNamedAndClosed) {
   EXPECT_TRUE(telegraph);
 }
 
+// A candidate already beyond the threshold on its exact views is never acceptable, so leaving its
+// Monte Carlo views out (defer_envelopes) changes no verdict: the same verdict, also-consistent
+// list and numbers for every other candidate as with every envelope simulated.
+TEST(DiagnoseStatTest, DeferredEnvelopesChangeNoVerdict) {
+  sim::SensorModel model = Baseline(0.3);
+  model.terms.push_back(sim::GaussMarkov{units::DegPerHour(40.0), 5.0});
+  const std::vector<double> record = model.Generate(7, 0, 36000);
+  DiagnoseOptions options;
+  options.trials = 12;
+  DiagnosisSummary deferred, all;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.05), &deferred)) << deferred.message;
+  options.defer_envelopes = false;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.05), &all)) << all.message;
+  EXPECT_EQ(deferred.verdict, all.verdict);
+  EXPECT_EQ(deferred.verdict_candidate, all.verdict_candidate);
+  ASSERT_EQ(deferred.also_consistent.size(), all.also_consistent.size());
+  for (std::size_t i = 0; i < all.also_consistent.size(); ++i) {
+    EXPECT_EQ(deferred.also_consistent[i].effect, all.also_consistent[i].effect);
+    EXPECT_EQ(deferred.also_consistent[i].separating_view, all.also_consistent[i].separating_view);
+  }
+  ASSERT_EQ(deferred.candidates.size(), all.candidates.size());
+  int deferrals = 0;
+  for (std::size_t i = 0; i < all.candidates.size(); ++i) {
+    const CandidateResult &d = deferred.candidates[i], &a = all.candidates[i];
+    EXPECT_FALSE(a.monte_carlo_deferred);
+    if (!d.monte_carlo_deferred) {
+      EXPECT_EQ(d.after.All().chi2, a.after.All().chi2) << d.id();
+      EXPECT_EQ(d.full_score, a.full_score) << d.id();
+      continue;
+    }
+    ++deferrals;
+    EXPECT_FALSE(d.full_views) << d.id();
+    EXPECT_GT(d.after.All().max_abs_z, deferred.threshold) << d.id();
+    EXPECT_FALSE(a.closes_gap) << d.id();
+  }
+  EXPECT_GT(deferrals, 0) << "the record no longer tests the deferral";
+}
+
 // A telegraph (dwell 4 s, the Allan twin of Tc 2 s) above a quieter white floor: same Allan
 // variance, but its two-level increments have negative excess kurtosis, so the kurtosis view
 // prefers the telegraph reading.
