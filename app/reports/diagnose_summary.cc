@@ -135,9 +135,10 @@ std::string QuantityText(const PlainQuantity& q) {
   return t;
 }
 
-// A correlation time near the sample period or a cutoff near the Nyquist frequency is where the
-// fit ran out of record, not a property measured (physically impossible values are refused as
-// candidates: experiments/diagnosis/physical_bounds.h).
+// A correlation time near the sample period is where the fit ran out of record, not a property
+// measured; a cutoff near or above the output's Nyquist frequency is a filter ahead of the
+// output's decimation (allowed: an anti-alias filter above fs/2), whose cutoff the record pins only
+// loosely. Values at a fit's edge are refused as candidates (experiments/diagnosis/physical_bounds.h).
 void AddCaveat(SampleClock sample_clock, PlainQuantity* q) {
   if (!sample_clock.IsValid()) return;
   const double sample_period_s = sample_clock.period_s();
@@ -145,7 +146,8 @@ void AddCaveat(SampleClock sample_clock, PlainQuantity* q) {
   if (q->unit == "s" && q->name != "time" && q->value < 2.0 * sample_period_s) {
     q->caveat = "within 2x of the " + PlainNumber(sample_period_s) + " s sample period: the record cannot resolve it";
   } else if (q->name == "cutoff" && q->value > 0.9 * nyquist) {
-    q->caveat = "at the " + PlainNumber(nyquist) + " Hz Nyquist frequency: the record cannot resolve it";
+    q->caveat = std::string(q->value > nyquist ? "above" : "near") + " the output's " + PlainNumber(nyquist) +
+                " Hz Nyquist frequency: a filter ahead of the output's decimation, its cutoff loosely determined";
   }
 }
 
