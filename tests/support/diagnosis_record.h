@@ -14,6 +14,7 @@
 #include "independent/generate.h"
 #include "independent/recipe.h"
 #include "sim/sensor_model.h"
+#include "sim/units.h"
 
 namespace allanlab::testing {
 
@@ -40,6 +41,18 @@ inline experiments::DiagnosisSummary DiagnoseShortRecord(const sim::SensorModel&
 inline experiments::DiagnoseOptions UserModelNBK() {
   return TestDiagnoseOptions({estimators::Coefficient::kN, estimators::Coefficient::kB,
                               estimators::Coefficient::kK});
+}
+
+// A MEMS gyro of the independent generator at 100 Hz: white rate noise N [deg/sqrt(h)], bias
+// instability B [deg/h] as a flicker floor, rate random walk K [deg/h/sqrt(h)], no other term.
+inline independent::Recipe IndependentMemsGyro(double n_deg_per_sqrt_h, double b_deg_per_h,
+                                               double k_deg_per_h_per_sqrt_h) {
+  independent::Recipe r;
+  r.rate_hz = 100.0;
+  r.noise.arw_rad_per_sqrt_s = units::DegPerSqrtHour(n_deg_per_sqrt_h);
+  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(units::DegPerHour(b_deg_per_h));
+  r.noise.rrw_rad_per_s_per_sqrt_s = units::DegPerHourPerSqrtHour(k_deg_per_h_per_sqrt_h);
+  return r;
 }
 
 // A record of the independent generator (independent/generate.h: written apart from sim/) of n

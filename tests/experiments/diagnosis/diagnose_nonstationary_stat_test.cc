@@ -23,15 +23,10 @@ using estimators::Coefficient;
 using testing::DescribeVerdict;
 
 constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;  // rad/s
-constexpr double kRate = 100.0;
 constexpr std::int64_t kSamples = 900000;  // 2.5 h
 
 independent::Recipe Gyro() {
-  independent::Recipe r;
-  r.rate_hz = kRate;
-  r.noise.arw_rad_per_sqrt_s = 0.15 * kDegPerHour * 60.0;  // deg/sqrt(h) -> rad/sqrt(s)
-  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(3.0 * kDegPerHour);
-  r.noise.rrw_rad_per_s_per_sqrt_s = 3.0 * kDegPerHour / 60.0;  // deg/h/sqrt(h) -> rad/s/sqrt(s)
+  independent::Recipe r = testing::IndependentMemsGyro(0.15, 3.0, 3.0);
   r.noise.bias_rad_per_s = 20.0 * kDegPerHour;
   return r;
 }
@@ -84,8 +79,8 @@ TEST(DiagnoseNonstationaryStatTest, BiasStep) {
 // informative (< 3x the truth).
 TEST(DiagnoseNonstationaryStatTest, LargeBiasStepLeavesTheRandomWalkMeasurable) {
   independent::Recipe r = Gyro();
-  r.noise.arw_rad_per_sqrt_s = 0.26 * kDegPerHour * 60.0;
-  r.noise.rrw_rad_per_s_per_sqrt_s = 8.0 * kDegPerHour / 60.0;
+  r.noise.arw_rad_per_sqrt_s = units::DegPerSqrtHour(0.26);
+  r.noise.rrw_rad_per_s_per_sqrt_s = units::DegPerHourPerSqrtHour(8.0);
   r.bias_step = independent::BiasStep{-190.0 * kDegPerHour, 1750.0};
   for (std::uint64_t seed : {5103, 5105}) {
     const DiagnosisSummary s = Diagnose(r, seed, 360000);

@@ -8,8 +8,9 @@
 
 #include "experiments/diagnosis/diagnose.h"
 #include "sim/sensor_model.h"
-#include "tests/support/diagnosis_control.h"
 #include "sim/units.h"
+#include "tests/support/diagnosis_control.h"
+#include "tests/support/diagnosis_record.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -78,14 +79,17 @@ sim::SensorModel Baseline(double arw_deg_per_sqrt_h) {
 // shrinks >= 3x on the held-out half (seeds 7-9 give 5-21x), and the telegraph, with the same
 // Allan variance, is named as also consistent with the kurtosis view as the separator, or is
 // rejected by that view.
-TEST(DiagnoseStatTest, GaussMarkovBumpIsNamedAndClosed) {
+// The record of GaussMarkovBumpIsNamedAndClosed: 30 min at 20 Hz with a 40 deg/h, 5 s bump.
+std::vector<double> GaussMarkovBumpRecord() {
   sim::SensorModel model = Baseline(0.3);
   model.terms.push_back(sim::GaussMarkov{units::DegPerHour(40.0), 5.0});
-  const std::vector<double> record = model.Generate(7, 0, 36000);
-  DiagnoseOptions options;
-  options.trials = 12;
+  return model.Generate(7, 0, 36000);
+}
+
+TEST(DiagnoseStatTest, GaussMarkovBumpIsNamedAndClosed) {
+  const std::vector<double> record = GaussMarkovBumpRecord();
   DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.05), &s)) << s.message;
+  ASSERT_TRUE(DiagnoseRecord(testing::TestDiagnoseOptions(), record, SampleClock::FromPeriodS(0.05), &s)) << s.message;
   ASSERT_TRUE(s.significant);
   ASSERT_EQ(s.verdict, "gauss_markov");
   const CandidateResult& c = s.candidates[s.verdict_candidate];
@@ -109,11 +113,8 @@ TEST(DiagnoseStatTest, GaussMarkovBumpIsNamedAndClosed) {
 // Monte Carlo views out (defer_envelopes) changes no verdict: the same verdict, also-consistent
 // list and numbers for every other candidate as with every envelope simulated.
 TEST(DiagnoseStatTest, DeferredEnvelopesChangeNoVerdict) {
-  sim::SensorModel model = Baseline(0.3);
-  model.terms.push_back(sim::GaussMarkov{units::DegPerHour(40.0), 5.0});
-  const std::vector<double> record = model.Generate(7, 0, 36000);
-  DiagnoseOptions options;
-  options.trials = 12;
+  const std::vector<double> record = GaussMarkovBumpRecord();
+  DiagnoseOptions options = testing::TestDiagnoseOptions();
   DiagnosisSummary deferred, all;
   ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromPeriodS(0.05), &deferred)) << deferred.message;
   options.defer_envelopes = false;

@@ -5,29 +5,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "experiments/diagnosis/resonance_estimate.h"
 #include "independent/generate.h"
 #include "independent/recipe.h"
+#include "tests/support/diagnosis_record.h"
 
 namespace allanlab::experiments {
 namespace {
 
-constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;  // rad/s
 constexpr double kRate = 100.0;
 constexpr std::int64_t kSamples = 360000;  // 1 h
 
-independent::Recipe Gyro() {
-  independent::Recipe r;
-  r.rate_hz = kRate;
-  r.noise.arw_rad_per_sqrt_s = 0.3 * kDegPerHour * 60.0;
-  r.noise.flicker_floor_rad_per_s = independent::FlickerFloorFromB(3.0 * kDegPerHour);
-  r.noise.rrw_rad_per_s_per_sqrt_s = 3.0 * kDegPerHour / 60.0;
-  return r;
-}
+independent::Recipe Gyro() { return testing::IndependentMemsGyro(0.3, 3.0, 3.0); }
 
 // A line at 30.5 Hz with damping 0.107 (half-power width 2 zeta f0 = 6.5 Hz, as wide as the narrow
 // search's +-64-bin floor window) whose peak stands ~15 % above the white floor (the independent
