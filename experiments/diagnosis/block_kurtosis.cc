@@ -1,6 +1,5 @@
 #include "experiments/diagnosis/block_kurtosis.h"
 
-#include <cmath>
 #include <limits>
 
 namespace allanlab::experiments {
@@ -69,23 +68,6 @@ double ExcessKurtosisOfIncrements(const std::vector<double>& sums) {
 }
 
 }  // namespace
-
-double KurtosisNormalDeviate(double excess_kurtosis, std::int64_t n) {
-  if (!std::isfinite(excess_kurtosis) || n < 8) return std::numeric_limits<double>::quiet_NaN();
-  const double nn = static_cast<double>(n);
-  const double b2 = excess_kurtosis + 3.0;
-  const double mean = 3.0 * (nn - 1.0) / (nn + 1.0);
-  const double var = 24.0 * nn * (nn - 2.0) * (nn - 3.0) / ((nn + 1.0) * (nn + 1.0) * (nn + 3.0) * (nn + 5.0));
-  const double x = (b2 - mean) / std::sqrt(var);
-  // sqrt(beta1) of b2: its skewness.
-  const double skew = 6.0 * (nn * nn - 5.0 * nn + 2.0) / ((nn + 7.0) * (nn + 9.0)) *
-                      std::sqrt(6.0 * (nn + 3.0) * (nn + 5.0) / (nn * (nn - 2.0) * (nn - 3.0)));
-  const double a = 6.0 + 8.0 / skew * (2.0 / skew + std::sqrt(1.0 + 4.0 / (skew * skew)));
-  const double denom = 1.0 + x * std::sqrt(2.0 / (a - 4.0));
-  if (denom == 0.0) return std::numeric_limits<double>::quiet_NaN();
-  const double root = std::cbrt((1.0 - 2.0 / a) / denom);
-  return ((1.0 - 2.0 / (9.0 * a)) - root) / std::sqrt(2.0 / (9.0 * a));
-}
 
 std::vector<double> BlockIncrementKurtosis(std::span<const double> rate, std::span<const std::int64_t> ms) {
   std::vector<double> out;

@@ -14,12 +14,4 @@ namespace allanlab::experiments {
 // do not vary.
 std::vector<double> BlockIncrementKurtosis(std::span<const double> rate, std::span<const std::int64_t> ms);
 
-// The excess kurtosis g2 = m4 / m2^2 - 3 of n values mapped to a normal deviate by Anscombe and
-// Glynn's transform (Biometrika 70, 1983), exact in its first three moments for n iid Gaussian
-// values: the view standardises this against its Monte Carlo envelope. g2 itself is right-skewed
-// (skewness 0.87 at n = 255, the fewest increments the view takes), so its mean and sd put the
-// upper tail in the wrong place: two of 103 independent controls read |z| 4.1 and 5.9 at the
-// longest tau, where a calibrated view gives one such record in ~2000. NaN for n < 8 or NaN g2.
-double KurtosisNormalDeviate(double excess_kurtosis, std::int64_t n);
-
 }  // namespace allanlab::experiments

@@ -225,14 +225,7 @@ bool ComputeViews(const ViewLayout& layout, std::span<const double> rate, ViewVa
   if (want(View::kHalves)) HalvesView(layout, rate, &v[static_cast<int>(View::kHalves)]);
   if (want(View::kDynamic)) DynamicView(layout, rate, &v[static_cast<int>(View::kDynamic)]);
   if (want(View::kPsd)) PsdView(layout, rate, &v[static_cast<int>(View::kPsd)]);
-  if (want(View::kKurtosis)) {
-    // On the normal-deviate scale of Anscombe and Glynn (block_kurtosis.h): the envelope's mean
-    // and sd then place both tails.
-    std::vector<double>& k = v[static_cast<int>(View::kKurtosis)];
-    k = BlockIncrementKurtosis(rate, layout.kurtosis_m);
-    const auto n = static_cast<std::int64_t>(rate.size());
-    for (std::size_t i = 0; i < k.size(); ++i) k[i] = KurtosisNormalDeviate(k[i], n / layout.kurtosis_m[i] - 1);
-  }
+  if (want(View::kKurtosis)) v[static_cast<int>(View::kKurtosis)] = BlockIncrementKurtosis(rate, layout.kurtosis_m);
   v[static_cast<int>(View::kChangePoint)].assign(layout.block_counts.size(), kNaN);
   v[static_cast<int>(View::kTrend)].assign(layout.block_counts.size(), kNaN);
   return true;

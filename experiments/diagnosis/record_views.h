@@ -12,8 +12,7 @@
 //             samples) averaged in log-spaced bands of 6 per decade
 //   kurtosis: excess kurtosis of the first differences of non-overlapping block means of m
 //             samples, octave m with >= 256 blocks: ~0 for Gaussian noise of any spectrum,
-//             > 0 for spikes or jumps, < 0 for a two-level (telegraph) signal; on the
-//             normal-deviate scale of Anscombe and Glynn for its count (block_kurtosis.h)
+//             > 0 for spikes or jumps, < 0 for a two-level (telegraph) signal
 //   change_point, trend: the record's block means (16, 32, 64 blocks) against the model's
 //             block-mean covariance: the largest step and the largest exponential settling, and
 //             when (block_means.h); computed against each model, whose steps and drifts it places
