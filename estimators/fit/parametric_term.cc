@@ -213,8 +213,7 @@ class BandLimitTerm final : public ParametricTerm {
   // runs to 2^26 samples, and the fit never finished.
   void Bounds(const AvarCurve& c, std::vector<double>* lower, std::vector<double>* upper) const override {
     *lower = {std::max(0.1 / c.tau_s.back(), 1e-3 / c.sample_clock.period_s())};
-    // A box kind must stay at least one internal sample long (its fc <= 0.319 L fs for CIC2).
-    *upper = {(sim::IsFirLowPass(kind_) ? 0.3 : 0.45) * oversampling_ / c.sample_clock.period_s()};
+    *upper = {BandLimitMaxCutoffHz(kind_, oversampling_, c.sample_clock.period_s())};
   }
   void ApplyTo(std::span<const double> p, sim::SensorModel* model) const override {
     model->band_limit = sim::BandLimit{kind_, p[0], oversampling_, sampling_};
@@ -240,6 +239,11 @@ class BandLimitTerm final : public ParametricTerm {
 };
 
 }  // namespace
+
+double BandLimitMaxCutoffHz(sim::LowPassKind kind, int oversampling, double output_period_s) {
+  // A box kind must stay at least one internal sample long (its fc <= 0.319 L fs for CIC2).
+  return (sim::IsFirLowPass(kind) ? 0.3 : 0.45) * oversampling / output_period_s;
+}
 
 bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int oversampling,
                      const AvarCurve& curve, const sim::SensorModel& without, double* cutoff_hz,

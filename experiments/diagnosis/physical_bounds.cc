@@ -27,7 +27,8 @@ bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, doubl
       std::string ignored;
       const int oversampling = AddEffect(e, &probe, &ignored) ? probe.band_limit.oversampling : 1;
       const double internal_rate_hz = oversampling * sample_clock.rate_hz();
-      const double edge_hz = kBoundShare * (sim::IsFirLowPass(probe.band_limit.kind) ? 0.3 : 0.45) * internal_rate_hz;
+      const double edge_hz =
+          kBoundShare * estimators::BandLimitMaxCutoffHz(probe.band_limit.kind, oversampling, sample_clock.period_s());
       if (!(p("cutoff_hz") < edge_hz)) {
         os << "cutoff " << p("cutoff_hz") << " Hz is at the highest cutoff its filter running at " << internal_rate_hz
            << " Hz can take (" << edge_hz << " Hz): the fit ran to its edge, the cutoff is not determined";

@@ -259,16 +259,6 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
 }
 
 
-// Whether the effect places a deterministic path in the record (a bias step, a warm-up drift):
-// one the record can be cleared of, sample by sample.
-bool HasDeterministicPath(const EffectInstance& e, SampleClock sample_clock) {
-  sim::SensorModel alone;
-  alone.sample_clock = sample_clock;
-  std::string ignored;
-  return AddEffect(e, &alone, &ignored) && !DeterministicPath(alone, 2).empty();
-}
-
-
 // A candidate with events (bias steps, warm-up drifts): the linear terms (and the other effects)
 // fitted to the Allan curve of the record less the events' paths, as the baseline is fitted,
 // rather than to the record's curve less the events' expected AVAR. That expectation leaves out
@@ -305,7 +295,7 @@ bool RefitOnClearedRecord(const BaselineSpec& spec, SampleClock sample_clock, st
   // The effects in their asked order, those refitted with their fitted parameters.
   std::vector<EffectInstance> out;
   std::size_t next_rest = 0;
-  for (const EffectInstance& e : *effects) out.push_back(HasDeterministicPath(e, sample_clock) ? e : rest[next_rest++]);
+  for (const EffectInstance& e : *effects) out.push_back(IsOneOffEvent(e.effect) ? e : rest[next_rest++]);
   *effects = std::move(out);
   return WithEffects(std::move(rest_model), events, model, why);
 }
@@ -343,7 +333,8 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                std::span<const double> record_rate) {
   if (!record_rate.empty()) {
     std::vector<EffectInstance> events, rest;
-    for (const EffectInstance& e : *effects) (HasDeterministicPath(e, curve.sample_clock) ? events : rest).push_back(e);
+    // The one-off events (effect.h) are the effects with a deterministic path.
+    for (const EffectInstance& e : *effects) (IsOneOffEvent(e.effect) ? events : rest).push_back(e);
     if (!events.empty()) {
       return RefitOnClearedRecord(spec, curve.sample_clock, record_rate, events, rest, effects, fit, model, why);
     }

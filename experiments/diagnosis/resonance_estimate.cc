@@ -109,8 +109,7 @@ std::optional<EffectInstance> EstimateResonance(std::span<const double> y, doubl
     for (std::size_t b = 3; b + 2 < bins; ++b) {
       const std::size_t lo = b > 64 ? b - 64 : 1, hi = std::min(bins - 1, b + 64);
       if (*std::max_element(smooth.begin() + static_cast<std::ptrdiff_t>(lo),
-                            smooth.begin() + static_cast<std::ptrdiff_t>(hi) + 1) > smooth[b] ||
-          lo == b || hi == b) {
+                            smooth.begin() + static_cast<std::ptrdiff_t>(hi) + 1) > smooth[b]) {
         continue;
       }
       const double excess = (smooth[b] / floor[b] - 1.0) / relative_se;
