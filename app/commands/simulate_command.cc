@@ -63,7 +63,7 @@ Subcommand AddSimulateCommand(CLI::App* parent) {
                   "with the provenance")
       ->type_name("OUT")
       ->required();
-  cmd->add_option("--format", options->format, "record format: csv (default) or f64")
+  cmd->add_option("--format", options->format, "record format: csv or f64 (default: f64 for an output named *.f64, else csv)")
       ->type_name("csv|f64");
   cmd->add_option("--units", options->units,
                   "rate unit of the record: deg/s (default), deg/h or rad/s")

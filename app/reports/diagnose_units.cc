@@ -61,11 +61,15 @@ std::string ParameterName(const DiagnoseUnits& u, const std::string& gyro_name) 
   return gyro_name;
 }
 
+// Q is an angle (a velocity for an accelerometer): in the report's angle unit, so it reads beside
+// the quantizer's LSB (Q = LSB / sqrt(12)), which the report gives in that unit too.
 std::string CoefficientUnit(const DiagnoseUnits& u, estimators::Coefficient c) {
+  if (c == estimators::Coefficient::kQ) return ReportAngleUnit(u);
   return std::string(SensorDatasheetUnit(u.sensor, c));
 }
 
 double CoefficientValue(const DiagnoseUnits& u, estimators::Coefficient c, double value_si) {
+  if (c == estimators::Coefficient::kQ) return ReportAngle(u, value_si);
   return SensorDatasheetValue(u.sensor, c, value_si);
 }
 

@@ -5,7 +5,8 @@
 // lsb_rad). Reported:
 //   gyro           rates in deg/h (and the record's rate unit), angles in deg
 //   accelerometer  accelerations in mg (and the record's unit), velocities in m/s
-// and the coefficients Q, N, B, K, R as app/reports/sensor_coefficients.h prints them.
+// and the coefficients N, B, K, R as app/reports/sensor_coefficients.h prints them, Q in the
+// report's angle (velocity) unit.
 #include <optional>
 #include <string>
 

@@ -234,14 +234,17 @@ std::optional<CommandFailure> SimulateSampleCount(const SimulateOptions& o, doub
 
 std::optional<CommandFailure> WriteSimulatedRecord(const SimulateOptions& o, const std::string& command_line) {
   // 1. The command line on its own.
-  RecordFormat format;
-  if (o.format == "csv") {
-    format = RecordFormat::kCsv;
-  } else if (o.format == "f64") {
-    format = RecordFormat::kFloat64;
-  } else {
+  const std::string extension = std::filesystem::path(o.output_path).extension().string();
+  const std::string named = extension == ".f64" ? "f64" : extension == ".csv" ? "csv" : "";
+  const std::string format_id = o.format.empty() ? (named.empty() ? "csv" : named) : o.format;
+  if (format_id != "csv" && format_id != "f64") {
     return Usage("unknown --format '" + o.format + "' (expected csv or f64)");
   }
+  if (!named.empty() && named != format_id) {
+    return Usage("--format " + format_id + " contradicts the output name " + o.output_path +
+                 " (a " + extension + " file); drop --format or rename the output");
+  }
+  const RecordFormat format = format_id == "csv" ? RecordFormat::kCsv : RecordFormat::kFloat64;
   RateUnit unit;
   std::string why;
   if (!ParseRateUnit(o.units, &unit, &why)) return Usage("--units: " + why);

@@ -30,7 +30,9 @@ struct SimulateOptions {
   std::uint64_t seed = 0;         // with trial, selects the random streams (sim/seeding.h)
   std::uint64_t trial = 0;
   std::string output_path;      // the record
-  std::string format = "csv";   // "csv" or "f64" (raw little-endian float64 + OUT.json)
+  // "csv" or "f64" (raw little-endian float64 + OUT.json); empty: from the output's name (.f64 is
+  // f64, anything else csv). A stated format that contradicts a .csv or .f64 name is an error.
+  std::string format;
   std::string units = "deg/s";  // "deg/s", "deg/h" or "rad/s"
   std::string plot_path;        // optional Allan diagram (PNG)
   std::string avar_table_path;  // optional Allan table (CSV)

@@ -251,6 +251,10 @@ TEST_F(SimulateCommandTest, Float64IsEightBytesPerSampleWithAJsonSidecar) {
   EXPECT_EQ(sidecar.at("data").at("dtype"), "<f8");
   EXPECT_EQ(sidecar.at("provenance").at("seed"), "9");
   EXPECT_FALSE(sidecar.at("provenance").at("git_sha").get<std::string>().empty());
+  // An output named *.f64 is raw float64 without --format: the same bytes.
+  ASSERT_EQ(Simulate("--duration 3 --seed 9", "named.f64").exit_code, 0);
+  EXPECT_EQ(ReadAll(Path("named.f64")), raw);
+  EXPECT_TRUE(fs::exists(Path("named.f64.json")));
   // The CSV prints shortest round-trip decimals, so both formats hold the same doubles.
   const std::vector<double> csv = Column(ParseCsv(ReadAll(Path("ref.csv"))), 1);
   for (std::size_t k = 0; k < csv.size(); ++k) {
@@ -395,6 +399,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownUnits", 2, "deg/min",
                 "--sensor {spec} --duration 10 --seed 1 --units deg/min"},
         BadCase{"UnknownFormat", 2, "f32", "--sensor {spec} --duration 10 --seed 1 --format f32"},
+        BadCase{"CsvFormatForAnF64Name", 2, "contradicts",
+                "--sensor {spec} --duration 10 --seed 1 --format csv -o {dir}/new.f64"},
+        BadCase{"F64FormatForACsvName", 2, "contradicts",
+                "--sensor {spec} --duration 10 --seed 1 --format f64 -o {dir}/new.csv"},
         BadCase{"UnknownOption", 2, "--frobnicate",
                 "--sensor {spec} --duration 10 --seed 1 --frobnicate"},
         BadCase{"CutoffAboveInternalNyquist", 1, "Nyquist",
