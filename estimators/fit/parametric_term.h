@@ -93,13 +93,13 @@ bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int ov
                      const AvarCurve& curve, const sim::SensorModel& without, double* cutoff_hz,
                      double* sse_ratio);
 
-// Narrowband resonance, sim::Resonance: parameters sigma (rad/s; deg/h), f0 (Hz) and zeta
-// (damping ratio). f0 is bounded below the output Nyquist frequency (a line above it is not a
-// resonance the record can locate), zeta by [1e-3, 0.95].
 // The band-limit term's highest cutoff [Hz]: 0.45 of the rate its filter runs at (oversampling x
 // the output rate), 0.3 for a box kind (which must stay at least one internal sample long).
 double BandLimitMaxCutoffHz(sim::LowPassKind kind, int oversampling, double output_period_s);
 
+// Narrowband resonance, sim::Resonance: parameters sigma (rad/s; deg/h), f0 (Hz) and zeta
+// (damping ratio). f0 is bounded below the output Nyquist frequency (a line above it is not a
+// resonance the record can locate), zeta by [1e-3, 0.95].
 // The resonance term's damping range: a fit at the floor has found a line narrower than it can
 // describe (over the record, a sinusoid).
 inline constexpr double kResonanceMinDamping = 1e-3;

@@ -8,8 +8,8 @@
 
 #include "estimators/fit/parametric_fit.h"
 #include "estimators/fit/parametric_term.h"
+#include "experiments/diagnosis/line_shape.h"
 #include "experiments/diagnosis/resonance_estimate.h"
-#include "sim/fft.h"
 #include "sim/gauss_markov.h"
 #include "sim/quantization_noise.h"
 
@@ -223,23 +223,12 @@ std::optional<EffectInstance> Bandwidth(const estimators::AvarCurve& curve, cons
 }
 
 std::optional<EffectInstance> Harmonic(std::span<const double> y, double tau0, std::string* why) {
-  std::size_t n = 1;
-  while (n * 2 <= std::min<std::size_t>(y.size(), std::size_t{1} << 20)) n *= 2;
-  if (n < 256) {
+  std::size_t n = 0;
+  const std::vector<double> power = HannPeriodogram(y, &n);
+  if (power.empty()) {
     *why = "record too short for a periodogram";
     return std::nullopt;
   }
-  sim::FftBuffer buffer(n + 2);
-  double mean = 0.0;
-  for (std::size_t k = 0; k < n; ++k) mean += y[k];
-  mean /= static_cast<double>(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double w = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(n));
-    buffer.data()[k] = (y[k] - mean) * w;
-  }
-  sim::ForwardRealFft(n, buffer.data());
-  std::vector<double> power(n / 2 + 1);
-  for (std::size_t b = 0; b <= n / 2; ++b) power[b] = std::norm(buffer.complex_data()[b]);
   constexpr std::size_t kHalfWidth = 32;
   std::size_t best = 0;
   double best_ratio = 0.0;

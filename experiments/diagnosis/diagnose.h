@@ -35,6 +35,7 @@
 //    (each of them at least halved), what remains listed (`remaining`). Else "unexplained".
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -183,6 +184,9 @@ struct DiagnosisSummary {
   std::vector<AlsoConsistent> also_consistent;
   std::vector<std::string> notes;  // fallbacks taken
   BlockMeanSeries block_means;     // empty in curve mode
+  // When a harmonic and a resonance both close the gap: the share of the line's power in the
+  // whole record's periodogram main lobe (line_shape.h), which chose between them; NaN otherwise.
+  double line_lobe_share = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A record of rate samples (rad/s) on its sample clock. Returns summary->ok (false: bad options, a

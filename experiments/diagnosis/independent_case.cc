@@ -96,13 +96,43 @@ std::vector<double> FitUserModel(const Context& c, const std::vector<double>& e)
   return fit;
 }
 
-double KurtosisZ(const Recipe& full, const std::string& id, double e1, std::int64_t n) {
+// Excess kurtosis of y = lsb round(x / lsb), x ~ N(mean, variance): the levels' probabilities
+// summed exactly (Phi differences over every level within 12 sigma).
+double RoundedGaussianExcessKurtosis(double lsb, double mean, double variance) {
+  const double sd = std::sqrt(variance);
+  const auto lo = static_cast<std::int64_t>(std::floor((mean - 12.0 * sd) / lsb)) - 1;
+  const auto hi = static_cast<std::int64_t>(std::ceil((mean + 12.0 * sd) / lsb)) + 1;
+  auto cdf = [&](double x) { return 0.5 * std::erfc(-(x - mean) / (sd * std::sqrt(2.0))); };
+  std::vector<double> p;
+  double m1 = 0.0;
+  for (std::int64_t k = lo; k <= hi; ++k) {
+    const double level = static_cast<double>(k) * lsb;
+    p.push_back(cdf(level + 0.5 * lsb) - cdf(level - 0.5 * lsb));
+    m1 += p.back() * level;
+  }
+  double m2 = 0.0, m4 = 0.0;
+  for (std::int64_t k = lo; k <= hi; ++k) {
+    const double d = static_cast<double>(k) * lsb - m1, w = p[static_cast<std::size_t>(k - lo)];
+    m2 += w * d * d;
+    m4 += w * d * d * d * d;
+  }
+  return m2 > 0.0 ? m4 / (m2 * m2) - 3.0 : 0.0;
+}
+
+// base_e1: the record's AVAR at m = 1 without the effect, its per-sample variance (white-dominated).
+double KurtosisZ(const Recipe& full, const std::string& id, double base_e1, double e1, std::int64_t n) {
   const double v = 2.0 * e1, v2 = v * v, tau0 = full.sample_period_s();
   double excess = 0.0;
   if (id == "outliers" && full.spikes) {
     const Spikes& s = *full.spikes;
     const double p = s.rate_hz * tau0, al = s.tail_index;
     excess = 2.0 * p * std::pow(s.scale_rad_per_s, 4) * al / (al - 4.0) / v2;
+  } else if (id == "rate_quantization" && full.rate_quantizer && !full.rate_quantizer->subtractive_dither) {
+    // Plain rounding: the samples sit on the grid where the bias puts them, and an LSB beyond ~1.5
+    // sigma makes the kurtosis depend on that place (at 2.4 sigma from +0.7 to -0.6, where
+    // Sheppard's -2.4 q2^2 / v^2 averaged over it gives -0.06). The increments of iid samples
+    // have half their excess kurtosis.
+    excess = 0.5 * RoundedGaussianExcessKurtosis(full.rate_quantizer->lsb_rad_per_s, full.noise.bias_rad_per_s, base_e1);
   } else if (id == "rate_quantization" && full.rate_quantizer) {
     const double q2 = std::pow(full.rate_quantizer->lsb_rad_per_s, 2) / 12.0;
     excess = -2.4 * q2 * q2 / v2;
@@ -141,7 +171,7 @@ void Measure(const Recipe& base, const Recipe& full, const std::string& id, cons
       d->peak_tau_s = c.tau[i];
     }
   }
-  d->kurtosis_z = KurtosisZ(full, id, e.front(), c.n);
+  d->kurtosis_z = KurtosisZ(full, id, c.e_base.front(), e.front(), c.n);
   d->halves_z = BlockZ(full, id, c);
   d->halves_peak_tau_s = 0.0;
   if (d->halves_z > 0.0) {

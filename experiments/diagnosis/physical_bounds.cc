@@ -64,6 +64,14 @@ bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, doubl
         os << "decay time " << decay_s << " s (damping " << p("damping") << ") is below the sample period " << tau0
            << " s: not a line";
         ok = false;
+      } else if (!(p("damping") < std::numbers::sqrt2 / 2.0)) {
+        // A damped oscillator driven by white noise has a peak in its spectrum only below
+        // 1/sqrt(2); above it is a correlated wander whose Allan bump a Gauss-Markov process
+        // (one parameter fewer) draws as well (benchmark: a 1.4 s Gauss-Markov fitted as a
+        // 0.23 Hz "resonance" of damping 0.95).
+        os << "damping " << p("damping") << " leaves no peak in the spectrum (a line needs damping below 0.707): "
+           << "a correlated wander, not a line";
+        ok = false;
       } else if (!(p("damping") > estimators::kResonanceMinDamping / kBoundShare)) {
         // The fit ran to its floor: the record's line is narrower than any damping it may take.
         os << "damping " << p("damping") << " is at the fit's floor " << estimators::kResonanceMinDamping

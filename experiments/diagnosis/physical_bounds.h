@@ -14,7 +14,9 @@
 //   random_telegraph    correlation time (mean dwell / 2) >= 1/fs
 //   harmonic            frequency below fs/2
 //   resonance           frequency below fs/2, damping < 1 and a decay time 1/(zeta w0) >= 1/fs
-//                       (a line narrower than the band it sits in), damping above the fit's
+//                       (a line narrower than the band it sits in), damping below 1/sqrt(2)
+//                       (above it the spectrum has no peak: a correlated wander, the
+//                       Gauss-Markov's), damping above the fit's
 //                       floor (at it, the record's line is a sinusoid: two independent
 //                       benchmark sinusoids were named resonances at damping 0.001), and a line width
 //                       2 zeta f0 >= 1/T: a narrower line keeps its amplitude over the record, a

@@ -10,6 +10,7 @@
 #include "experiments/diagnosis/block_means.h"
 #include "experiments/diagnosis/candidate_estimate.h"
 #include "experiments/diagnosis/heldout.h"
+#include "experiments/diagnosis/line_shape.h"
 
 namespace allanlab::experiments::detail {
 namespace {
@@ -404,6 +405,34 @@ int ResolveEquivalents(const Context& ctx, const DiagnosisSummary& s, int best) 
   return best;
 }
 
+// A harmonic and a resonance that both close the gap near one frequency: the views cannot tell a
+// sinusoid from a narrow line, the whole record's periodogram can (line_shape.h). Searched over
+// three of the resonance's line widths.
+int ResolveLineShape(const Context& ctx, DiagnosisSummary* s, int best) {
+  const CandidateResult& chosen = s->candidates[best];
+  if (!ctx.have_record || chosen.effects.size() != 1) return best;
+  const Effect e = chosen.effects[0].effect;
+  if (e != Effect::kHarmonic && e != Effect::kResonance) return best;
+  const Effect other = e == Effect::kHarmonic ? Effect::kResonance : Effect::kHarmonic;
+  for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+    const CandidateResult& c = s->candidates[i];
+    if (c.effects.size() != 1 || c.effects[0].effect != other || !Acceptable(ctx, c)) continue;
+    const EffectInstance& harmonic = e == Effect::kHarmonic ? chosen.effects[0] : c.effects[0];
+    const EffectInstance& resonance = e == Effect::kResonance ? chosen.effects[0] : c.effects[0];
+    const double f = harmonic.params.at("frequency_hz"), f0 = resonance.params.at("frequency_hz");
+    const double width_hz = 2.0 * resonance.params.at("damping") * f0;
+    if (std::abs(f - f0) > std::max(3.0 * width_hz, 0.01 * f0)) return best;  // two different lines
+    s->line_lobe_share = LineLobeShare(ctx.rate, ctx.curve.sample_clock.period_s(), f, 3.0 * width_hz);
+    const bool sinusoid = s->line_lobe_share >= kSinusoidLobeShare;
+    s->notes.push_back("harmonic or resonance: the line at " + SignificantDigits(f, 4) + " Hz holds " +
+                       SignificantDigits(100.0 * s->line_lobe_share, 3) +
+                       " % of its power within the main lobe of the whole record's periodogram: " + (sinusoid ? "a sinusoid" : "a line wider than a sinusoid's"));
+    const bool keep = sinusoid == (e == Effect::kHarmonic);
+    return keep ? best : static_cast<int>(i);
+  }
+  return best;
+}
+
 // Also consistent with the verdict: effects with the same Allan signature (unless a view has told
 // them apart) and any other acceptable candidate whose penalised score is within 2 of it.
 void ListAlsoConsistent(const Context& ctx, DiagnosisSummary* s) {
@@ -496,6 +525,12 @@ std::string WhyNotVerdict(const Context& ctx, const DiagnosisSummary& s, const C
       }
     }
   }
+  if (c.effects.size() == 1 && v.effects.size() == 1 && std::isfinite(s.line_lobe_share) &&
+      (c.effects[0].effect == Effect::kHarmonic || c.effects[0].effect == Effect::kResonance)) {
+    return "closes the gap too; the record's periodogram holds " + Num(100.0 * s.line_lobe_share) +
+           " % of the line's power in its main lobe: " +
+           (s.line_lobe_share >= kSinusoidLobeShare ? "a sinusoid" : "a line wider than a sinusoid's");
+  }
   if (v.full_score - score > 2.0) {
     return "closes the gap too, with a penalised score " + Num(v.full_score - score) + " below " + v.id() + "'s (" +
            Num(score) + " against " + Num(v.full_score) + ")";
@@ -542,7 +577,7 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
       }
     }
   } else {
-    s->verdict_candidate = ResolveEquivalents(ctx, *s, best);
+    s->verdict_candidate = ResolveLineShape(ctx, s, ResolveEquivalents(ctx, *s, best));
     s->verdict = s->candidates[s->verdict_candidate].id();
     ListAlsoConsistent(ctx, s);
   }

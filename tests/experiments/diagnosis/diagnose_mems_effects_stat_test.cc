@@ -64,6 +64,9 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
       {{Effect::kHarmonic, {{"amplitude_rad_per_s", 1e-3}, {"frequency_hz", 50.0}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 70.0}, {"damping", 0.05}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 40.0}, {"damping", 0.9}}}, "not a line"},
+      // Damping above 1/sqrt(2): no peak in the spectrum (a Gauss-Markov's bump).
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.23}, {"damping", 0.95}}}, "no peak"},
+      {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 2.0}, {"damping", 0.71}}}, "no peak"},
       // Line width 2 zeta f0 = 1.5e-4 Hz against the record's resolution 1 / 3600 s.
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.05}, {"damping", 0.0015}}}, "the harmonic"},
       // At the fit's floor: a sinusoid.
@@ -81,6 +84,7 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
       {Effect::kBandwidth, {{"cutoff_hz", 30.0}, {"order", 2.0}}},
       {Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.05}}},
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 20.0}, {"damping", 0.04}}},
+      {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 2.0}, {"damping", 0.7}}},  // a broad peak
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.5}, {"damping", 0.002}}},  // 2e-3 Hz wide
       // Above the output's Nyquist frequency, below the 800 Hz chain's: a real sensor's filter.
       {Effect::kBandwidth, {{"cutoff_hz", 85.0}, {"order", 2.0}}},
