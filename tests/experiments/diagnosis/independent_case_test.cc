@@ -85,5 +85,39 @@ TEST(IndependentCase, SpikeStrengthMatchesTheSampleKurtosis) {
   EXPECT_NEAR(std::log(z_sample / d.kurtosis_z), 0.0, std::log(2.0)) << z_sample << " vs " << d.kurtosis_z;
 }
 
+// A plain rounding at an LSB of 2.4 sigma: how heavy the increments' tails are depends on where
+// the bias puts the samples on the grid (on a level: heavier, +0.70; between two: lighter, -0.60;
+// Sheppard's average over every place: -0.06). The strength follows the bias, and matches each
+// record's sample kurtosis (n = 4e5 increments: the null sd of z is ~1; within 5 or 5 %).
+TEST(IndependentCase, RoundingStrengthFollowsWhereTheBiasPutsTheGrid) {
+  const double sigma = 0.01, lsb = 2.4 * sigma;  // rad/s per sample at 100 Hz
+  independent::Recipe base;
+  base.noise.arw_rad_per_sqrt_s = sigma / 10.0;
+  const std::int64_t n = 400000;
+  double z_on_level = 0.0, z_between = 0.0;
+  for (double place : {0.0, 0.25, 0.5}) {
+    base.noise.bias_rad_per_s = (7.0 + place) * lsb;
+    independent::Recipe full = base;
+    full.rate_quantizer = independent::RateQuantizer{lsb, false};
+    BenchmarkCase d;
+    MeasureIndependentStrength(base, full, "rate_quantization", n, &d);
+    const std::vector<double> y = independent::Generate(full, n, 5, 0);
+    double m2 = 0.0, m4 = 0.0;
+    for (std::size_t i = 1; i < y.size(); ++i) {
+      const double x = y[i] - y[i - 1];
+      m2 += x * x;
+      m4 += x * x * x * x;
+    }
+    m2 /= static_cast<double>(n - 1);
+    m4 /= static_cast<double>(n - 1);
+    const double z_sample = std::abs(m4 / (m2 * m2) - 3.0) / std::sqrt(24.0 / static_cast<double>(n));
+    EXPECT_NEAR(d.kurtosis_z, z_sample, std::max(5.0, 0.05 * z_sample)) << "place " << place;
+    if (place == 0.0) z_on_level = d.kurtosis_z;
+    if (place == 0.5) z_between = d.kurtosis_z;
+  }
+  EXPECT_GT(z_on_level, 60.0);  // 0.70 / sqrt(24 / n) = 90
+  EXPECT_GT(z_between, 60.0);   // 0.60 / sqrt(24 / n) = 77
+}
+
 }  // namespace
 }  // namespace allanlab::experiments
