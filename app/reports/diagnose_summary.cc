@@ -306,9 +306,11 @@ void WritePlainText(std::ostream& os, const PlainSummary& p) {
   }
   os << "  coefficients (baseline" << (p.model_label.empty() ? "" : " -> " + p.model_label) << "):\n";
   for (const PlainCoefficient& c : p.coefficients) {
-    os << "    " << c.id << " " << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma, c.baseline_upper);
+    // The unit beside the name: a value that is "not fitted" has none to end on.
+    os << "    " << c.id << " [" << c.unit << "] "
+       << CoefficientText(c.baseline_fitted, c.baseline, c.baseline_sigma, c.baseline_upper);
     if (!p.model_label.empty()) os << " -> " << CoefficientText(c.model_fitted, c.model, c.model_sigma, c.model_upper);
-    os << " " << c.unit << "\n";
+    os << "\n";
   }
 }
 

@@ -285,10 +285,13 @@ TEST_F(DiagnoseReportTest, StdoutMarkdownAndJsonAgreeInTheSameUnits) {
     const std::string id = c["id"];
     const Json& detail = j["baseline"]["coefficients"][id];
     EXPECT_EQ(c["unit"], detail["unit"]);
-    const std::string line = LineWith(out, id + " ");
+    // "N [deg/sqrt(h)] 0.2 +- 0.001 -> ...": the unit beside the name.
     const std::string unit = c["unit"];
-    ASSERT_GT(line.size(), unit.size()) << id;
-    EXPECT_EQ(line.substr(line.size() - unit.size()), unit) << line;
+    const std::string head = id + " [" + unit + "] ";
+    const std::string full_line = LineWith(out, head);
+    const auto at = full_line.find(head);
+    ASSERT_NE(at, std::string::npos) << id << " [" << unit << "] not in stdout";
+    const std::string line = full_line.substr(at + head.size());
     const auto arrow = line.find(" -> ");
     ASSERT_NE(arrow, std::string::npos) << line;
     ExpectCoefficientText(line.substr(0, arrow), c["baseline"], id + " baseline, stdout");
