@@ -262,7 +262,13 @@ bool ScreenBandLimit(sim::LowPassKind kind, sim::OutputSampling sampling, int ov
   double best = baseline, best_fc = 0.0;
   // 12 cutoffs a decade: a box's correlation with the next output changes by ~0.1 between grid
   // points near a box of one output period (6 a decade left a 1.2-period box between 0.95 and 1.4).
-  for (double fc : LogGrid(std::max(lower[0], 0.01 / curve.sample_clock.period_s()), upper[0], 12.0)) {
+  // A filter at the output rate also at its highest cutoff: with it there (a 45 Hz digital filter
+  // at 100 Hz) it bends the shortest taus less than the grid's last point (38 Hz) would, so
+  // without it such a filter screened as no improvement and was never fitted. (A faster chain's
+  // highest cutoff is far above what the curve can see.)
+  std::vector<double> grid = LogGrid(std::max(lower[0], 0.01 / curve.sample_clock.period_s()), upper[0], 12.0);
+  if (oversampling == 1 && (grid.empty() || grid.back() < upper[0] * (1.0 - 1e-9))) grid.push_back(upper[0]);
+  for (double fc : grid) {
     sim::SensorModel model = without;
     const double p[] = {fc};
     term.ApplyTo(p, &model);

@@ -9,7 +9,9 @@
 //                       at that edge has not determined the cutoff. Above the output Nyquist
 //                       frequency fs/2 it is still a real sensor's filter (an anti-alias filter
 //                       at several times fs, then averaged to the output: the independent
-//                       benchmark's 86.8 Hz filter at fs = 100 Hz was fitted at 85.4 Hz)
+//                       benchmark's 86.8 Hz filter at fs = 100 Hz was fitted at 85.4 Hz). A
+//                       filter at the output rate (L = 1) is kept up to its edge 0.45 fs, where
+//                       it still bends the shortest taus (a 45 Hz digital Butterworth at 100 Hz)
 //   gauss_markov        correlation time Tc >= the sample period 1/fs
 //   random_telegraph    correlation time (mean dwell / 2) >= 1/fs
 //   harmonic            frequency below fs/2

@@ -219,7 +219,13 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
         continue;
       }
     }
-    const double aic = ps.base.chi2 + 2.0 * static_cast<double>(ps.base.taus_used - ps.base.dof);
+    // Judged under each fit's own covariance (the goodness of fit `fit` prints, docs/theory.md
+    // §4.8), not the held weight, which is the baseline's: a process far above the noise that
+    // the baseline soaked into B and K makes the long taus' variances under that weight too
+    // small, and the right correlation time scored worse there than a vanishing process (a
+    // 235 deg/h telegraph of 21 s dwell: chi2 151 at a 22.6 s dwell against 74 at 2 ms; a
+    // 110 deg/h Gauss-Markov of Tc 21 s, unexplained under that weight, is named under its own).
+    const double aic = ps.base.gof_chi2 + 2.0 * static_cast<double>(ps.base.taus_used - ps.base.dof);
     if (!any || aic < best_aic) {
       best_aic = aic;
       best = std::move(ps);
