@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "experiments/diagnosis/diagnose.h"
+#include "experiments/diagnosis/independent_case.h"
 #include "independent/generate.h"
 #include "independent/recipe.h"
 #include "sim/sensor_model.h"
@@ -64,6 +65,19 @@ inline experiments::DiagnosisSummary DiagnoseIndependentRecord(const independent
   experiments::DiagnosisSummary s;
   EXPECT_TRUE(experiments::DiagnoseRecord(options, record, SampleClock::FromRateHz(recipe.rate_hz), &s)) << s.message;
   return s;
+}
+
+// Record `index` of the independent diagnosis benchmark's draw with `seed` (the draw and the
+// generator's stream as diagnosis-benchmark makes them), its case in *c; empty on a failed draw.
+inline std::vector<double> IndependentBenchmarkRecord(const experiments::IndependentDrawOptions& draw,
+                                                      std::uint64_t seed, int index,
+                                                      experiments::IndependentCase* c) {
+  std::string why;
+  if (!experiments::DrawIndependentCase(draw, seed, index, c, &why)) {
+    ADD_FAILURE() << why;
+    return {};
+  }
+  return independent::Generate(c->recipe, c->num_samples, seed, static_cast<std::uint64_t>(index));
 }
 
 inline std::string DescribeVerdict(const experiments::DiagnosisSummary& s) {

@@ -14,8 +14,6 @@
 #include <vector>
 
 #include "experiments/diagnosis/diagnose.h"
-#include "experiments/diagnosis/independent_case.h"
-#include "independent/generate.h"
 #include "tests/support/diagnosis_record.h"
 
 namespace allanlab::experiments {
@@ -26,11 +24,9 @@ TEST(DiagnoseLargeSlowProcessStatTest, ABenchmarkGaussMarkovSoakedIntoBAndKIsNam
   o.control_fraction = 0.6;
   o.with_resonance = true;
   IndependentCase c;
-  std::string why;
-  ASSERT_TRUE(DrawIndependentCase(o, 3, 302, &c, &why)) << why;
+  const std::vector<double> record = testing::IndependentBenchmarkRecord(o, 3, 302, &c);
   ASSERT_EQ(c.effect_id, "gauss_markov");
   ASSERT_NE(c.descriptor.params_text.find("correlation_time_s=21.28"), std::string::npos) << c.descriptor.params_text;
-  const std::vector<double> record = independent::Generate(c.recipe, c.num_samples, 3, 302);
   DiagnosisSummary s;
   ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
       << s.message;

@@ -125,10 +125,8 @@ TEST(DiagnoseSetsStatTest, NoMemberForADepartureAnotherMembersRefitMade) {
   draw.control_fraction = 0.2;
   draw.with_resonance = true;
   IndependentCase c;
-  std::string why;
-  ASSERT_TRUE(DrawIndependentCase(draw, 3, 17, &c, &why)) << why;
+  const std::vector<double> record = testing::IndependentBenchmarkRecord(draw, 3, 17, &c);
   ASSERT_EQ(c.effect_id, "angle_quantization");
-  const std::vector<double> record = independent::Generate(c.recipe, c.num_samples, 3, 17);
   DiagnoseOptions options;
   options.baseline = DiagnoseOptions::Baseline::kTerms;
   options.terms = {estimators::Coefficient::kN, estimators::Coefficient::kB, estimators::Coefficient::kK};
