@@ -11,7 +11,6 @@
 
 #include "experiments/diagnosis/diagnose.h"
 #include "experiments/diagnosis/independent_case.h"
-#include "independent/generate.h"
 #include "independent/recipe.h"
 #include "tests/support/diagnosis_record.h"
 
