@@ -5,6 +5,14 @@
 
 namespace allanlab::app {
 
+// Counted rather than or-ed: GCC vectorises the sum of comparison results (4 neighbours per
+// instruction pair in AVX2), not a boolean reduction.
+__attribute__((target_clones("avx2", "default"))) bool AnyEqualNeighbours(std::span<const double> values) {
+  std::int64_t equal = 0;
+  for (std::size_t k = 1; k < values.size(); ++k) equal += values[k] == values[k - 1];
+  return equal != 0;
+}
+
 ConstantStretch LongestConstantStretch(std::span<const double> samples) {
   ConstantStretchTracker tracker;
   tracker.AddBlock(samples);

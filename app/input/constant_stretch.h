@@ -16,6 +16,9 @@ struct ConstantStretch {
   double value = 0.0;       // in the record's own units
 };
 
+// True when two consecutive values compare equal (one vectorised pass).
+bool AnyEqualNeighbours(std::span<const double> values);
+
 // Streaming: one comparison per sample.
 class ConstantStretchTracker {
  public:
@@ -28,8 +31,16 @@ class ConstantStretchTracker {
     ++count_;
     if (current_.length > longest_.length) longest_ = current_;
   }
-  // The same as Add for each value, 64 at a time where no two neighbours are equal.
+  // The same as Add for each value: the whole block at once when it holds no two equal
+  // neighbours (the common case, one vectorised pass), else 64 at a time.
   void AddBlock(std::span<const double> values) {
+    if (!values.empty() && count_ > 0 && values.front() != current_.value &&
+        !AnyEqualNeighbours(values)) {
+      // Every run among these values has length 1, none longer than the longest so far (>= 1).
+      count_ += static_cast<std::int64_t>(values.size());
+      current_ = {count_ - 1, 1, values.back()};
+      return;
+    }
     constexpr std::size_t kLanes = 64;
     std::size_t i = 0;
     for (; i + kLanes <= values.size(); i += kLanes) {
@@ -39,7 +50,6 @@ class ConstantStretchTracker {
         for (std::size_t k = i; k < i + kLanes; ++k) Add(values[k]);
         continue;
       }
-      // Every run among these values has length 1, none longer than the longest so far.
       count_ += static_cast<std::int64_t>(kLanes);
       current_ = {count_ - 1, 1, values[i + kLanes - 1]};
     }

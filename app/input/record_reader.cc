@@ -26,6 +26,7 @@
 #include "app/input/stated_units.h"
 #include "app/failure.h"
 #include "app/input/text_record_parser.h"
+#include "common/all_finite.h"
 #include "common/huge_pages.h"
 #include "common/number_text.h"
 
@@ -467,9 +468,7 @@ class Reader {
 
   // A block of raw values whose first has index `first`.
   void AcceptBlock(std::span<const double> values, std::int64_t first) {
-    bool finite = true;
-    for (double v : values) finite &= std::isfinite(v);
-    if (finite && block_sink_ != nullptr && nonfinite_.count() == 0) {
+    if (AllFinite(values) && block_sink_ != nullptr && nonfinite_.count() == 0) {
       info_->samples += static_cast<std::int64_t>(values.size());
       stretch_.AddBlock(values);
       info_->longest_constant_stretch = stretch_.longest();

@@ -74,8 +74,8 @@ TEST(RecordEdf, SameBitsAsTheStraightforwardComputation) {
     IntegrateAbout(rate, ReferenceLevel(rate), phase);
     for (Statistic s : {Statistic::kAllanOverlapping, Statistic::kAllanNonOverlapping,
                         Statistic::kHadamardOverlapping, Statistic::kHadamardNonOverlapping}) {
-      // The default cap (2^18 terms), and caps that leave short last blocks of the lag products.
-      for (std::int64_t max_terms : {std::int64_t{1} << 18, std::int64_t{40000}, std::int64_t{9000}}) {
+      // The default cap, a larger one, and caps that leave short last blocks of the lag products.
+      for (std::int64_t max_terms : {kRecordEdfMaxTerms, std::int64_t{1} << 18, std::int64_t{40000}, std::int64_t{9000}}) {
         for (std::int64_t m : grid) {
           const double expected = StraightforwardRecordEdf(s, phase, m, max_terms);
           const double got = RecordEdf(s, phase, m, max_terms);
