@@ -3,10 +3,18 @@
 #include <cstdlib>
 
 #ifdef ALLANLAB_WITH_MPI
-#include <mpi.h>
+#include <dlfcn.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
 
+#include "experiments/mpi_module_api.h"
 #include "experiments/row_codec.h"
 #endif
 
@@ -20,30 +28,60 @@ bool LaunchedByMpi() {
   return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr ||
          std::getenv("PMIX_RANK") != nullptr;
 }
-bool Active() {
-  int initialised = 0, finalised = 0;
-  MPI_Initialized(&initialised);
-  MPI_Finalized(&finalised);
-  return initialised && !finalised;
+
+// The loaded module (mpi_module_api.h), or null: loaded by MpiSession only.
+const AllanlabMpiApi* module_api = nullptr;
+
+// The module beside the running program first (a copied or installed build), then where this
+// build made it.
+const AllanlabMpiApi* LoadModule(std::string* why) {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  std::vector<std::string> tried;
+  if (!error) tried.push_back((self.parent_path() / ALLANLAB_MPI_MODULE_NAME).string());
+  if (tried.empty() || tried.front() != ALLANLAB_MPI_MODULE_PATH) tried.emplace_back(ALLANLAB_MPI_MODULE_PATH);
+  for (const std::string& path : tried) {
+    if (!std::filesystem::exists(path, error)) continue;
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    if (handle == nullptr) {
+      *why = path + ": " + dlerror();
+      return nullptr;
+    }
+    const auto entry = reinterpret_cast<const AllanlabMpiApi* (*)()>(dlsym(handle, "allanlab_mpi_api"));
+    const AllanlabMpiApi* api = entry != nullptr ? entry() : nullptr;
+    if (api == nullptr || api->version != kAllanlabMpiApiVersion) {
+      *why = path + ": not this build's MPI module";
+      return nullptr;
+    }
+    return api;
+  }
+  *why = "not found (looked for " + tried.front() + (tried.size() > 1 ? " and " + tried.back() : "") + ")";
+  return nullptr;
 }
+
+bool Active() { return module_api != nullptr && module_api->active(); }
 }  // namespace
 
 MpiSession::MpiSession(int* argc, char*** argv) {
-  if (LaunchedByMpi() && !Active()) {
-    int provided = 0;
-    initialised_ = MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided) == MPI_SUCCESS;
+  if (!LaunchedByMpi()) return;
+  std::string why;
+  module_api = LoadModule(&why);
+  if (module_api == nullptr) {
+    std::fprintf(stderr, "allanlab: started by mpirun, but the MPI module %s could not be loaded: %s\n",
+                 ALLANLAB_MPI_MODULE_NAME, why.c_str());
+    std::exit(1);
   }
+  if (!module_api->active()) initialised_ = module_api->init(argc, argv) != 0;
 }
 
 MpiSession::~MpiSession() {
-  if (initialised_ && Active()) MPI_Finalize();
+  if (initialised_ && Active()) module_api->finalize();
 }
 
 RankInfo CurrentRanks() {
   RankInfo info;
   if (!Active()) return info;
-  MPI_Comm_rank(MPI_COMM_WORLD, &info.rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &info.size);
+  module_api->rank_and_size(&info.rank, &info.size);
   return info;
 }
 
@@ -55,16 +93,16 @@ bool GatherRowsToRoot(std::vector<TrialRow>* rows, std::string* why) {
   // Sizes first (as 64-bit counts), then the bytes in chunks below INT_MAX.
   const std::uint64_t size = bytes.size();
   std::vector<std::uint64_t> sizes(ranks.rank == 0 ? ranks.size : 0);
-  if (MPI_Gather(&size, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD) !=
-      MPI_SUCCESS) {
+  if (!module_api->gather_u64(size, sizes.data())) {
     *why = "MPI_Gather of row sizes failed";
     return false;
   }
   constexpr std::uint64_t kChunk = 1 << 30;
+  static_assert(kChunk <= INT_MAX);
   if (ranks.rank != 0) {
     for (std::uint64_t off = 0; off < size; off += kChunk) {
       const int n = static_cast<int>(std::min(kChunk, size - off));
-      if (MPI_Send(bytes.data() + off, n, MPI_UNSIGNED_CHAR, 0, 7, MPI_COMM_WORLD) != MPI_SUCCESS) {
+      if (!module_api->send_bytes(bytes.data() + off, n, 0, 7)) {
         *why = "MPI_Send of rows failed";
         return false;
       }
@@ -76,8 +114,7 @@ bool GatherRowsToRoot(std::vector<TrialRow>* rows, std::string* why) {
     std::vector<unsigned char> in(sizes[r]);
     for (std::uint64_t off = 0; off < sizes[r]; off += kChunk) {
       const int n = static_cast<int>(std::min(kChunk, sizes[r] - off));
-      if (MPI_Recv(in.data() + off, n, MPI_UNSIGNED_CHAR, r, 7, MPI_COMM_WORLD, MPI_STATUS_IGNORE) !=
-          MPI_SUCCESS) {
+      if (!module_api->receive_bytes(in.data() + off, n, r, 7)) {
         *why = "MPI_Recv of rows failed";
         return false;
       }
@@ -92,8 +129,8 @@ bool GatherRowsToRoot(std::vector<TrialRow>* rows, std::string* why) {
 
 bool AllRanksOk(bool ok) {
   if (CurrentRanks().size == 1) return ok;
-  int mine = ok ? 1 : 0, all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+  int all = 0;
+  module_api->all_and(ok ? 1 : 0, &all);
   return all != 0;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The MPI side of a sweep, compiled to single-process stand-ins without MPI
 // (ALLANLAB_WITH_MPI off). Ranks only exist when the program was started by mpirun: a plain
-// `allanlab sweep` never initialises MPI.
+// `allanlab sweep` never initialises MPI, nor loads it (the MPI calls are in a module loaded then
+// only: experiments/mpi_module_api.h).
 #include <string>
 #include <vector>
 
@@ -14,7 +15,8 @@ struct RankInfo {
   int size = 1;
 };
 
-// Initialises MPI when launched by mpirun (and built with MPI); finalises on destruction.
+// Initialises MPI when launched by mpirun (and built with MPI); finalises on destruction. Exits
+// the process with an error message when launched by mpirun but the MPI module cannot be loaded.
 class MpiSession {
  public:
   MpiSession(int* argc, char*** argv);
