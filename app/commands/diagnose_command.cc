@@ -658,7 +658,11 @@ std::optional<Failure> Diagnose(const DiagnoseCommandOptions& o, const std::stri
     for (const auto& [k, v] : p.fields) report.stream() << "- " << k << ": " << v << "\n";
     report.stream() << "- command: `" << p.command_line << "`\n- git: " << p.git_sha << "\n";
   }
-  const std::string title = "allanlab diagnose: " + (curve_mode ? o.curve.path : o.record.path);
+  // The file's name (a folder path, often a temporary one, says nothing to the reader of a plot),
+  // and the column read from it.
+  const std::string title =
+      "allanlab diagnose: " + std::filesystem::path(curve_mode ? o.curve.path : o.record.path).filename().string() +
+      (!curve_mode && !o.record.column.empty() ? " " + o.record.column : "");
   const std::vector<AllanPlot> panels = DiagnosePanels(s, title, unit);
   if (png.is_open() && !RenderAllanPlotGrid(panels, 2, &png, &why)) return RuntimeFailure(why);
   if (html.is_open()) {

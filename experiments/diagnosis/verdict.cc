@@ -527,9 +527,9 @@ std::string WhyNotVerdict(const Context& ctx, const DiagnosisSummary& s, const C
   }
   if (c.effects.size() == 1 && v.effects.size() == 1 && std::isfinite(s.line_lobe_share) &&
       (c.effects[0].effect == Effect::kHarmonic || c.effects[0].effect == Effect::kResonance)) {
-    return "closes the gap too; the record's periodogram holds " + Num(100.0 * s.line_lobe_share) +
-           " % of the line's power in its main lobe: " +
-           (s.line_lobe_share >= kSinusoidLobeShare ? "a sinusoid" : "a line wider than a sinusoid's");
+    // The share itself is in the notes (ResolveLineShape): said once.
+    return "closes the gap too; the line's shape in the whole record's periodogram names " + v.id() +
+           " (see the notes)";
   }
   if (v.full_score - score > 2.0) {
     return "closes the gap too, with a penalised score " + Num(v.full_score - score) + " below " + v.id() + "'s (" +
