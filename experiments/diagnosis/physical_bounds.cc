@@ -41,18 +41,21 @@ bool PhysicallyPossible(const EffectInstance& e, SampleClock sample_clock, doubl
       break;
     }
     case Effect::kGaussMarkov:
-      if (!(p("correlation_time_s") >= tau0)) {
-        os << "correlation time " << p("correlation_time_s") << " s is below the sample period " << tau0 << " s";
+    case Effect::kRandomTelegraph: {
+      const bool telegraph = e.effect == Effect::kRandomTelegraph;
+      const double tc = telegraph ? 0.5 * p("mean_dwell_s") : p("correlation_time_s");
+      const char* what = telegraph ? "correlation time (mean dwell / 2) " : "correlation time ";
+      if (!(tc >= tau0)) {
+        os << what << tc << " s is below the sample period " << tau0 << " s";
+        ok = false;
+      } else if (!(tc <= 0.5 * record_length_s)) {
+        os << what << tc << " s is longer than half the record (" << 0.5 * record_length_s
+           << " s): over the record such a process is a random walk of the rate, which K describes, and its "
+              "correlation time is not determined";
         ok = false;
       }
       break;
-    case Effect::kRandomTelegraph:
-      if (!(0.5 * p("mean_dwell_s") >= tau0)) {
-        os << "correlation time (mean dwell / 2) " << 0.5 * p("mean_dwell_s") << " s is below the sample period "
-           << tau0 << " s";
-        ok = false;
-      }
-      break;
+    }
     case Effect::kHarmonic:
       if (!(p("frequency_hz") < nyquist)) {
         os << "frequency " << p("frequency_hz") << " Hz is not below the Nyquist frequency " << nyquist << " Hz";

@@ -78,6 +78,9 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
       {{Effect::kBandwidth, {{"cutoff_hz", 359.0}, {"order", 1.0}}}, "the fit ran to its edge"},
       {{Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.004}}}, "below the sample period"},
       {{Effect::kRandomTelegraph, {{"amplitude_rad_per_s", 1e-3}, {"mean_dwell_s", 0.015}}}, "below the sample period"},
+      // Correlation times beyond half the record: a random walk of the rate over it.
+      {{Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 1801.0}}}, "longer than half the record"},
+      {{Effect::kRandomTelegraph, {{"amplitude_rad_per_s", 1e-3}, {"mean_dwell_s", 3602.0}}}, "longer than half the record"},
       {{Effect::kHarmonic, {{"amplitude_rad_per_s", 1e-3}, {"frequency_hz", 50.0}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 70.0}, {"damping", 0.05}}}, "not below the Nyquist"},
       {{Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 40.0}, {"damping", 0.9}}}, "not a line"},
@@ -100,6 +103,8 @@ TEST(PhysicalBoundsTest, EachImpossibleFitIsRefusedWithItsReason) {
   const EffectInstance fine[] = {
       {Effect::kBandwidth, {{"cutoff_hz", 30.0}, {"order", 2.0}}},
       {Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 0.05}}},
+      {Effect::kGaussMarkov, {{"sigma_rad_per_s", 1e-3}, {"correlation_time_s", 1800.0}}},
+      {Effect::kRandomTelegraph, {{"amplitude_rad_per_s", 1e-3}, {"mean_dwell_s", 3600.0}}},
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 20.0}, {"damping", 0.04}}},
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 2.0}, {"damping", 0.7}}},  // a broad peak
       {Effect::kResonance, {{"sigma_rad_per_s", 1e-3}, {"frequency_hz", 0.5}, {"damping", 0.002}}},  // 2e-3 Hz wide
