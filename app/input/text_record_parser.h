@@ -119,12 +119,28 @@ class TextRecordParser {
 
  private:
   bool ParseLine(std::string_view line);
-  // A data row of the common shape at the start of `chunk`, read in one pass and passed to the
-  // sink (app/input/text_common_row.cc): the bytes of its line, newline included; 0 when the line
-  // is not of that shape (or not whole in the chunk), which ParseLine then reads.
+
+  // The fields of a row of the common shape, fixed once the columns are chosen: each field's
+  // role up to the last one read, a value column's slot in values_, the time, or skipped.
+  static constexpr int kTimeField = -1;
+  static constexpr int kSkippedField = -2;
+  struct CommonRowShape {
+    char delimiter = ',';
+    std::vector<int> field_roles;
+    std::size_t values = 0;  // value columns per row
+  };
+  // Rows of the common shape (app/input/text_common_row.cc). ScanCommonRow reads the line at p
+  // (values into values[slot], the time into *time) and returns its end, after the newline;
+  // nullptr when the line is not of that shape (or not whole before `end`), which ParseLine then
+  // reads; it only reads the shape and the text. ReadCommonRow reads one at the start of `chunk`
+  // and passes it on: the bytes of its line, 0 when it is not of that shape.
+  static const char* ScanCommonRow(const CommonRowShape& shape, const char* p, const char* end, double* values,
+                                   double* time);
   std::size_t ReadCommonRow(std::string_view chunk);
+  // The next line's row to the sink; false when the sink stopped the parse.
+  bool PassCommonRow(std::span<const double> values, double time);
   // Whether rows can be of the common shape now (the columns chosen, no held rows, a delimiter,
-  // no integer time origin); sets up field_roles_ the first time.
+  // no integer time origin); sets up common_shape_ the first time.
   bool CommonRowsPossible();
   bool ParseDataRow(std::int64_t line);
   bool DecideHeaderlessTime();
@@ -161,11 +177,7 @@ class TextRecordParser {
   std::int64_t line_ = 0;
   std::int64_t data_rows_ = 0;
   std::vector<std::string_view> fields_;  // reused per line
-  // ReadCommonRow: what each field up to the last one read is: a value column's slot in values_,
-  // the time, or skipped.
-  static constexpr int kTimeField = -1;
-  static constexpr int kSkippedField = -2;
-  std::vector<int> field_roles_;
+  CommonRowShape common_shape_;
   // Headerless time probe: the first rows (line number, text) held until the decision.
   bool probing_ = false;
   bool time_guessed_ = false;
