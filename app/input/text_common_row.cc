@@ -32,7 +32,8 @@ bool TextRecordParser::CommonRowsPossible() {
   return true;
 }
 
-// Inlined: a call per row measured 5 % more instructions for the whole read.
+// Inlined into its two callers below, which read rows in a loop: a call per row measured 5 % more
+// instructions for the whole read.
 [[gnu::always_inline]] inline const char* TextRecordParser::ScanCommonRow(const CommonRowShape& shape, const char* p, const char* const end,
                                             double* values, double* time) {
   const char* const start = p;
@@ -109,6 +110,34 @@ std::size_t TextRecordParser::ReadCommonRow(std::string_view chunk) {
   if (next == nullptr) return 0;
   PassCommonRow(values_, time);
   return static_cast<std::size_t>(next - chunk.data());
+}
+
+void TextRecordParser::ReadCommonRows(const CommonRowShape& shape, std::string_view text, CommonRows* rows) {
+  const std::size_t width = shape.values;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  std::size_t n = 0;
+  while (p != end) {
+    if ((n + 1) * width > rows->values.size()) {
+      // Grown, never shrunk: the storage of one chunk serves the next.
+      rows->values.resize(std::max<std::size_t>(2 * rows->values.size(), std::size_t{1} << 14) + width);
+      rows->times.resize(rows->values.size() / width);
+    }
+    const char* const next = ScanCommonRow(shape, p, end, rows->values.data() + n * width, rows->times.data() + n);
+    if (next == nullptr) break;
+    p = next;
+    ++n;
+  }
+  rows->rows = n;
+  rows->bytes = static_cast<std::size_t>(p - text.data());
+}
+
+bool TextRecordParser::PassCommonRows(const CommonRows& rows) {
+  const std::size_t width = common_shape_.values;
+  for (std::size_t i = 0; i < rows.rows; ++i) {
+    if (!PassCommonRow({rows.values.data() + i * width, width}, rows.times[i])) return false;
+  }
+  return true;
 }
 
 }  // namespace allanlab::app

@@ -1,7 +1,7 @@
 #pragma once
 // What a TextRecordParser gives for a text, logged for comparison, and random records to give it:
-// for tests that two ways of reading (the common-row shortcut and the general line parser) give
-// the same rows, values and errors, bit for bit.
+// for tests that two ways of reading (the common-row shortcut and the general line parser, one
+// thread and two) give the same rows, values and errors, bit for bit.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -26,17 +26,20 @@ struct ParseLog {
   std::string error;
   std::vector<LoggedRow> rows;
   std::int64_t lines = 0;
+  std::int64_t two_thread_chunks = 0;  // chunks the parser cut for its helper
 };
 
-// Feeds `text` in chunks of `chunk` bytes, then Finish(). `stop_after` > 0: the sink stops the
-// parse at that row.
+// Feeds `text` in chunks of `chunk` bytes, then Finish(). `two_thread_min_bytes` > 0: read in two
+// threads from chunks of that size on (TextRecordParser::UseTwoThreads). `stop_after` > 0: the
+// sink stops the parse at that row.
 inline ParseLog ParseText(const std::string& text, std::vector<std::string> columns, std::size_t chunk,
-                          std::size_t stop_after = 0) {
+                          std::size_t two_thread_min_bytes = 0, std::size_t stop_after = 0) {
   ParseLog log;
   app::TextRecordParser parser(std::move(columns), nullptr, [&](const app::TextRow& row) {
     log.rows.push_back({row.line, {row.values.begin(), row.values.end()}, row.has_time, row.time});
     return stop_after == 0 || log.rows.size() < stop_after;
   });
+  if (two_thread_min_bytes > 0) parser.UseTwoThreads(two_thread_min_bytes);
   log.ok = true;
   for (std::size_t i = 0; log.ok && i < text.size(); i += chunk) {
     log.ok = parser.Feed(std::string_view(text).substr(i, chunk));
@@ -44,6 +47,7 @@ inline ParseLog ParseText(const std::string& text, std::vector<std::string> colu
   if (log.ok) log.ok = parser.Finish();
   log.error = parser.error();
   log.lines = parser.lines();
+  log.two_thread_chunks = parser.two_thread_chunks();
   return log;
 }
 
