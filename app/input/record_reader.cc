@@ -28,12 +28,16 @@
 #include "app/input/text_record_parser.h"
 #include "common/all_finite.h"
 #include "common/huge_pages.h"
+#include "common/piece_sharing.h"
 #include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 18;
+// A text chunk read in two threads: large enough that the wake-up of the helper once per chunk
+// costs little (TextRecordParser::UseTwoThreads).
+constexpr std::size_t kTwoThreadChunkBytes = std::size_t{1} << 22;
 constexpr std::size_t kBlockValues = 4096;  // a mapped record's values checked per block
 // A raw stream's blocks: a whole chunk of float64 values each, which a consumer that works in
 // blocks of that size (estimators::StreamingAvar) takes where it lies instead of gathering.
@@ -421,12 +425,27 @@ class Reader {
       return true;
     });
     parser_ptr = &parser;
-    std::vector<char> chunk(kChunkBytes);
+    // A plain file's rows are read in two threads when a second core is there; a compressed one's
+    // are not, since its decoder already runs beside this thread (OpenSource) and sets the pace.
+    const bool two_threads = source->compression() == Compression::kNone && PieceSharing::Useful();
+    if (two_threads) parser.UseTwoThreads();
+    const std::size_t chunk_bytes = two_threads ? kTwoThreadChunkBytes : kChunkBytes;
+    const auto chunk = std::make_unique_for_overwrite<char[]>(chunk_bytes);
     std::string why;
     while (true) {
+      // Whole chunks, which the parser can cut for its helper (a pipe or a decoder gives less at
+      // a time). Bytes before a read error are parsed first, as when each read was parsed.
       std::size_t got = 0;
-      if (!source->Read(chunk, &got, &why)) return Runtime(error, why);
-      const bool ok = got == 0 ? parser.Finish() : parser.Feed({chunk.data(), got});
+      bool read_ok = true;
+      bool at_end = false;
+      while (got < chunk_bytes && read_ok && !at_end) {
+        std::size_t more = 0;
+        read_ok = source->Read({chunk.get() + got, chunk_bytes - got}, &more, &why);
+        at_end = read_ok && more == 0;
+        if (read_ok) got += more;
+      }
+      const bool ok = (got == 0 || parser.Feed({chunk.get(), got})) && (!at_end || parser.Finish());
+      if (ok && !read_ok) return Runtime(error, why);
       if (!ok) {
         if (!units_error.message.empty()) {
           *error = units_error;
@@ -438,7 +457,7 @@ class Reader {
         return parser.error_is_usage() ? Usage(error, In() + parser.error())
                                        : Runtime(error, In() + parser.error());
       }
-      if (got == 0) break;
+      if (at_end) break;
     }
     info_->has_header = parser.has_header();
     info_->lines = parser.lines();
