@@ -378,8 +378,16 @@ class Reader {
     const bool several = row_sink_ != nullptr;
     TextRecordParser::ColumnChooser chooser;
     if (several && o_.imu && o_.columns.empty()) chooser = ChooseImuColumns;
-    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser,
-                            [&](const TextRow& row) {
+    // A time step TimeSteps refused: its message, in `stop`.
+    const auto step_refused = [&] {
+      if (parser_ptr->time_column_guessed()) {
+        stop += " (the file has no header and its first column increased over its first " +
+                std::to_string(TextRecordParser::kTimeProbeRows) +
+                " rows, so it was read as time; --column 0 reads it as data)";
+      }
+      return false;
+    };
+    const auto accept_row = [&](const TextRow& row) {
       if (info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0) {
         // First data row: the columns are known, so a missing rate fails before the long read.
         if (!row.has_time && !o_.rate_hz) {
@@ -408,14 +416,7 @@ class Reader {
           time_unit_s_ = o_.time_unit_s.value_or(name->seconds_per_unit);
           unit_is_guess_ = !o_.time_unit_s && !name->unit_in_name;
         }
-        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) {
-          if (parser_ptr->time_column_guessed()) {
-            stop += " (the file has no header and its first column increased over its first " +
-                    std::to_string(TextRecordParser::kTimeProbeRows) +
-                    " rows, so it was read as time; --column 0 reads it as data)";
-          }
-          return false;
-        }
+        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) return step_refused();
       }
       if (several) {
         AcceptRow(row.values, row.line);
@@ -423,7 +424,50 @@ class Reader {
         Accept(row.value, row.line);
       }
       return true;
-    });
+    };
+    // A run of common rows: accept_row's checks, made on the whole run at once once the first
+    // row's are made and when every value is finite (nothing to drop or list); row by row else.
+    const auto accept_rows = [&](const TextRowBlock& block) {
+      const auto row_at = [&](std::size_t k) {
+        TextRow row;
+        row.line = block.first_line + static_cast<std::int64_t>(k);
+        row.values = block.values.subspan(k * block.width, block.width);
+        row.value = row.values.front();
+        row.has_time = block.has_time;
+        if (block.has_time) row.time = block.times[k];
+        return row;
+      };
+      std::size_t first = 0;
+      for (; first < block.rows && info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0; ++first) {
+        if (!accept_row(row_at(first))) return false;
+      }
+      const std::span<const double> values = block.values.subspan(first * block.width);
+      if (!AllFinite(values) || (block.has_time && (time_unit_s_ == 0.0 || !AllFinite(block.times)))) {
+        for (std::size_t k = first; k < block.rows; ++k) {
+          if (!accept_row(row_at(k))) return false;
+        }
+        return true;
+      }
+      // The rows kept: those before a time step refused, as row by row.
+      std::size_t end = block.rows;
+      for (std::size_t k = first; block.has_time && k < block.rows; ++k) {
+        if (!steps_.Add(block.times[k] * time_unit_s_, block.first_line + static_cast<std::int64_t>(k), &stop)) {
+          end = k;
+          break;
+        }
+      }
+      const std::int64_t first_line = block.first_line + static_cast<std::int64_t>(first);
+      if (!several) {
+        AcceptBlock(values.first(end - first), first_line);
+      } else {
+        for (std::size_t k = 0; k < end - first; ++k) {
+          AcceptRow(values.subspan(k * block.width, block.width), first_line + static_cast<std::int64_t>(k));
+        }
+      }
+      return end == block.rows || step_refused();
+    };
+    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser, accept_row);
+    parser.PassRunsAsBlocks(accept_rows);
     parser_ptr = &parser;
     // A plain file's rows are read in two threads when a second core is there; a compressed one's
     // are not, since its decoder already runs beside this thread (OpenSource) and sets the pace.

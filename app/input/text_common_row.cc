@@ -4,6 +4,7 @@
 // missing value, an integer time stamp, an error to report, a line not whole in this chunk) is
 // declined and goes to ParseLine, whose rules decide; a row read here is the row ParseLine gives.
 #include <algorithm>
+#include <utility>
 
 #include "app/input/plain_decimal.h"
 #include "app/input/text_record_parser.h"
@@ -132,8 +133,30 @@ void TextRecordParser::ReadCommonRows(const CommonRowShape& shape, std::string_v
   rows->bytes = static_cast<std::size_t>(p - text.data());
 }
 
+std::size_t TextRecordParser::ReadCommonRun(std::string_view chunk) {
+  ReadCommonRows(common_shape_, chunk, &run_rows_);
+  PassCommonRows(run_rows_);
+  return run_rows_.bytes;
+}
+
+void TextRecordParser::PassRunsAsBlocks(RowBlockSink sink) { block_sink_ = std::move(sink); }
+
 bool TextRecordParser::PassCommonRows(const CommonRows& rows) {
   const std::size_t width = common_shape_.values;
+  if (block_sink_ && rows.rows > 0) {
+    TextRowBlock block;
+    block.first_line = line_ + 1;
+    block.rows = rows.rows;
+    block.width = width;
+    block.values = {rows.values.data(), rows.rows * width};
+    block.has_time = time_index_ >= 0;
+    if (block.has_time) block.times = {rows.times.data(), rows.rows};
+    line_ += static_cast<std::int64_t>(rows.rows);
+    data_rows_ += static_cast<std::int64_t>(rows.rows);
+    if (block_sink_(block)) return true;
+    failed_ = true;
+    return false;
+  }
   for (std::size_t i = 0; i < rows.rows; ++i) {
     if (!PassCommonRow({rows.values.data() + i * width, width}, rows.times[i])) return false;
   }

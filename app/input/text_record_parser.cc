@@ -139,7 +139,7 @@ bool TextRecordParser::FeedLines(std::string_view chunk, bool two_threads) {
         }
         two_threads = false;  // no line start to cut this chunk at
       }
-      if (const std::size_t used = ReadCommonRow(chunk); used > 0) {
+      if (const std::size_t used = block_sink_ ? ReadCommonRun(chunk) : ReadCommonRow(chunk); used > 0) {
         if (failed_) return false;
         chunk.remove_prefix(used);
         continue;

@@ -65,6 +65,18 @@ struct TextRow {
   double time = 0.0;
 };
 
+// Data rows of the common shape (plain decimals between single delimiters) on consecutive lines,
+// first_line, first_line + 1, ...: what `rows` RowSink calls would be given, at once. Valid during
+// the sink call only.
+struct TextRowBlock {
+  std::int64_t first_line = 0;
+  std::size_t rows = 0;
+  std::size_t width = 0;           // values per row: TextRow::values.size()
+  std::span<const double> values;  // rows * width, row by row
+  bool has_time = false;
+  std::span<const double> times;   // one per row, when has_time
+};
+
 class TextRecordParser {
  public:
   // Called for each data row; returning false stops the parse (Feed/Finish then return false
@@ -93,6 +105,13 @@ class TextRecordParser {
                                            std::vector<std::string>* columns, std::string* why)>;
   TextRecordParser(std::vector<std::string> columns, ColumnChooser choose, RowSink sink);
   ~TextRecordParser();
+
+  // From now on, runs of rows of the common shape go to `sink` in blocks instead of to the RowSink
+  // row by row (every other row still goes to the RowSink): the same rows in the same order, for
+  // a caller that checks many rows in one pass. Returning false stops the parse as the RowSink's
+  // false does.
+  using RowBlockSink = std::function<bool(const TextRowBlock&)>;
+  void PassRunsAsBlocks(RowBlockSink sink);
 
   // From now on, a Feed() chunk of at least `min_bytes` is read in two threads where its rows are
   // of the common shape (plain decimals between single delimiters, app/input/text_common_row.cc):
@@ -167,7 +186,11 @@ class TextRecordParser {
                                    double* time);
   static void ReadCommonRows(const CommonRowShape& shape, std::string_view text, CommonRows* rows);
   std::size_t ReadCommonRow(std::string_view chunk);
-  // The next line's row to the sink; false when the sink stopped the parse.
+  // The run of common rows at the start of `chunk` read and passed on (a block to the block sink,
+  // if any): the bytes of their lines, 0 when the first line is not of that shape.
+  std::size_t ReadCommonRun(std::string_view chunk);
+  // The next line's row, or the next lines' rows (as a block when there is a block sink), to the
+  // sink; false when the sink stopped the parse.
   bool PassCommonRow(std::span<const double> values, double time);
   bool PassCommonRows(const CommonRows& rows);
   // Whether rows can be of the common shape now (the columns chosen, no held rows, a delimiter,
@@ -194,6 +217,7 @@ class TextRecordParser {
   std::vector<std::string> column_specs_;
   ColumnChooser choose_;
   RowSink sink_;
+  RowBlockSink block_sink_;  // may be empty
   std::string pending_;  // the incomplete last line of the previous chunk
   std::string error_;
   bool failed_ = false;
@@ -216,11 +240,11 @@ class TextRecordParser {
   std::int64_t data_rows_ = 0;
   std::vector<std::string_view> fields_;  // reused per line
   CommonRowShape common_shape_;
-  // Reading in two threads: the smallest chunk cut (0: never), the helper; the rows of a run in
-  // this thread and of each piece.
+  // The rows of a run read in this thread (ReadCommonRun). Reading in two threads: the smallest
+  // chunk cut (0: never), the helper, the rows of each piece.
+  CommonRows run_rows_;
   std::size_t two_thread_min_bytes_ = 0;
   std::unique_ptr<PieceSharing> helper_;
-  CommonRows first_rows_;
   std::vector<CommonRows> helper_rows_;
   std::int64_t two_thread_chunks_ = 0;
   // Headerless time probe: the first rows (line number, text) held until the decision.

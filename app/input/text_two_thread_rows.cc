@@ -28,9 +28,8 @@ void TextRecordParser::UseTwoThreads(std::size_t min_bytes) {
 bool TextRecordParser::ReadLinesInThisThread(std::string_view lines) {
   while (!lines.empty()) {
     if (!CommonRowsPossible()) return FeedLines(lines, false);
-    ReadCommonRows(common_shape_, lines, &first_rows_);
-    if (!PassCommonRows(first_rows_)) return false;
-    lines.remove_prefix(first_rows_.bytes);
+    lines.remove_prefix(ReadCommonRun(lines));
+    if (failed_) return false;
     if (lines.empty()) break;
     const std::size_t line = lines.find('\n') + 1;
     if (!FeedLines(lines.substr(0, line), false)) return false;

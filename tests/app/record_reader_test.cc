@@ -610,8 +610,19 @@ TEST_F(RecordReaderTest, LargeTextReadsInTwoThreadsAsInOne) {
                 "remove them or pass --drop-nonfinite to skip them");
   EXPECT_EQ(Read(Options(dir_ / "bad.csv")).error.message,
             (dir_ / "bad.csv").string() + ": line 260002: column rate_rad_per_s: '0.01x' is not a number");
+  EXPECT_EQ(Read(Options(dir_ / "back.csv")).error.message,
+            (dir_ / "back.csv").string() +
+                ": time is not increasing: line 270003 has t = 2600 s after t = 2700 s at line 270002 (sort the "
+                "record first)");
   const Result gap = Read(Options(dir_ / "gap.csv"));
   EXPECT_EQ(gap.info.time.largest_step_line, 230003);
+  const Result clean = Read(Options(dir_ / "clean.csv"));
+  ASSERT_EQ(clean.values.size(), 300000u);
+  for (int k = 0; k < 300000; k += 997) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.9e", 0.01 + 1e-4 * std::sin(k));
+    ASSERT_EQ(clean.values[static_cast<std::size_t>(k)], std::strtod(value, nullptr)) << k;
+  }
 }
 
 }  // namespace

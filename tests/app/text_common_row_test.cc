@@ -1,7 +1,8 @@
 // Rows of the common shape are read in one pass (app/input/text_common_row.cc); every other line
 // by the general line parser. Fed one byte at a time, no line is whole in a chunk, so the general
 // parser reads them all: the two must give the same rows, values and errors, bit for bit, on rows
-// of every shape, including numbers at the edges of the plain-decimal shortcut.
+// of every shape, including numbers at the edges of the plain-decimal shortcut; and so must runs of
+// common rows passed on as blocks (TextRecordParser::PassRunsAsBlocks).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -18,12 +19,13 @@ namespace {
 
 using testing_support::ExpectSameParse;
 using testing_support::ParseLog;
+using testing_support::ParseText;
 using testing_support::RandomNumber;
 using testing_support::RandomRecord;
 using testing_support::SameBits;
 
 ParseLog Parse(const std::string& text, std::vector<std::string> columns, std::size_t chunk) {
-  return testing_support::ParseText(text, std::move(columns), chunk);
+  return ParseText(text, std::move(columns), chunk);
 }
 
 TEST(TextCommonRowTest, RowsOfEveryShapeReadAsTheGeneralParserReadsThem) {
@@ -38,6 +40,8 @@ TEST(TextCommonRowTest, RowsOfEveryShapeReadAsTheGeneralParserReadsThem) {
       failed_records += !general.ok;
       ExpectSameParse(fast, general, "record " + std::to_string(record) + ", " + columns.front());
       ExpectSameParse(Parse(text, columns, 61), general, "chunks of 61, record " + std::to_string(record));
+      ExpectSameParse(ParseText(text, columns, text.size(), {.blocks = true}), general,
+                      "in blocks, record " + std::to_string(record));
     }
   }
   // Both outcomes were exercised: records that read whole and records that stop at a bad field.
@@ -69,6 +73,7 @@ TEST(TextCommonRowTest, LongRecordsOfGoodRowsReadAsTheGeneralParserReadsThem) {
     const ParseLog general = Parse(text, columns, 1);
     ASSERT_TRUE(general.ok) << general.error;
     ExpectSameParse(Parse(text, columns, text.size()), general, "record " + std::to_string(record));
+    ExpectSameParse(ParseText(text, columns, 4096, {.blocks = true}), general, "in blocks, record " + std::to_string(record));
   }
 }
 

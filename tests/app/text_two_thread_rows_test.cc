@@ -21,7 +21,13 @@ using testing_support::RandomRecord;
 
 // One thread, the whole text at once: the reference.
 ParseLog OneThread(const std::string& text, const std::vector<std::string>& columns, std::size_t stop_after = 0) {
-  return ParseText(text, columns, text.size(), 0, stop_after);
+  return ParseText(text, columns, text.size(), {.stop_after = stop_after});
+}
+
+// Two threads from chunks of `min_bytes` on, rows one by one or in blocks.
+ParseLog TwoThreads(const std::string& text, const std::vector<std::string>& columns, std::size_t chunk,
+                    std::size_t min_bytes, bool blocks = false, std::size_t stop_after = 0) {
+  return ParseText(text, columns, chunk, {.two_thread_min_bytes = min_bytes, .blocks = blocks, .stop_after = stop_after});
 }
 
 // `rows` rows "t,value" of the common shape after a header, the time in steps of 0.01.
@@ -46,7 +52,7 @@ TEST(TextTwoThreadRowsTest, RandomRecordsReadAsInOneThread) {
       const ParseLog one = OneThread(text, columns);
       failed += !one.ok;
       for (const std::size_t chunk : {text.size(), std::size_t{4096}, std::size_t{997}}) {
-        const ParseLog two = ParseText(text, columns, chunk, 256);
+        const ParseLog two = TwoThreads(text, columns, chunk, 256, chunk == 997);
         ExpectSameParse(two, one, "record " + std::to_string(record) + ", chunks of " + std::to_string(chunk));
         cut_chunks += two.two_thread_chunks;
       }
@@ -66,7 +72,7 @@ TEST(TextTwoThreadRowsTest, CutsAndChunkEndsAtEveryPlaceOfARow) {
   for (std::size_t rows_per_chunk : {5, 64, 401}) {
     for (std::size_t extra = 0; extra < 2 * row + 2; ++extra) {
       const std::size_t chunk = 19 + rows_per_chunk * row + extra - row;
-      const ParseLog two = ParseText(text, {""}, chunk, 64);
+      const ParseLog two = TwoThreads(text, {""}, chunk, 64, extra % 2 == 1);
       ExpectSameParse(two, one, "chunks of " + std::to_string(chunk));
       EXPECT_GT(two.two_thread_chunks, 0);
     }
@@ -83,14 +89,14 @@ TEST(TextTwoThreadRowsTest, VeryLongLines) {
   for (const std::size_t chunk : {std::size_t{65536}, std::size_t{300001}, text.size()}) {
     const ParseLog one = OneThread(text, {""});
     ASSERT_TRUE(one.ok) << one.error;
-    ExpectSameParse(ParseText(text, {""}, chunk, 4096), one, "long lines, chunks of " + std::to_string(chunk));
+    ExpectSameParse(TwoThreads(text, {""}, chunk, 4096), one, "long lines, chunks of " + std::to_string(chunk));
   }
   text += "400.01," + std::string(TextRecordParser::kMaxLineBytes, '1') + "\n" + CommonRows(100, 40002);
   const ParseLog one = OneThread(text, {""});
   ASSERT_FALSE(one.ok);
   EXPECT_EQ(one.error, "line 40004 is longer than 1 MiB: not a text record (raw samples? use --format f32|f64)");
   for (const std::size_t chunk : {std::size_t{1} << 20, std::size_t{3} << 19, text.size()}) {
-    const ParseLog two = ParseText(text, {""}, chunk, 4096);
+    const ParseLog two = TwoThreads(text, {""}, chunk, 4096);
     ExpectSameParse(two, one, "an overlong line, chunks of " + std::to_string(chunk));
     EXPECT_GT(two.two_thread_chunks, 0);
   }
@@ -104,20 +110,23 @@ TEST(TextTwoThreadRowsTest, TheFirstErrorInFileOrderIsReported) {
   const std::string bad_late = head + "50.00,1.5\n" + CommonRows(3000, 5001) + "80.01,x\n" + tail;
   const ParseLog late = OneThread(bad_late, {""});
   EXPECT_EQ(late.error, "line 8003: column rate_rad_per_s: 'x' is not a number");
-  const ParseLog two_late = ParseText(bad_late, {""}, bad_late.size(), 1024);
+  const ParseLog two_late = TwoThreads(bad_late, {""}, bad_late.size(), 1024);
   ExpectSameParse(two_late, late, "an error in the helper's part");
   EXPECT_EQ(two_late.two_thread_chunks, 1);  // the bad row in a piece of the helper's part
 
   const std::string bad_both = head + "50.00,y\n" + CommonRows(10, 5001) + "50.11,x\n" + tail;
   const ParseLog both = OneThread(bad_both, {""});
   EXPECT_EQ(both.error, "line 5002: column rate_rad_per_s: 'y' is not a number");
-  ExpectSameParse(ParseText(bad_both, {""}, bad_both.size(), 1024), both, "errors in both parts");
+  ExpectSameParse(TwoThreads(bad_both, {""}, bad_both.size(), 1024), both, "errors in both parts");
 
   const std::string good = head + tail;
   for (const std::size_t stop : {std::size_t{4000}, std::size_t{7000}}) {
     const ParseLog stopped = OneThread(good, {""}, stop);
     ASSERT_EQ(stopped.rows.size(), stop);
-    ExpectSameParse(ParseText(good, {""}, good.size(), 1024, stop), stopped, "stopped at " + std::to_string(stop));
+    for (const bool blocks : {false, true}) {
+      ExpectSameParse(TwoThreads(good, {""}, good.size(), 1024, blocks, stop), stopped,
+                      "stopped at " + std::to_string(stop) + (blocks ? ", in blocks" : ""));
+    }
   }
 }
 
@@ -131,7 +140,7 @@ TEST(TextTwoThreadRowsTest, AnIntegerStampChangesTheRowsAfterIt) {
     const ParseLog one = OneThread(text, {""});
     ASSERT_TRUE(one.ok) << one.error;
     EXPECT_EQ(one.rows.back().time, 41.0 - 7);
-    const ParseLog two = ParseText(text, {""}, text.size(), 1024);
+    const ParseLog two = TwoThreads(text, {""}, text.size(), 1024);
     ExpectSameParse(two, one, "an integer stamp at row " + std::to_string(stamp_row));
     EXPECT_EQ(two.two_thread_chunks, 1);
   }

@@ -1,12 +1,14 @@
 #pragma once
 // What a TextRecordParser gives for a text, logged for comparison, and random records to give it:
 // for tests that two ways of reading (the common-row shortcut and the general line parser, one
-// thread and two) give the same rows, values and errors, bit for bit.
+// thread and two, rows one by one and in blocks) give the same rows, values and errors, bit for
+// bit.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,21 +27,44 @@ struct ParseLog {
   bool ok = false;
   std::string error;
   std::vector<LoggedRow> rows;
-  std::int64_t lines = 0;
+  std::int64_t lines = 0;  // read, when the parse went through
   std::int64_t two_thread_chunks = 0;  // chunks the parser cut for its helper
 };
 
-// Feeds `text` in chunks of `chunk` bytes, then Finish(). `two_thread_min_bytes` > 0: read in two
-// threads from chunks of that size on (TextRecordParser::UseTwoThreads). `stop_after` > 0: the
-// sink stops the parse at that row.
+// How ParseText reads: in two threads from chunks of `two_thread_min_bytes` on (0: one thread;
+// TextRecordParser::UseTwoThreads); runs of common rows as blocks (PassRunsAsBlocks), logged row
+// by row; with the sink stopping the parse at row `stop_after` (0: never).
+struct ParseWay {
+  std::size_t two_thread_min_bytes = 0;
+  bool blocks = false;
+  std::size_t stop_after = 0;
+};
+
+// Feeds `text` in chunks of `chunk` bytes, then Finish().
 inline ParseLog ParseText(const std::string& text, std::vector<std::string> columns, std::size_t chunk,
-                          std::size_t two_thread_min_bytes = 0, std::size_t stop_after = 0) {
+                          ParseWay way = {}) {
   ParseLog log;
+  const auto keep = [&](std::int64_t line, std::span<const double> values, bool has_time, double time) {
+    log.rows.push_back({line, {values.begin(), values.end()}, has_time, time});
+    return way.stop_after == 0 || log.rows.size() < way.stop_after;
+  };
   app::TextRecordParser parser(std::move(columns), nullptr, [&](const app::TextRow& row) {
-    log.rows.push_back({row.line, {row.values.begin(), row.values.end()}, row.has_time, row.time});
-    return stop_after == 0 || log.rows.size() < stop_after;
+    return keep(row.line, row.values, row.has_time, row.time);
   });
-  if (two_thread_min_bytes > 0) parser.UseTwoThreads(two_thread_min_bytes);
+  if (way.blocks) {
+    parser.PassRunsAsBlocks([&](const app::TextRowBlock& block) {
+      EXPECT_EQ(block.values.size(), block.rows * block.width);
+      EXPECT_EQ(block.times.size(), block.has_time ? block.rows : 0);
+      for (std::size_t k = 0; k < block.rows; ++k) {
+        if (!keep(block.first_line + static_cast<std::int64_t>(k), block.values.subspan(k * block.width, block.width),
+                  block.has_time, block.has_time ? block.times[k] : 0.0)) {
+          return false;
+        }
+      }
+      return true;
+    });
+  }
+  if (way.two_thread_min_bytes > 0) parser.UseTwoThreads(way.two_thread_min_bytes);
   log.ok = true;
   for (std::size_t i = 0; log.ok && i < text.size(); i += chunk) {
     log.ok = parser.Feed(std::string_view(text).substr(i, chunk));
@@ -56,7 +81,9 @@ inline bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) 
 inline void ExpectSameParse(const ParseLog& a, const ParseLog& b, const std::string& what) {
   ASSERT_EQ(a.ok, b.ok) << what << ": " << a.error << " / " << b.error;
   ASSERT_EQ(a.error, b.error) << what;
-  ASSERT_EQ(a.lines, b.lines) << what;
+  if (a.ok) {
+    ASSERT_EQ(a.lines, b.lines) << what;
+  }
   ASSERT_EQ(a.rows.size(), b.rows.size()) << what;
   for (std::size_t i = 0; i < a.rows.size(); ++i) {
     const LoggedRow& x = a.rows[i];
