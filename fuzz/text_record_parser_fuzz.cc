@@ -36,7 +36,8 @@ bool SameRow(const TextRow& a, const TextRow& b) {
          same(a.time, b.time);
 }
 
-Outcome Parse(std::string_view text, const std::string& column, std::size_t chunk, bool two_threads = false) {
+Outcome Parse(std::string_view text, const std::string& column, std::size_t chunk,
+              bool two_threads = false) {
   Outcome o;
   TimeSteps steps;
   TextRecordParser parser(column, [&](const TextRow& row) {
@@ -71,7 +72,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data) + 2, size - 2);
 
   const Outcome whole = Parse(text, column, text.size() + 1);
-  for (const Outcome& other : {Parse(text, column, chunk), Parse(text, column, text.size() + 1, true)}) {
+  for (const Outcome& other :
+       {Parse(text, column, chunk), Parse(text, column, text.size() + 1, true)}) {
     if (whole.ok != other.ok || whole.error != other.error || whole.column != other.column ||
         whole.time_column != other.time_column || whole.time_error != other.time_error ||
         whole.rows.size() != other.rows.size()) {

@@ -438,11 +438,14 @@ class Reader {
         return row;
       };
       std::size_t first = 0;
-      for (; first < block.rows && info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0; ++first) {
+      for (; first < block.rows &&
+             info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0;
+           ++first) {
         if (!accept_row(row_at(first))) return false;
       }
       const std::span<const double> values = block.values.subspan(first * block.width);
-      if (!AllFinite(values) || (block.has_time && (time_unit_s_ == 0.0 || !AllFinite(block.times)))) {
+      if (!AllFinite(values) ||
+          (block.has_time && (time_unit_s_ == 0.0 || !AllFinite(block.times)))) {
         for (std::size_t k = first; k < block.rows; ++k) {
           if (!accept_row(row_at(k))) return false;
         }
@@ -451,7 +454,8 @@ class Reader {
       // The rows kept: those before a time step refused, as row by row.
       std::size_t end = block.rows;
       for (std::size_t k = first; block.has_time && k < block.rows; ++k) {
-        if (!steps_.Add(block.times[k] * time_unit_s_, block.first_line + static_cast<std::int64_t>(k), &stop)) {
+        if (!steps_.Add(block.times[k] * time_unit_s_,
+                        block.first_line + static_cast<std::int64_t>(k), &stop)) {
           end = k;
           break;
         }
@@ -461,12 +465,14 @@ class Reader {
         AcceptBlock(values.first(end - first), first_line);
       } else {
         for (std::size_t k = 0; k < end - first; ++k) {
-          AcceptRow(values.subspan(k * block.width, block.width), first_line + static_cast<std::int64_t>(k));
+          AcceptRow(values.subspan(k * block.width, block.width),
+                    first_line + static_cast<std::int64_t>(k));
         }
       }
       return end == block.rows || step_refused();
     };
-    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser, accept_row);
+    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser,
+                            accept_row);
     parser.PassRunsAsBlocks(accept_rows);
     parser_ptr = &parser;
     // A plain file's rows are read in two threads when a second core is there; a compressed one's

@@ -120,7 +120,9 @@ bool TextRecordParser::Fail(std::string message) {
   return false;
 }
 
-bool TextRecordParser::Feed(std::string_view chunk) { return FeedLines(chunk, two_thread_min_bytes_ > 0); }
+bool TextRecordParser::Feed(std::string_view chunk) {
+  return FeedLines(chunk, two_thread_min_bytes_ > 0);
+}
 
 bool TextRecordParser::FeedLines(std::string_view chunk, bool two_threads) {
   if (failed_) return false;
@@ -139,7 +141,8 @@ bool TextRecordParser::FeedLines(std::string_view chunk, bool two_threads) {
         }
         two_threads = false;  // no line start to cut this chunk at
       }
-      if (const std::size_t used = block_sink_ ? ReadCommonRun(chunk) : ReadCommonRow(chunk); used > 0) {
+      if (const std::size_t used = block_sink_ ? ReadCommonRun(chunk) : ReadCommonRow(chunk);
+          used > 0) {
         if (failed_) return false;
         chunk.remove_prefix(used);
         continue;

@@ -74,7 +74,7 @@ struct TextRowBlock {
   std::size_t width = 0;           // values per row: TextRow::values.size()
   std::span<const double> values;  // rows * width, row by row
   bool has_time = false;
-  std::span<const double> times;   // one per row, when has_time
+  std::span<const double> times;  // one per row, when has_time
 };
 
 class TextRecordParser {
@@ -182,8 +182,8 @@ class TextRecordParser {
   // reads. ReadCommonRows reads such lines until one is not; both only read the shape and the
   // text. ReadCommonRow reads one at the start of `chunk` and passes it on: the bytes of its
   // line, 0 when it is not of that shape.
-  static const char* ScanCommonRow(const CommonRowShape& shape, const char* p, const char* end, double* values,
-                                   double* time);
+  static const char* ScanCommonRow(const CommonRowShape& shape, const char* p, const char* end,
+                                   double* values, double* time);
   static void ReadCommonRows(const CommonRowShape& shape, std::string_view text, CommonRows* rows);
   std::size_t ReadCommonRow(std::string_view chunk);
   // The run of common rows at the start of `chunk` read and passed on (a block to the block sink,

@@ -48,14 +48,18 @@ std::size_t TextRecordParser::ReadChunkInTwoThreads(std::string_view chunk) {
   std::size_t starts[kPieces + 1];
   starts[0] = first_end;
   for (int k = 1; k < kPieces; ++k) {
-    const std::size_t at = first_end + (whole - first_end) / kPieces * k;  // before the last newline
+    const std::size_t at =
+        first_end + (whole - first_end) / kPieces * k;  // before the last newline
     starts[k] = std::max(starts[k - 1], chunk[at - 1] == '\n' ? at : chunk.find('\n', at) + 1);
   }
   starts[kPieces] = chunk.size();
-  const auto piece = [chunk, &starts](int k) { return chunk.substr(starts[k], starts[k + 1] - starts[k]); };
+  const auto piece = [chunk, &starts](int k) {
+    return chunk.substr(starts[k], starts[k + 1] - starts[k]);
+  };
   if (!helper_) helper_ = std::make_unique<PieceSharing>();
   helper_rows_.resize(kPieces);
-  helper_->Start(kPieces, [this, piece](int k) { ReadCommonRows(common_shape_, piece(k), &helper_rows_[k]); });
+  helper_->Start(
+      kPieces, [this, piece](int k) { ReadCommonRows(common_shape_, piece(k), &helper_rows_[k]); });
   ++two_thread_chunks_;
   bool ok = false;
   {

@@ -602,18 +602,20 @@ TEST_F(RecordReaderTest, LargeTextReadsInTwoThreadsAsInOne) {
     EXPECT_EQ(two.info.time.irregular_steps, one.info.time.irregular_steps) << name;
     EXPECT_EQ(two.info.time.largest_step_line, one.info.time.largest_step_line) << name;
     EXPECT_EQ(two.info.time.smallest_step_line, one.info.time.smallest_step_line) << name;
-    EXPECT_EQ(two.info.longest_constant_stretch.length, one.info.longest_constant_stretch.length) << name;
+    EXPECT_EQ(two.info.longest_constant_stretch.length, one.info.longest_constant_stretch.length)
+        << name;
   }
   EXPECT_EQ(Read(Options(dir_ / "nan.csv")).error.message,
             (dir_ / "nan.csv").string() +
-                ": 1 non-finite value(s) (NaN, inf or missing) in column rate_rad_per_s at line(s) 250002; "
-                "remove them or pass --drop-nonfinite to skip them");
+                ": 1 non-finite value(s) (NaN, inf or missing) in column rate_rad_per_s at "
+                "line(s) 250002; remove them or pass --drop-nonfinite to skip them");
   EXPECT_EQ(Read(Options(dir_ / "bad.csv")).error.message,
-            (dir_ / "bad.csv").string() + ": line 260002: column rate_rad_per_s: '0.01x' is not a number");
+            (dir_ / "bad.csv").string() +
+                ": line 260002: column rate_rad_per_s: '0.01x' is not a number");
   EXPECT_EQ(Read(Options(dir_ / "back.csv")).error.message,
             (dir_ / "back.csv").string() +
-                ": time is not increasing: line 270003 has t = 2600 s after t = 2700 s at line 270002 (sort the "
-                "record first)");
+                ": time is not increasing: line 270003 has t = 2600 s after t = 2700 s at line "
+                "270002 (sort the record first)");
   const Result gap = Read(Options(dir_ / "gap.csv"));
   EXPECT_EQ(gap.info.time.largest_step_line, 230003);
   const Result clean = Read(Options(dir_ / "clean.csv"));

@@ -39,7 +39,8 @@ TEST(TextCommonRowTest, RowsOfEveryShapeReadAsTheGeneralParserReadsThem) {
       const ParseLog general = Parse(text, columns, 1);
       failed_records += !general.ok;
       ExpectSameParse(fast, general, "record " + std::to_string(record) + ", " + columns.front());
-      ExpectSameParse(Parse(text, columns, 61), general, "chunks of 61, record " + std::to_string(record));
+      ExpectSameParse(Parse(text, columns, 61), general,
+                      "chunks of 61, record " + std::to_string(record));
       ExpectSameParse(ParseText(text, columns, text.size(), {.blocks = true}), general,
                       "in blocks, record " + std::to_string(record));
     }
@@ -73,7 +74,8 @@ TEST(TextCommonRowTest, LongRecordsOfGoodRowsReadAsTheGeneralParserReadsThem) {
     const ParseLog general = Parse(text, columns, 1);
     ASSERT_TRUE(general.ok) << general.error;
     ExpectSameParse(Parse(text, columns, text.size()), general, "record " + std::to_string(record));
-    ExpectSameParse(ParseText(text, columns, 4096, {.blocks = true}), general, "in blocks, record " + std::to_string(record));
+    ExpectSameParse(ParseText(text, columns, 4096, {.blocks = true}), general,
+                    "in blocks, record " + std::to_string(record));
   }
 }
 

@@ -20,14 +20,17 @@ using testing_support::ParseText;
 using testing_support::RandomRecord;
 
 // One thread, the whole text at once: the reference.
-ParseLog OneThread(const std::string& text, const std::vector<std::string>& columns, std::size_t stop_after = 0) {
+ParseLog OneThread(const std::string& text, const std::vector<std::string>& columns,
+                   std::size_t stop_after = 0) {
   return ParseText(text, columns, text.size(), {.stop_after = stop_after});
 }
 
 // Two threads from chunks of `min_bytes` on, rows one by one or in blocks.
-ParseLog TwoThreads(const std::string& text, const std::vector<std::string>& columns, std::size_t chunk,
-                    std::size_t min_bytes, bool blocks = false, std::size_t stop_after = 0) {
-  return ParseText(text, columns, chunk, {.two_thread_min_bytes = min_bytes, .blocks = blocks, .stop_after = stop_after});
+ParseLog TwoThreads(const std::string& text, const std::vector<std::string>& columns,
+                    std::size_t chunk, std::size_t min_bytes, bool blocks = false,
+                    std::size_t stop_after = 0) {
+  return ParseText(text, columns, chunk,
+                   {.two_thread_min_bytes = min_bytes, .blocks = blocks, .stop_after = stop_after});
 }
 
 // `rows` rows "t,value" of the common shape after a header, the time in steps of 0.01.
@@ -48,12 +51,14 @@ TEST(TextTwoThreadRowsTest, RandomRecordsReadAsInOneThread) {
     const bool errors = record % 2 == 1;
     // Mostly common rows, a line of another shape every ~40 or ~200 rows.
     const std::string text = RandomRecord(rng, 2000, "t_s,a,b", errors, record % 3 == 0 ? 40 : 200);
-    for (const std::vector<std::string>& columns : {std::vector<std::string>{"a"}, std::vector<std::string>{"b", "a"}}) {
+    for (const std::vector<std::string>& columns :
+         {std::vector<std::string>{"a"}, std::vector<std::string>{"b", "a"}}) {
       const ParseLog one = OneThread(text, columns);
       failed += !one.ok;
       for (const std::size_t chunk : {text.size(), std::size_t{4096}, std::size_t{997}}) {
         const ParseLog two = TwoThreads(text, columns, chunk, 256, chunk == 997);
-        ExpectSameParse(two, one, "record " + std::to_string(record) + ", chunks of " + std::to_string(chunk));
+        ExpectSameParse(
+            two, one, "record " + std::to_string(record) + ", chunks of " + std::to_string(chunk));
         cut_chunks += two.two_thread_chunks;
       }
     }
@@ -89,12 +94,16 @@ TEST(TextTwoThreadRowsTest, VeryLongLines) {
   for (const std::size_t chunk : {std::size_t{65536}, std::size_t{300001}, text.size()}) {
     const ParseLog one = OneThread(text, {""});
     ASSERT_TRUE(one.ok) << one.error;
-    ExpectSameParse(TwoThreads(text, {""}, chunk, 4096), one, "long lines, chunks of " + std::to_string(chunk));
+    ExpectSameParse(TwoThreads(text, {""}, chunk, 4096), one,
+                    "long lines, chunks of " + std::to_string(chunk));
   }
-  text += "400.01," + std::string(TextRecordParser::kMaxLineBytes, '1') + "\n" + CommonRows(100, 40002);
+  text +=
+      "400.01," + std::string(TextRecordParser::kMaxLineBytes, '1') + "\n" + CommonRows(100, 40002);
   const ParseLog one = OneThread(text, {""});
   ASSERT_FALSE(one.ok);
-  EXPECT_EQ(one.error, "line 40004 is longer than 1 MiB: not a text record (raw samples? use --format f32|f64)");
+  EXPECT_EQ(
+      one.error,
+      "line 40004 is longer than 1 MiB: not a text record (raw samples? use --format f32|f64)");
   for (const std::size_t chunk : {std::size_t{1} << 20, std::size_t{3} << 19, text.size()}) {
     const ParseLog two = TwoThreads(text, {""}, chunk, 4096);
     ExpectSameParse(two, one, "an overlong line, chunks of " + std::to_string(chunk));
@@ -135,8 +144,8 @@ TEST(TextTwoThreadRowsTest, TheFirstErrorInFileOrderIsReported) {
 // one in a piece of the helper's.
 TEST(TextTwoThreadRowsTest, AnIntegerStampChangesTheRowsAfterIt) {
   for (const int stamp_row : {100, 3000}) {
-    const std::string text =
-        "t_s,rate_rad_per_s\n" + CommonRows(stamp_row) + "7,1.5\n" + CommonRows(4100 - stamp_row, stamp_row + 1);
+    const std::string text = "t_s,rate_rad_per_s\n" + CommonRows(stamp_row) + "7,1.5\n" +
+                             CommonRows(4100 - stamp_row, stamp_row + 1);
     const ParseLog one = OneThread(text, {""});
     ASSERT_TRUE(one.ok) << one.error;
     EXPECT_EQ(one.rows.back().time, 41.0 - 7);

@@ -41,10 +41,11 @@ struct ParseWay {
 };
 
 // Feeds `text` in chunks of `chunk` bytes, then Finish().
-inline ParseLog ParseText(const std::string& text, std::vector<std::string> columns, std::size_t chunk,
-                          ParseWay way = {}) {
+inline ParseLog ParseText(const std::string& text, std::vector<std::string> columns,
+                          std::size_t chunk, ParseWay way = {}) {
   ParseLog log;
-  const auto keep = [&](std::int64_t line, std::span<const double> values, bool has_time, double time) {
+  const auto keep = [&](std::int64_t line, std::span<const double> values, bool has_time,
+                        double time) {
     log.rows.push_back({line, {values.begin(), values.end()}, has_time, time});
     return way.stop_after == 0 || log.rows.size() < way.stop_after;
   };
@@ -56,8 +57,9 @@ inline ParseLog ParseText(const std::string& text, std::vector<std::string> colu
       EXPECT_EQ(block.values.size(), block.rows * block.width);
       EXPECT_EQ(block.times.size(), block.has_time ? block.rows : 0);
       for (std::size_t k = 0; k < block.rows; ++k) {
-        if (!keep(block.first_line + static_cast<std::int64_t>(k), block.values.subspan(k * block.width, block.width),
-                  block.has_time, block.has_time ? block.times[k] : 0.0)) {
+        if (!keep(block.first_line + static_cast<std::int64_t>(k),
+                  block.values.subspan(k * block.width, block.width), block.has_time,
+                  block.has_time ? block.times[k] : 0.0)) {
           return false;
         }
       }
@@ -90,7 +92,8 @@ inline void ExpectSameParse(const ParseLog& a, const ParseLog& b, const std::str
     const LoggedRow& y = b.rows[i];
     ASSERT_EQ(x.line, y.line) << what << ", row " << i;
     ASSERT_EQ(x.has_time, y.has_time) << what << ", line " << x.line;
-    ASSERT_TRUE(SameBits(x.time, y.time)) << what << ", line " << x.line << ": " << x.time << " " << y.time;
+    ASSERT_TRUE(SameBits(x.time, y.time))
+        << what << ", line " << x.line << ": " << x.time << " " << y.time;
     ASSERT_EQ(x.values.size(), y.values.size());
     for (std::size_t k = 0; k < x.values.size(); ++k) {
       ASSERT_TRUE(SameBits(x.values[k], y.values[k]))
@@ -150,8 +153,8 @@ inline std::string RandomField(std::mt19937_64& rng, bool errors) {
 // Rows of many shapes under a header (columns t_s, a, b); with `errors`, also rows the parse
 // stops at (a bad number, a NUL byte, too few fields), rarely enough that most of the record is
 // read first. One row in `shapes` (at least 11) is not a plain common row.
-inline std::string RandomRecord(std::mt19937_64& rng, int rows, const std::string& header, bool errors,
-                                unsigned shapes = 50) {
+inline std::string RandomRecord(std::mt19937_64& rng, int rows, const std::string& header,
+                                bool errors, unsigned shapes = 50) {
   std::string text = header + "\n";
   for (int k = 0; k < rows; ++k) {
     const unsigned shape = rng() % (errors ? 8 * shapes : shapes);
@@ -166,7 +169,8 @@ inline std::string RandomRecord(std::mt19937_64& rng, int rows, const std::strin
     if (shape == 6) row += ",extra,fields";
     if (shape == 7) row += " # trailing";
     if (shape == 10) row = time + ",1.5\r,2";
-    if (errors && shape == 8) row = time + "," + RandomField(rng, errors);  // too few fields for column b
+    // Too few fields for column b.
+    if (errors && shape == 8) row = time + "," + RandomField(rng, errors);
     if (errors && shape == 9) row += std::string(",a\0b", 4);
     text += row;
     text += rng() % 5 == 0 ? "\r\n" : "\n";
