@@ -425,8 +425,8 @@ class Reader {
       }
       return true;
     };
-    // A run of common rows: accept_row's checks, made on the whole run at once once the first
-    // row's are made and when every value is finite (nothing to drop or list); row by row else.
+    // A run of common rows: after the first row's checks, and when every value is finite (nothing
+    // to drop or list), accept_row's checks made for the whole run at once; else row by row.
     const auto accept_rows = [&](const TextRowBlock& block) {
       const auto row_at = [&](std::size_t k) {
         TextRow row;
