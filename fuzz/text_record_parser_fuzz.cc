@@ -1,8 +1,9 @@
 // libFuzzer target for the text record parser (app/input/text_record_parser.h) and the time-step
 // checks it feeds (app/input/time_steps.h): any bytes, any column choice, any chunking.
 //
-// Besides crashes and sanitizer reports it checks the parser's promise that the split of the input
-// into chunks never changes the result: the input is parsed whole and in chunks, and the two runs
+// Besides crashes and sanitizer reports it checks the parser's promises that neither the split of
+// the input into chunks nor reading it in two threads changes the result: the input is parsed
+// whole, in chunks, and whole in two threads (every chunk of 64 bytes or more cut), and the runs
 // must give the same rows, the same error and the same columns (else abort()).
 #include <cmath>
 #include <cstddef>
@@ -35,7 +36,8 @@ bool SameRow(const TextRow& a, const TextRow& b) {
          same(a.time, b.time);
 }
 
-Outcome Parse(std::string_view text, const std::string& column, std::size_t chunk) {
+Outcome Parse(std::string_view text, const std::string& column, std::size_t chunk,
+              bool two_threads = false) {
   Outcome o;
   TimeSteps steps;
   TextRecordParser parser(column, [&](const TextRow& row) {
@@ -45,6 +47,7 @@ Outcome Parse(std::string_view text, const std::string& column, std::size_t chun
     if (row.has_time && o.time_error.empty()) steps.Add(row.time, row.line, &o.time_error);
     return o.rows.size() < 100000;
   });
+  if (two_threads) parser.UseTwoThreads(64);
   o.ok = true;
   for (std::size_t i = 0; o.ok && i < text.size(); i += chunk) {
     o.ok = parser.Feed(text.substr(i, chunk));
@@ -69,14 +72,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data) + 2, size - 2);
 
   const Outcome whole = Parse(text, column, text.size() + 1);
-  const Outcome split = Parse(text, column, chunk);
-  if (whole.ok != split.ok || whole.error != split.error || whole.column != split.column ||
-      whole.time_column != split.time_column || whole.time_error != split.time_error ||
-      whole.rows.size() != split.rows.size()) {
-    std::abort();
-  }
-  for (std::size_t i = 0; i < whole.rows.size(); ++i) {
-    if (!SameRow(whole.rows[i], split.rows[i])) std::abort();
+  for (const Outcome& other :
+       {Parse(text, column, chunk), Parse(text, column, text.size() + 1, true)}) {
+    if (whole.ok != other.ok || whole.error != other.error || whole.column != other.column ||
+        whole.time_column != other.time_column || whole.time_error != other.time_error ||
+        whole.rows.size() != other.rows.size()) {
+      std::abort();
+    }
+    for (std::size_t i = 0; i < whole.rows.size(); ++i) {
+      if (!SameRow(whole.rows[i], other.rows[i])) std::abort();
+    }
   }
   // A failed parse always says why, unless the sink stopped it (the 100000-row cap here).
   if (!whole.ok && whole.error.empty() && whole.rows.size() < 100000) std::abort();

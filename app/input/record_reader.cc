@@ -28,12 +28,16 @@
 #include "app/input/text_record_parser.h"
 #include "common/all_finite.h"
 #include "common/huge_pages.h"
+#include "common/piece_sharing.h"
 #include "common/number_text.h"
 
 namespace allanlab::app {
 namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 18;
+// A text chunk read in two threads: large enough that the wake-up of the helper once per chunk
+// costs little (TextRecordParser::UseTwoThreads).
+constexpr std::size_t kTwoThreadChunkBytes = std::size_t{1} << 22;
 constexpr std::size_t kBlockValues = 4096;  // a mapped record's values checked per block
 // A raw stream's blocks: a whole chunk of float64 values each, which a consumer that works in
 // blocks of that size (estimators::StreamingAvar) takes where it lies instead of gathering.
@@ -374,8 +378,16 @@ class Reader {
     const bool several = row_sink_ != nullptr;
     TextRecordParser::ColumnChooser chooser;
     if (several && o_.imu && o_.columns.empty()) chooser = ChooseImuColumns;
-    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser,
-                            [&](const TextRow& row) {
+    // A time step TimeSteps refused: its message, in `stop`.
+    const auto step_refused = [&] {
+      if (parser_ptr->time_column_guessed()) {
+        stop += " (the file has no header and its first column increased over its first " +
+                std::to_string(TextRecordParser::kTimeProbeRows) +
+                " rows, so it was read as time; --column 0 reads it as data)";
+      }
+      return false;
+    };
+    const auto accept_row = [&](const TextRow& row) {
       if (info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0) {
         // First data row: the columns are known, so a missing rate fails before the long read.
         if (!row.has_time && !o_.rate_hz) {
@@ -404,14 +416,7 @@ class Reader {
           time_unit_s_ = o_.time_unit_s.value_or(name->seconds_per_unit);
           unit_is_guess_ = !o_.time_unit_s && !name->unit_in_name;
         }
-        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) {
-          if (parser_ptr->time_column_guessed()) {
-            stop += " (the file has no header and its first column increased over its first " +
-                    std::to_string(TextRecordParser::kTimeProbeRows) +
-                    " rows, so it was read as time; --column 0 reads it as data)";
-          }
-          return false;
-        }
+        if (!steps_.Add(row.time * time_unit_s_, row.line, &stop)) return step_refused();
       }
       if (several) {
         AcceptRow(row.values, row.line);
@@ -419,14 +424,78 @@ class Reader {
         Accept(row.value, row.line);
       }
       return true;
-    });
+    };
+    // A run of common rows: after the first row's checks, and when every value is finite (nothing
+    // to drop or list), accept_row's checks made for the whole run at once; else row by row.
+    const auto accept_rows = [&](const TextRowBlock& block) {
+      const auto row_at = [&](std::size_t k) {
+        TextRow row;
+        row.line = block.first_line + static_cast<std::int64_t>(k);
+        row.values = block.values.subspan(k * block.width, block.width);
+        row.value = row.values.front();
+        row.has_time = block.has_time;
+        if (block.has_time) row.time = block.times[k];
+        return row;
+      };
+      std::size_t first = 0;
+      for (; first < block.rows &&
+             info_->samples + info_->dropped_nonfinite + nonfinite_.count() == 0;
+           ++first) {
+        if (!accept_row(row_at(first))) return false;
+      }
+      const std::span<const double> values = block.values.subspan(first * block.width);
+      if (!AllFinite(values) ||
+          (block.has_time && (time_unit_s_ == 0.0 || !AllFinite(block.times)))) {
+        for (std::size_t k = first; k < block.rows; ++k) {
+          if (!accept_row(row_at(k))) return false;
+        }
+        return true;
+      }
+      // The rows kept: those before a time step refused, as row by row.
+      std::size_t end = block.rows;
+      for (std::size_t k = first; block.has_time && k < block.rows; ++k) {
+        if (!steps_.Add(block.times[k] * time_unit_s_,
+                        block.first_line + static_cast<std::int64_t>(k), &stop)) {
+          end = k;
+          break;
+        }
+      }
+      const std::int64_t first_line = block.first_line + static_cast<std::int64_t>(first);
+      if (!several) {
+        AcceptBlock(values.first(end - first), first_line);
+      } else {
+        for (std::size_t k = 0; k < end - first; ++k) {
+          AcceptRow(values.subspan(k * block.width, block.width),
+                    first_line + static_cast<std::int64_t>(k));
+        }
+      }
+      return end == block.rows || step_refused();
+    };
+    TextRecordParser parser(several ? o_.columns : std::vector<std::string>{o_.column}, chooser,
+                            accept_row);
+    parser.PassRunsAsBlocks(accept_rows);
     parser_ptr = &parser;
-    std::vector<char> chunk(kChunkBytes);
+    // A plain file's rows are read in two threads when a second core is there; a compressed one's
+    // are not, since its decoder already runs beside this thread (OpenSource) and sets the pace.
+    const bool two_threads = source->compression() == Compression::kNone && PieceSharing::Useful();
+    if (two_threads) parser.UseTwoThreads();
+    const std::size_t chunk_bytes = two_threads ? kTwoThreadChunkBytes : kChunkBytes;
+    const auto chunk = std::make_unique_for_overwrite<char[]>(chunk_bytes);
     std::string why;
     while (true) {
+      // Whole chunks, which the parser can cut for its helper (a pipe or a decoder gives less at
+      // a time). Bytes before a read error are parsed first, as when each read was parsed.
       std::size_t got = 0;
-      if (!source->Read(chunk, &got, &why)) return Runtime(error, why);
-      const bool ok = got == 0 ? parser.Finish() : parser.Feed({chunk.data(), got});
+      bool read_ok = true;
+      bool at_end = false;
+      while (got < chunk_bytes && read_ok && !at_end) {
+        std::size_t more = 0;
+        read_ok = source->Read({chunk.get() + got, chunk_bytes - got}, &more, &why);
+        at_end = read_ok && more == 0;
+        if (read_ok) got += more;
+      }
+      const bool ok = (got == 0 || parser.Feed({chunk.get(), got})) && (!at_end || parser.Finish());
+      if (ok && !read_ok) return Runtime(error, why);
       if (!ok) {
         if (!units_error.message.empty()) {
           *error = units_error;
@@ -438,7 +507,7 @@ class Reader {
         return parser.error_is_usage() ? Usage(error, In() + parser.error())
                                        : Runtime(error, In() + parser.error());
       }
-      if (got == 0) break;
+      if (at_end) break;
     }
     info_->has_header = parser.has_header();
     info_->lines = parser.lines();

@@ -3,7 +3,10 @@
 // whitespace columns; rules in app/input/text_record_parser.h) or raw little-endian float32/float64,
 // each plain, gzip or xz compressed (app/input/byte_source.h: decompressed by streaming, never held
 // whole). Values are streamed to a sink in file order, so a record larger than memory can be
-// consumed in one pass (`allanlab avar --stream`); ReadRecordValues collects them instead.
+// consumed in one pass (`allanlab avar --stream`); ReadRecordValues collects them instead. The rows
+// of an uncompressed text record are parsed in two threads where a second core may be used
+// (common/piece_sharing.h, PieceSharing::Useful) and the record is larger than a MB
+// (TextRecordParser::UseTwoThreads): the values, messages and line numbers are those of one.
 //
 // The sample rate comes from the time column (header t, t_s, time, time_s or timestamp, in
 // seconds: 1 / the nominal step of app/input/time_steps.h, rounded to 10 significant digits) or from

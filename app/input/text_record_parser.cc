@@ -1,6 +1,7 @@
 #include "app/input/text_record_parser.h"
 
 #include "app/input/plain_decimal.h"
+#include "common/piece_sharing.h"
 
 #include <algorithm>
 #include <charconv>
@@ -111,6 +112,8 @@ TextRecordParser::TextRecordParser(std::vector<std::string> columns, ColumnChoos
   if (!column_specs_.empty()) column_spec_ = column_specs_.front();
 }
 
+TextRecordParser::~TextRecordParser() = default;
+
 bool TextRecordParser::Fail(std::string message) {
   failed_ = true;
   error_ = std::move(message);
@@ -118,13 +121,28 @@ bool TextRecordParser::Fail(std::string message) {
 }
 
 bool TextRecordParser::Feed(std::string_view chunk) {
+  return FeedLines(chunk, two_thread_min_bytes_ > 0);
+}
+
+bool TextRecordParser::FeedLines(std::string_view chunk, bool two_threads) {
   if (failed_) return false;
   // Checked again after every line ParseLine reads: it may choose the columns or set the
   // integer time origin.
   bool common_rows = CommonRowsPossible();
   while (!chunk.empty()) {
     if (common_rows && pending_.empty()) {
-      if (const std::size_t used = ReadCommonRow(chunk); used > 0) {
+      if (two_threads && chunk.size() >= two_thread_min_bytes_) {
+        const std::size_t used = ReadChunkInTwoThreads(chunk);
+        if (failed_) return false;
+        if (used > 0) {
+          chunk.remove_prefix(used);
+          common_rows = CommonRowsPossible();
+          continue;
+        }
+        two_threads = false;  // no line start to cut this chunk at
+      }
+      if (const std::size_t used = block_sink_ ? ReadCommonRun(chunk) : ReadCommonRow(chunk);
+          used > 0) {
         if (failed_) return false;
         chunk.remove_prefix(used);
         continue;

@@ -22,11 +22,16 @@
 //    and SigmaTheta), in seconds, unless --column chose it as the data.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
+
+namespace allanlab {
+class PieceSharing;
+}
 
 namespace allanlab::app {
 
@@ -60,6 +65,18 @@ struct TextRow {
   double time = 0.0;
 };
 
+// Data rows of the common shape (plain decimals between single delimiters) on consecutive lines,
+// first_line, first_line + 1, ...: what `rows` RowSink calls would be given, at once. Valid during
+// the sink call only.
+struct TextRowBlock {
+  std::int64_t first_line = 0;
+  std::size_t rows = 0;
+  std::size_t width = 0;           // values per row: TextRow::values.size()
+  std::span<const double> values;  // rows * width, row by row
+  bool has_time = false;
+  std::span<const double> times;  // one per row, when has_time
+};
+
 class TextRecordParser {
  public:
   // Called for each data row; returning false stops the parse (Feed/Finish then return false
@@ -87,6 +104,26 @@ class TextRecordParser {
   using ColumnChooser = std::function<bool(const std::vector<std::string>& names, int time_index,
                                            std::vector<std::string>* columns, std::string* why)>;
   TextRecordParser(std::vector<std::string> columns, ColumnChooser choose, RowSink sink);
+  ~TextRecordParser();
+
+  // From now on, runs of rows of the common shape go to `sink` in blocks instead of to the RowSink
+  // row by row (every other row still goes to the RowSink): the same rows in the same order, for
+  // a caller that checks many rows in one pass. Returning false stops the parse as the RowSink's
+  // false does.
+  using RowBlockSink = std::function<bool(const TextRowBlock&)>;
+  void PassRunsAsBlocks(RowBlockSink sink);
+
+  // From now on, a Feed() chunk of at least `min_bytes` is read in two threads where its rows are
+  // of the common shape (plain decimals between single delimiters, app/input/text_common_row.cc):
+  // a helper thread reads the rows of its last part while this thread reads the first part's and
+  // passes them on. Rows reach the sink from this thread only, in file order, and are the rows,
+  // line numbers and errors one thread gives: only the time taken differs. The helper starts at
+  // the first chunk so cut, so a record smaller than `min_bytes` starts none; from about a MB a
+  // chunk is worth the helper's wake-up.
+  static constexpr std::size_t kTwoThreadMinBytes = std::size_t{1} << 20;
+  void UseTwoThreads(std::size_t min_bytes = kTwoThreadMinBytes);
+  // Chunks cut for the helper so far (for tests).
+  std::int64_t two_thread_chunks() const { return two_thread_chunks_; }
 
   // Parses the complete lines in `chunk` (a partial last line is kept for the next call).
   // Returns false on the first format error (error() says which line and why) or when the sink
@@ -118,14 +155,54 @@ class TextRecordParser {
   std::string LeadingComment(std::string_view key) const;
 
  private:
+  // Feed(), with `two_threads` saying whether a large chunk may be cut for the helper.
+  bool FeedLines(std::string_view chunk, bool two_threads);
   bool ParseLine(std::string_view line);
-  // A data row of the common shape at the start of `chunk`, read in one pass and passed to the
-  // sink (app/input/text_common_row.cc): the bytes of its line, newline included; 0 when the line
-  // is not of that shape (or not whole in the chunk), which ParseLine then reads.
+
+  // The fields of a row of the common shape, fixed once the columns are chosen (so the helper
+  // thread reads it while this one parses): each field's role up to the last one read, a value
+  // column's slot in values_, the time, or skipped.
+  static constexpr int kTimeField = -1;
+  static constexpr int kSkippedField = -2;
+  struct CommonRowShape {
+    char delimiter = ',';
+    std::vector<int> field_roles;
+    std::size_t values = 0;  // value columns per row
+  };
+  // Rows of the common shape read one after another from the start of a text, to be passed on.
+  struct CommonRows {
+    std::vector<double> values;  // CommonRowShape::values per row
+    std::vector<double> times;   // one per row
+    std::size_t rows = 0;
+    std::size_t bytes = 0;  // their lines' bytes, newlines included
+  };
+  // Rows of the common shape (app/input/text_common_row.cc). ScanCommonRow reads the line at p
+  // (values into values[slot], the time into *time) and returns its end, after the newline;
+  // nullptr when the line is not of that shape (or not whole before `end`), which ParseLine then
+  // reads. ReadCommonRows reads such lines until one is not; both only read the shape and the
+  // text. ReadCommonRow reads one at the start of `chunk` and passes it on: the bytes of its
+  // line, 0 when it is not of that shape.
+  static const char* ScanCommonRow(const CommonRowShape& shape, const char* p, const char* end,
+                                   double* values, double* time);
+  static void ReadCommonRows(const CommonRowShape& shape, std::string_view text, CommonRows* rows);
   std::size_t ReadCommonRow(std::string_view chunk);
+  // The run of common rows at the start of `chunk` read and passed on (a block to the block sink,
+  // if any): the bytes of their lines, 0 when the first line is not of that shape.
+  std::size_t ReadCommonRun(std::string_view chunk);
+  // The next line's row, or the next lines' rows (as a block when there is a block sink), to the
+  // sink; false when the sink stopped the parse.
+  bool PassCommonRow(std::span<const double> values, double time);
+  bool PassCommonRows(const CommonRows& rows);
   // Whether rows can be of the common shape now (the columns chosen, no held rows, a delimiter,
-  // no integer time origin); sets up field_roles_ the first time.
+  // no integer time origin); sets up common_shape_ the first time.
   bool CommonRowsPossible();
+  // The lines at the start of `chunk` (pending_ empty, common rows possible) read in two threads
+  // (app/input/text_two_thread_rows.cc): the bytes read, up to the first line of the last piece
+  // that is not a common row; 0 when the chunk has no line start to cut at.
+  std::size_t ReadChunkInTwoThreads(std::string_view chunk);
+  // Whole lines read in this thread: runs of common rows, and each line between them as
+  // FeedLines reads it.
+  bool ReadLinesInThisThread(std::string_view lines);
   bool ParseDataRow(std::int64_t line);
   bool DecideHeaderlessTime();
   void KeepLeadingComment(std::string_view comment);
@@ -140,6 +217,7 @@ class TextRecordParser {
   std::vector<std::string> column_specs_;
   ColumnChooser choose_;
   RowSink sink_;
+  RowBlockSink block_sink_;  // may be empty
   std::string pending_;  // the incomplete last line of the previous chunk
   std::string error_;
   bool failed_ = false;
@@ -161,11 +239,14 @@ class TextRecordParser {
   std::int64_t line_ = 0;
   std::int64_t data_rows_ = 0;
   std::vector<std::string_view> fields_;  // reused per line
-  // ReadCommonRow: what each field up to the last one read is: a value column's slot in values_,
-  // the time, or skipped.
-  static constexpr int kTimeField = -1;
-  static constexpr int kSkippedField = -2;
-  std::vector<int> field_roles_;
+  CommonRowShape common_shape_;
+  // The rows of a run read in this thread (ReadCommonRun). Reading in two threads: the smallest
+  // chunk cut (0: never), the helper, the rows of each piece.
+  CommonRows run_rows_;
+  std::size_t two_thread_min_bytes_ = 0;
+  std::unique_ptr<PieceSharing> helper_;
+  std::vector<CommonRows> helper_rows_;
+  std::int64_t two_thread_chunks_ = 0;
   // Headerless time probe: the first rows (line number, text) held until the decision.
   bool probing_ = false;
   bool time_guessed_ = false;

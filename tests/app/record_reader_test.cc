@@ -3,11 +3,13 @@
 #include "app/input/record_reader.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <stdlib.h>
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -563,6 +565,66 @@ TEST_F(RecordReaderTest, HeaderlessIncreasingFirstColumnIsTime) {
   ASSERT_TRUE(r.ok) << r.error.message;
   EXPECT_TRUE(r.info.time_column.empty());
   EXPECT_EQ(r.values, (std::vector<double>{0.3, 0.1, 0.2}));
+}
+
+// A text longer than a two-thread chunk (TextRecordParser::kTwoThreadMinBytes), read in two threads
+// where there are two cores, gives what one thread gives (OMP_NUM_THREADS=1): the values, counts,
+// time steps and messages, with the line numbers of rows in the helper's part of a chunk.
+TEST_F(RecordReaderTest, LargeTextReadsInTwoThreadsAsInOne) {
+  const auto text = [](int bad_row, const std::string& bad, const char* newline = "\n") {
+    std::string t = "t_s,rate_rad_per_s\n";
+    char row[64];
+    for (int k = 0; k < 300000; ++k) {
+      std::snprintf(row, sizeof row, "%.2f,%.9e%s", k / 100.0, 0.01 + 1e-4 * std::sin(k), newline);
+      t += k == bad_row ? bad : row;
+    }
+    return t;
+  };
+  const std::string cases[][2] = {{"clean", text(-1, "")},
+                                  {"nan", text(250000, "2500.00,nan\n")},
+                                  {"gap", text(230001, "")},
+                                  {"back", text(270001, "2600.00,0.01\n")},
+                                  {"bad", text(260000, "2600.00,0.01x\n")},
+                                  {"crlf", "# units: rad/s\r\n" + text(-1, "", "\r\n")}};
+  for (const auto& [name, bytes] : cases) {
+    const RecordReaderOptions o = Options(Write(name + ".csv", bytes));
+    const Result two = Read(o);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const Result one = Read(o);
+    omp_set_num_threads(threads);
+    EXPECT_EQ(two.ok, one.ok) << name;
+    EXPECT_EQ(two.error.message, one.error.message) << name;
+    EXPECT_EQ(two.error.exit_code, one.error.exit_code) << name;
+    EXPECT_TRUE(two.values == one.values) << name;
+    EXPECT_EQ(two.info.lines, one.info.lines) << name;
+    EXPECT_EQ(two.info.samples, one.info.samples) << name;
+    EXPECT_EQ(two.info.time.irregular_steps, one.info.time.irregular_steps) << name;
+    EXPECT_EQ(two.info.time.largest_step_line, one.info.time.largest_step_line) << name;
+    EXPECT_EQ(two.info.time.smallest_step_line, one.info.time.smallest_step_line) << name;
+    EXPECT_EQ(two.info.longest_constant_stretch.length, one.info.longest_constant_stretch.length)
+        << name;
+  }
+  EXPECT_EQ(Read(Options(dir_ / "nan.csv")).error.message,
+            (dir_ / "nan.csv").string() +
+                ": 1 non-finite value(s) (NaN, inf or missing) in column rate_rad_per_s at "
+                "line(s) 250002; remove them or pass --drop-nonfinite to skip them");
+  EXPECT_EQ(Read(Options(dir_ / "bad.csv")).error.message,
+            (dir_ / "bad.csv").string() +
+                ": line 260002: column rate_rad_per_s: '0.01x' is not a number");
+  EXPECT_EQ(Read(Options(dir_ / "back.csv")).error.message,
+            (dir_ / "back.csv").string() +
+                ": time is not increasing: line 270003 has t = 2600 s after t = 2700 s at line "
+                "270002 (sort the record first)");
+  const Result gap = Read(Options(dir_ / "gap.csv"));
+  EXPECT_EQ(gap.info.time.largest_step_line, 230003);
+  const Result clean = Read(Options(dir_ / "clean.csv"));
+  ASSERT_EQ(clean.values.size(), 300000u);
+  for (int k = 0; k < 300000; k += 997) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.9e", 0.01 + 1e-4 * std::sin(k));
+    ASSERT_EQ(clean.values[static_cast<std::size_t>(k)], std::strtod(value, nullptr)) << k;
+  }
 }
 
 }  // namespace
