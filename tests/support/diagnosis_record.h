@@ -67,6 +67,15 @@ inline experiments::DiagnosisSummary DiagnoseIndependentRecord(const independent
   return s;
 }
 
+// The draw the independent benchmark's tables were made with (`diagnosis-benchmark
+// --independent-control-fraction 0.6`, resonances among the effects), whatever the seed.
+inline experiments::IndependentDrawOptions CommittedBenchmarkDraw() {
+  experiments::IndependentDrawOptions o;
+  o.control_fraction = 0.6;
+  o.with_resonance = true;
+  return o;
+}
+
 // Record `index` of the independent diagnosis benchmark's draw with `seed` (the draw and the
 // generator's stream as diagnosis-benchmark makes them), its case in *c; empty on a failed draw.
 inline std::vector<double> IndependentBenchmarkRecord(const experiments::IndependentDrawOptions& draw,

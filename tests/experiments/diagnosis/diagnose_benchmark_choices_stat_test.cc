@@ -21,9 +21,7 @@ namespace allanlab::experiments {
 namespace {
 
 TEST(DiagnoseBenchmarkChoicesStatTest, AStepAndAnAngleQuantizerWinTheirVerdicts) {
-  IndependentDrawOptions o;
-  o.control_fraction = 0.6;
-  o.with_resonance = true;
+  const IndependentDrawOptions o = testing::CommittedBenchmarkDraw();
   struct Expected {
     int index;
     std::int64_t samples;  // the benchmark's, which the redraw must match

@@ -27,9 +27,7 @@ struct Expected {
 };
 
 TEST(DiagnoseBenchmarkResonancesStatTest, ABroadLineNearNyquistAndALineAboveA1OverFRiseAreNamed) {
-  IndependentDrawOptions o;
-  o.control_fraction = 0.6;
-  o.with_resonance = true;
+  const IndependentDrawOptions o = testing::CommittedBenchmarkDraw();
   for (const Expected& e : {Expected{22, 319343, 39.648, 0.0911079}, Expected{222, 343333, 20.2957, 0.0323214}}) {
     IndependentCase c;
     const std::vector<double> record = testing::IndependentBenchmarkRecord(o, 4, e.index, &c);

@@ -20,9 +20,7 @@ namespace allanlab::experiments {
 namespace {
 
 TEST(DiagnoseLargeSlowProcessStatTest, ABenchmarkGaussMarkovSoakedIntoBAndKIsNamed) {
-  IndependentDrawOptions o;
-  o.control_fraction = 0.6;
-  o.with_resonance = true;
+  const IndependentDrawOptions o = testing::CommittedBenchmarkDraw();
   IndependentCase c;
   const std::vector<double> record = testing::IndependentBenchmarkRecord(o, 3, 302, &c);
   ASSERT_EQ(c.effect_id, "gauss_markov");
