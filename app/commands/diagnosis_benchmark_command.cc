@@ -164,15 +164,19 @@ BenchmarkOutcome ReadOutcome(const std::string& path) {
   return o;
 }
 
-// Detection and right-effect rates per strength bin, with their intervals, on log axes.
+// Detection and right-effect rates per strength bin, with their intervals: strength on a log
+// axis, rates on a linear one (a rate's whole range, 0 to 1, reads at a glance there).
 AllanPlot RatePlot(const BenchmarkSummary& s, std::uint64_t seed, int recordings) {
   AllanPlot plot;
   std::ostringstream title;
   title << "allanlab diagnosis-benchmark: " << recordings << " recordings, seed " << seed
-        << " (bins with rate 0 not drawn)";
+        << " (strength bins with recordings)";
   plot.title = title.str();
   plot.x_label = "strength: expected peak gap z";
-  plot.y_label = "rate";
+  plot.y_label = "rate (95 % Wilson interval)";
+  plot.log_y = false;
+  plot.key = "bottom right opaque";
+  plot.y_lines = {0.0, 1.0};
   plot.slope_guides = {};
   plot.guide_series = -1;
   PlotSeries det{"detected", PlotStyle::kPoints, {}, {}}, right{"right effect", PlotStyle::kPoints, {}, {}};
