@@ -17,8 +17,9 @@ inline constexpr double kBroadLineSe = 6.0;
 inline constexpr double kBroadLineMaxDamping = 0.3;
 
 // nullopt with *why when no line rises 1.5x above the PSD's local median over at least three
-// adjacent bins (a Welch average of ~1e3 segments has a per-bin relative SE of ~4 %), nor a broad
-// bump kBroadLineSe standard errors above the median over +-192 bins (resonance_estimate.cc).
+// adjacent bins and above the PSD 16 bins away on both sides (a Welch average of ~1e3 segments
+// has a per-bin relative SE of ~4 %), nor a broad bump kBroadLineSe standard errors above the
+// median over +-192 bins and above its flanks 64 or 128 bins out (resonance_estimate.cc).
 std::optional<EffectInstance> EstimateResonance(std::span<const double> rate_rad_per_s, double tau0_s,
                                                 std::string* why);
 
