@@ -20,7 +20,23 @@ constexpr double kRate = 100.0;
 constexpr std::int64_t kSamples = 360000;  // 1 h
 
 independent::Recipe Gyro() { return testing::IndependentMemsGyro(0.3, 3.0, 3.0); }
-constexpr double kNearNyquistSigma = 1.8e-4;  // rad/s; see FindsABroadLineNearNyquist
+
+// Over 5 seeds from `seed_base`, the line is found within a quarter of its half-power width
+// 2 zeta f0 of f0, and its damping within `damping_factor` of zeta.
+void ExpectLineFound(const independent::Resonance& line, std::uint64_t seed_base, double damping_factor) {
+  independent::Recipe r = Gyro();
+  r.resonance = line;
+  const double width_hz = 2.0 * line.damping_ratio * line.frequency_hz;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const std::vector<double> y = independent::Generate(r, kSamples, seed_base + seed, 0);
+    std::string why;
+    const auto est = EstimateResonance(y, 1.0 / kRate, &why);
+    ASSERT_TRUE(est.has_value()) << "seed " << seed << ": " << why;
+    EXPECT_NEAR(est->params.at("frequency_hz"), line.frequency_hz, 0.25 * width_hz) << "seed " << seed;
+    EXPECT_GT(est->params.at("damping"), line.damping_ratio / damping_factor) << "seed " << seed;
+    EXPECT_LT(est->params.at("damping"), line.damping_ratio * damping_factor) << "seed " << seed;
+  }
+}
 
 // A line at 30.5 Hz with damping 0.107 (half-power width 2 zeta f0 = 6.5 Hz, as wide as the narrow
 // search's +-64-bin floor window) whose peak stands ~15 % above the white floor (the independent
@@ -28,17 +44,7 @@ constexpr double kNearNyquistSigma = 1.8e-4;  // rad/s; see FindsABroadLineNearN
 // resolves it (~10 standard errors). The peak is found within a quarter of the line's width of f0
 // over 5 seeds, and its damping within a factor 2 (a start: the fit polishes both).
 TEST(ResonanceEstimateStatTest, FindsABroadWeakLine) {
-  independent::Recipe r = Gyro();
-  r.resonance = independent::Resonance{1.5e-4, 30.5, 0.107};
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const std::vector<double> y = independent::Generate(r, kSamples, 7100 + seed, 0);
-    std::string why;
-    const auto est = EstimateResonance(y, 1.0 / kRate, &why);
-    ASSERT_TRUE(est.has_value()) << "seed " << seed << ": " << why;
-    EXPECT_NEAR(est->params.at("frequency_hz"), 30.5, 0.25 * 6.5) << "seed " << seed;
-    EXPECT_GT(est->params.at("damping"), 0.107 / 2.0) << "seed " << seed;
-    EXPECT_LT(est->params.at("damping"), 0.107 * 2.0) << "seed " << seed;
-  }
+  ExpectLineFound(independent::Resonance{1.5e-4, 30.5, 0.107}, 7100, 2.0);
 }
 
 // A broad line near Nyquist: 39.6 Hz, damping 0.09 (half-power width 7.1 Hz), its peak ~20 % above
@@ -47,17 +53,7 @@ TEST(ResonanceEstimateStatTest, FindsABroadWeakLine) {
 // of its width of f0 and its damping within a factor 2.5 (a start for the fit: the half-power
 // points of so weak a line sit ~3 standard errors above the floor, and move with its noise).
 TEST(ResonanceEstimateStatTest, FindsABroadLineNearNyquist) {
-  independent::Recipe r = Gyro();
-  r.resonance = independent::Resonance{kNearNyquistSigma, 39.6, 0.09};
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    const std::vector<double> y = independent::Generate(r, kSamples, 7300 + seed, 0);
-    std::string why;
-    const auto est = EstimateResonance(y, 1.0 / kRate, &why);
-    ASSERT_TRUE(est.has_value()) << "seed " << seed << ": " << why;
-    EXPECT_NEAR(est->params.at("frequency_hz"), 39.6, 0.25 * 7.1) << "seed " << seed;
-    EXPECT_GT(est->params.at("damping"), 0.09 / 2.5) << "seed " << seed;
-    EXPECT_LT(est->params.at("damping"), 0.09 * 2.5) << "seed " << seed;
-  }
+  ExpectLineFound(independent::Resonance{1.8e-4, 39.6, 0.09}, 7300, 2.5);
 }
 
 // No line: white noise, flicker and a random walk (a PSD falling as 1/f and 1/f^2 toward a flat
