@@ -452,37 +452,43 @@ void StreamingAvar::Extend(std::span<const double> y, double* h, double* l, std:
   // core idle most of each sample, instead of in a loop of their own.
   const bool has_m1 = short_nonoverlap_ >= 1, has_m2 = short_nonoverlap_ >= 2;
   Sums s1 = short_sums_[0], s2 = short_sums_[1];
+  // The four prefix sums before the one being made, S_{n-1} .. S_{n-4} once n is its index, in
+  // registers: read back from h and l, each lag's load waited on the store just made to the other
+  // array at an address 4096 bytes apart in its low bits (the two arrays are page-aligned alike),
+  // which tripled the time of this loop.
+  double ph[4] = {}, pl[4] = {};
+  for (std::size_t i = 0; i < 4 && i < start && static_cast<std::int64_t>(i) <= n; ++i) {
+    ph[i] = h[start - 1 - i];
+    pl[i] = l[start - 1 - i];
+  }
   for (std::size_t k = 0; k < y.size(); ++k) {
     const double x = y[k] - reference;
-    // (hi, lo) += x in double-double: the exact error of hi + x, then renormalise. When
-    // |hi| >= |x|, as for nearly every sample once the sum has grown, Dekker's FastTwoSum
-    // gives that error in two operations; Knuth's TwoSum, for the rest, in five. Both give it
-    // exactly, so the same bits: the branch only shortens the chain.
+    // S = hi + lo, hi the plain running sum and lo the sum of the exact errors of its additions
+    // (Knuth's TwoSum: exact whatever the magnitudes). Each of the two is one addition per
+    // sample, so the chain every sample waits on is that one addition (~4 cycles); renormalising
+    // hi + lo after each sample put five dependent additions on it (~20 cycles).
     const double t = hi + x;
-    double err;
-    if (__builtin_expect(std::abs(hi) >= std::abs(x), 1)) {
-      err = x - (t - hi);
-    } else {
-      const double bp = t - hi;
-      err = (hi - (t - bp)) + (x - bp);
-    }
-    const double sum_lo = lo + err;
-    hi = t + sum_lo;
-    lo = sum_lo - (hi - t);
+    const double bp = t - hi;
+    lo += (hi - (t - bp)) + (x - bp);
+    hi = t;
     const std::size_t j = start + k;
     h[j] = hi;
     l[j] = lo;
     ++n;  // index of the prefix sum just written
     if (has_m1 && n >= 2) {
-      const double d = SecondDifference(hi, lo, h[j - 1], l[j - 1], h[j - 2], l[j - 2]);
+      const double d = SecondDifference(hi, lo, ph[0], pl[0], ph[1], pl[1]);
       CompensatedAdd(&s1.n_sum, &s1.n_comp, d * d);
       ++s1.n_terms;
     }
     if (has_m2 && (n & 1) == 0 && n >= 4) {
-      const double d = SecondDifference(hi, lo, h[j - 2], l[j - 2], h[j - 4], l[j - 4]);
+      const double d = SecondDifference(hi, lo, ph[1], pl[1], ph[3], pl[3]);
       CompensatedAdd(&s2.n_sum, &s2.n_comp, d * d);
       ++s2.n_terms;
     }
+    ph[3] = ph[2], pl[3] = pl[2];
+    ph[2] = ph[1], pl[2] = pl[1];
+    ph[1] = ph[0], pl[1] = pl[0];
+    ph[0] = hi, pl[0] = lo;
   }
   prefix_ = {hi, lo};
   short_sums_[0] = s1;

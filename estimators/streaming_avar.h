@@ -26,13 +26,15 @@
 // term). The first strided octave is seeded from that array when it has seen its first 2m
 // samples; each later one from its predecessor's ring (every other entry): the decimate-by-2
 // cascade. A full block is folded once the next block's samples are in, by a helper thread: the
-// caller meanwhile makes the next block's prefix sums, which wait on one chain of additions
-// (~15 cycles per sample, the pace of the whole), reads the block after it, and then takes the
+// caller meanwhile makes the next block's prefix sums (one dependent addition per sample, and the
+// short lags' terms from registers), reads the block after it, and then takes the
 // fold's pieces the helper has not started (common/piece_sharing.h: Start, Finish).
 //
 // Precision: the first sample is subtracted (AVAR does not see a constant) and the prefix sum is
-// kept in double-double, so a large bias or drift does not eat the digits of the differences;
-// squared differences are summed with Neumaier compensation.
+// kept as a plain running sum hi plus the sum lo of the exact rounding errors of its additions
+// (cascaded summation: hi + lo carries the sum to about n u^2 |S| for n samples, u = 2^-53, where
+// hi alone drifts by about sqrt(n) u |S|), so a large bias or drift does not eat the digits of the
+// differences; squared differences are summed with Neumaier compensation.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -92,7 +94,8 @@ class StreamingAvar {
   std::size_t StateBytes() const;
 
  private:
-  // An unevaluated sum hi + lo, |lo| <= ulp(hi) / 2.
+  // An unevaluated sum hi + lo: hi a running sum in plain arithmetic, lo the sum of the exact
+  // errors of its additions (not renormalised: |lo| grows like sqrt(n) ulp(hi) for n additions).
   struct DoubleDouble {
     double hi = 0.0, lo = 0.0;
   };

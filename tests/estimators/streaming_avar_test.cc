@@ -82,6 +82,27 @@ TEST(StreamingAvarTest, DefaultIsExactUpToItsLimit) {
   }
 }
 
+// The first sample, which the stream subtracts from every other, lies 1e6 noise levels from the
+// rest: the prefix sums reach ~2e11 while their second differences are ~1, so a plain double
+// running sum would keep ~5 of their digits (u |S| ~ 4e-5); hi + lo must keep them to 1e-9.
+TEST(StreamingAvarTest, AFarFirstSampleCostsNoDigits) {
+  const std::int64_t n = 200000;
+  std::mt19937_64 engine(11);
+  std::normal_distribution<double> normal;
+  std::vector<double> y(static_cast<std::size_t>(n));
+  for (double& v : y) v = normal(engine);
+  y[0] = 1e6;
+  const StreamingAvar s = Stream(y, std::int64_t{1} << 17);
+  std::vector<std::int64_t> ms;
+  for (const StreamingAvarPoint& p : s.Points()) ms.push_back(p.m);
+  const std::vector<double> overlapping = AllanVariance(y, ms, AvarEstimatorKind::kOverlapping);
+  const std::vector<double> plain = AllanVariance(y, ms, AvarEstimatorKind::kNonOverlapping);
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    ExpectRelativeNear(s.Points()[i].overlapping, overlapping[i], 1e-9, "overlapping", ms[i]);
+    ExpectRelativeNear(s.Points()[i].nonoverlapping, plain[i], 1e-9, "non-overlapping", ms[i]);
+  }
+}
+
 // Above exact_overlap_max_m the starts are every s = m / exact_overlap_max_m samples: checked
 // against a direct sum over exactly those starts. The second record spans ~15 of the blocks in
 // which the estimator folds its prefix sums (2 exact_overlap_max_m + 1 + 2048 values), so every
