@@ -158,6 +158,7 @@ bool MatchCorrelation(const sim::BandLimitFamily& f, std::span<const double> rho
 // where a low-pass leaves rho1^2), plus the best of the cheap screen against the baseline's
 // terms; from a curve, the screen's best three.
 std::optional<EffectInstance> Bandwidth(const estimators::AvarCurve& curve, const sim::SensorModel* baseline,
+                                        std::span<const estimators::Coefficient> fitted_terms,
                                         std::span<const double> record, std::string* why) {
   const auto& families = sim::BandLimitFamilies();
   const double fs = curve.sample_clock.rate_hz();
@@ -200,6 +201,7 @@ std::optional<EffectInstance> Bandwidth(const estimators::AvarCurve& curve, cons
     estimators::ParametricFitOptions po;
     po.method = estimators::FitMethod::kGls;
     po.max_iterations = 50;  // a starting value: the candidate's refit polishes it
+    if (!fitted_terms.empty()) po.terms.assign(fitted_terms.begin(), fitted_terms.end());
     po.extra = {term};
     estimators::ParametricFitSummary ps;
     if (!estimators::FitAvarModelWithTerms(po, curve, &ps)) {
@@ -569,7 +571,7 @@ std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(const E
 }
 
 std::optional<EffectInstance> BandwidthStart(const EstimateInputs& in, std::string* why) {
-  return Bandwidth(*in.curve, in.baseline_model, in.rate_rad_per_s, why);
+  return Bandwidth(*in.curve, in.baseline_model, in.fitted_terms, in.rate_rad_per_s, why);
 }
 std::optional<EffectInstance> GaussMarkovStart(const EstimateInputs& in, std::string* why) {
   return Bump(Effect::kGaussMarkov, in, why);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "estimators/fit/avar_curve.h"
+#include "estimators/fit/noise_coefficient.h"
 #include "estimators/fit/parametric_term.h"
 #include "experiments/diagnosis/effect.h"
 #include "sim/sensor_model.h"
@@ -23,6 +24,10 @@ struct EstimateInputs {
   std::span<const double> baseline_avar;          // the baseline model's E[OAVAR] on the curve
   std::span<const double> rate_rad_per_s;         // the record; empty in curve mode
   const sim::SensorModel* baseline_model = nullptr;  // the fitted linear terms (bandwidth screen, Q)
+  // The linear terms the candidates' refits fit (BaselineSpec::terms); empty: Q, N, B, K, R.
+  // A start fitted with terms its refit will not have can win on them: a free Q took the blue
+  // aliasing of a point-sampled 75 Hz filter at 100 Hz for the wrong filter family's.
+  std::span<const estimators::Coefficient> fitted_terms = {};
   // Where the change-point view (block_means.h) placed a step [s from the start] and its block
   // length [s]; NaN when it saw none. The bias step's start is then looked for there.
   double step_time_s = std::numeric_limits<double>::quiet_NaN();

@@ -69,6 +69,7 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
     const HalfRecord& from = event ? scored_half : fit_half;
     const auto base = probe.ExpectedAvar(from.curve.m, {from.curve.num_samples, from.curve.estimator});
     EstimateInputs in{&from.curve, base, from.rate, &probe};
+    in.fitted_terms = ctx.spec.terms;
     if (e.effect == Effect::kBiasStep) {  // look for it where the whole record placed it
       in.step_time_s = e.params.at("time_s") - (scored == 1 ? ctx.half_length_s : 0.0);
       in.step_block_s = ctx.half_length_s / 32.0;

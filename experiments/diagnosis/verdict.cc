@@ -30,6 +30,7 @@ void RankSingles(const Context& ctx, DiagnosisSummary* s) {
   std::vector<std::string> reasons(n);
   const auto base = s->baseline_model.ExpectedAvar(ctx.curve.m, {ctx.curve.num_samples, ctx.curve.estimator});
   EstimateInputs in{&ctx.curve, base, ctx.rate, &s->baseline_model};
+  in.fitted_terms = ctx.spec.terms;
   LocatedStep(s->before.views, s->threshold, &in.step_time_s, &in.step_block_s);
   std::atomic<int> done{0};
   ReportProgress(ctx, "candidates", 0, n);
