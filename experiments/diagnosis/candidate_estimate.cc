@@ -95,6 +95,74 @@ std::optional<EffectInstance> Bump(Effect effect, const EstimateInputs& in, std:
   return e;
 }
 
+// A random telegraph whose two levels the record shows: for the shortest blocks (of 4, 8, ...
+// samples) whose means fall into two clusters at least kLevelSeparation of their spread apart
+// (an equal-variance two-Gaussian mixture fitted by EM from the halves about the median), the
+// amplitude is half the distance between the clusters and the mean dwell comes from the share f of
+// neighbouring blocks on different levels: for flips at rate 1/dwell, f = (1 - e^{-2 d / dwell}) / 2
+// at a block length d. Gaussian wander (a Gauss-Markov, a random walk) and a sinusoid do not come
+// near that separation; a step does, with one change of level, hence the kMinLevelChanges.
+struct TwoLevels {
+  double amplitude = 0.0, mean_dwell_s = 0.0, separation_sd = 0.0;
+};
+constexpr double kLevelSeparation = 8.0;
+constexpr int kMinLevelChanges = 8;
+
+std::optional<TwoLevels> SeenTwoLevels(std::span<const double> y, double tau0) {
+  const std::size_t n = y.size();
+  for (std::size_t m = 4; n / m >= 256; m *= 2) {
+    const std::size_t blocks = n / m;
+    std::vector<double> b(blocks, 0.0);
+    for (std::size_t k = 0; k < blocks; ++k) {
+      for (std::size_t j = 0; j < m; ++j) b[k] += y[k * m + j];
+      b[k] /= static_cast<double>(m);
+    }
+    const double median = Median(b);
+    double sum_below = 0.0, sum_above = 0.0, below = 0.0;
+    for (double v : b) {
+      if (v < median) {
+        sum_below += v;
+        below += 1.0;
+      } else {
+        sum_above += v;
+      }
+    }
+    if (below < 1.0 || below > static_cast<double>(blocks) - 1.0) continue;
+    double mu1 = sum_below / below, mu2 = sum_above / (static_cast<double>(blocks) - below), w2 = 0.5, var = 0.0;
+    for (double v : b) var += std::pow(v - (v < median ? mu1 : mu2), 2);
+    var /= static_cast<double>(blocks);
+    for (int it = 0; it < 50 && var > 0.0; ++it) {
+      double r_sum = 0.0, r_x = 0.0, q_x = 0.0;
+      std::vector<double> r(blocks);
+      for (std::size_t k = 0; k < blocks; ++k) {
+        const double log_odds = (std::pow(b[k] - mu1, 2) - std::pow(b[k] - mu2, 2)) / (2.0 * var) + std::log(w2 / (1.0 - w2));
+        r[k] = 1.0 / (1.0 + std::exp(-std::clamp(log_odds, -700.0, 700.0)));
+        r_sum += r[k];
+        r_x += r[k] * b[k];
+        q_x += (1.0 - r[k]) * b[k];
+      }
+      if (!(r_sum > 0.5 && r_sum < static_cast<double>(blocks) - 0.5)) break;
+      w2 = r_sum / static_cast<double>(blocks);
+      mu2 = r_x / r_sum;
+      mu1 = q_x / (static_cast<double>(blocks) - r_sum);
+      var = 0.0;
+      for (std::size_t k = 0; k < blocks; ++k) var += r[k] * std::pow(b[k] - mu2, 2) + (1.0 - r[k]) * std::pow(b[k] - mu1, 2);
+      var /= static_cast<double>(blocks);
+    }
+    if (!(var > 0.0)) continue;
+    const double separation = std::abs(mu2 - mu1) / std::sqrt(var);
+    if (separation < kLevelSeparation || std::min(w2, 1.0 - w2) < 0.1) continue;
+    const double mid = 0.5 * (mu1 + mu2);
+    int changes = 0;
+    for (std::size_t k = 1; k < blocks; ++k) changes += (b[k] > mid) != (b[k - 1] > mid) ? 1 : 0;
+    const double f = static_cast<double>(changes) / static_cast<double>(blocks - 1);
+    if (changes < kMinLevelChanges || f >= 0.45) return std::nullopt;  // longer blocks see no more
+    const double block_s = static_cast<double>(m) * tau0;
+    return TwoLevels{0.5 * std::abs(mu2 - mu1), -2.0 * block_s / std::log1p(-2.0 * f), separation};
+  }
+  return std::nullopt;
+}
+
 // Lag-1..4 autocorrelation of the record's short-lag part: each minus the mean correlation at
 // lags 8..15, where a band-limit near the output rate has none left but slow terms (random walk,
 // flicker) still add about the same.
@@ -585,6 +653,12 @@ std::optional<EffectInstance> GaussMarkovStart(const EstimateInputs& in, std::st
   return Bump(Effect::kGaussMarkov, in, why);
 }
 std::optional<EffectInstance> RandomTelegraphStart(const EstimateInputs& in, std::string* why) {
+  if (const auto levels = SeenTwoLevels(in.rate_rad_per_s, in.curve->sample_clock.period_s())) {
+    return EffectInstance{Effect::kRandomTelegraph,
+                          {{"amplitude_rad_per_s", levels->amplitude},
+                           {"mean_dwell_s", levels->mean_dwell_s},
+                           {std::string(kLevelSeparationParam), levels->separation_sd}}};
+  }
   return Bump(Effect::kRandomTelegraph, in, why);
 }
 std::optional<EffectInstance> HarmonicStart(const EstimateInputs& in, std::string* why) {

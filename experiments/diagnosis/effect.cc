@@ -250,6 +250,10 @@ bool IsOneOffEvent(Effect e) { return SpecOf(e).shift != nullptr; }
 
 std::vector<Indistinguishable> AllanEquivalents(Effect e) { return SpecOf(e).allan_equivalents; }
 
+bool HeldAtItsStart(const EffectInstance& e) {
+  return e.effect == Effect::kRandomTelegraph && e.params.contains(std::string(kLevelSeparationParam));
+}
+
 bool EffectInstance::IsValid(double sample_rate_hz, std::string* why) const {
   for (const std::string& name : EffectParameterNames(effect)) {
     const auto it = params.find(name);

@@ -62,6 +62,17 @@ struct EffectInstance {
   bool IsValid(double sample_rate_hz, std::string* why) const;
 };
 
+// A random telegraph's start read off the record's two levels (candidate_estimate.h) carries this
+// parameter besides its own: how many standard deviations of the block means apart the two levels
+// lie.
+inline constexpr std::string_view kLevelSeparationParam = "level_separation_sd";
+// An effect whose start the record measures better than the Allan curve can: held at it in the
+// joint fit of its refits, as a step is, instead of freed. So far a telegraph whose two levels the
+// record shows: the Allan curve alone trades its amplitude and dwell for B and K (an independent
+// 145 deg/h telegraph of 35 s dwell fitted as 93 deg/h and 19 s beside K = 1172 deg/h/sqrt(h)),
+// which the kurtosis view then rejects.
+bool HeldAtItsStart(const EffectInstance& e);
+
 struct EstimateInputs;  // candidate_estimate.h
 
 // How a candidate's refit treats the effect when no fit term frees its parameters.

@@ -128,13 +128,15 @@ class FixedEffectTerm final : public estimators::ParametricTerm {
 };
 
 
-// The fit term of each effect (the registry's, or a held additive effect with no free parameter)
+// The fit term of each effect (the registry's, or, for an additive effect held at its start, one
+// with no free parameter)
 // and the effect's parameters it frees (the first ones, effect.h); nullptr when the effect has
 // neither (a quantizer: the caller then uses the ratio refit).
 std::shared_ptr<const estimators::ParametricTerm> TermOf(const EffectInstance& e, std::vector<std::string>* keys) {
   const EffectSpec& spec = SpecOf(e.effect);
-  std::shared_ptr<const estimators::ParametricTerm> term = spec.fit_term != nullptr ? spec.fit_term(e) : nullptr;
-  if (!term && spec.held == HeldRefit::kJointFit) term = std::make_shared<FixedEffectTerm>(e);
+  const bool held = HeldAtItsStart(e);
+  std::shared_ptr<const estimators::ParametricTerm> term = spec.fit_term != nullptr && !held ? spec.fit_term(e) : nullptr;
+  if (!term && (spec.held == HeldRefit::kJointFit || held)) term = std::make_shared<FixedEffectTerm>(e);
   if (term) keys->assign(spec.params.begin(), spec.params.begin() + static_cast<std::ptrdiff_t>(term->parameters().size()));
   return term;
 }
@@ -197,7 +199,7 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
       s.within[i] = {0.0, 1.2, 3.0};
       starts.push_back(s);
     }
-    if (e != Effect::kGaussMarkov && e != Effect::kRandomTelegraph) continue;
+    if ((e != Effect::kGaussMarkov && e != Effect::kRandomTelegraph) || keys[i].size() < 2) continue;  // held: no Tc to move
     for (double f : {1.0 / 3.0, 3.0}) {
       Start s = base_start;
       s.values[i][1] *= f;

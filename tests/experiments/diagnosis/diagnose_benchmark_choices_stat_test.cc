@@ -14,6 +14,10 @@
 //     free Q, which took that rise, so a CIC filter won the start and its refit without Q left
 //     OAVAR |z| 11; the record was unexplained. Starts are now fitted with the refit's terms
 //     (candidate_estimate.h, EstimateInputs::fitted_terms).
+//   #355, a 145 deg/h random telegraph of 35 s mean dwell: its Allan bump fitted as 109 deg/h and
+//     24 s beside a large K, whose model the kurtosis view rejected (|z| 8.6); unexplained. A
+//     telegraph whose two levels the record shows is now read off the record and held there
+//     (effect.h, HeldAtItsStart).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -57,6 +61,17 @@ TEST(DiagnoseBenchmarkChoicesStatTest, APointSampledFilterAboveNyquistIsABandLim
   ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
       << s.message;
   EXPECT_EQ(s.verdict, "bandwidth") << testing::DescribeVerdict(s);
+}
+
+TEST(DiagnoseBenchmarkChoicesStatTest, ATelegraphWhoseLevelsShowIsNamed) {
+  IndependentCase c;
+  const std::vector<double> record = testing::IndependentBenchmarkRecord(testing::CommittedBenchmarkDraw(), 5, 355, &c);
+  ASSERT_EQ(c.num_samples, 278186);
+  ASSERT_EQ(c.effect_id, "random_telegraph");
+  DiagnosisSummary s;
+  ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
+      << s.message;
+  EXPECT_EQ(s.verdict, "random_telegraph") << testing::DescribeVerdict(s);
 }
 
 }  // namespace
