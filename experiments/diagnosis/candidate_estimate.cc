@@ -701,6 +701,11 @@ std::optional<EffectInstance> ResonanceStart(const EstimateInputs& in, std::stri
   return EffectInstance{Effect::kResonance, {{"sigma_rad_per_s", p[0]}, {"frequency_hz", p[1]}, {"damping", p[2]}}};
 }
 
+std::optional<double> RecordValueGrid(std::span<const double> rate_rad_per_s) {
+  std::string ignored;
+  return ValueGrid(rate_rad_per_s, &ignored);
+}
+
 std::optional<EffectInstance> EstimateEffect(Effect effect, const EstimateInputs& in, std::string* why) {
   const EffectSpec& spec = SpecOf(effect);
   if (spec.needs_record && in.rate_rad_per_s.empty()) {

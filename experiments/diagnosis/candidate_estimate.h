@@ -43,6 +43,12 @@ struct EstimateInputs {
 std::shared_ptr<const estimators::ParametricTerm> DiagnosisBandLimitTerm(const EffectInstance& bandwidth,
                                                                          double start_hz = 0.0);
 
+// The step of the value grid the samples sit on: the smallest gap between the distinct values of
+// the first 2e5 samples, when 99 % of those values are its multiples and there are at most a
+// quarter as many as samples; nullopt otherwise. An output quantizer's mark, which no filter or
+// noise process leaves.
+std::optional<double> RecordValueGrid(std::span<const double> rate_rad_per_s);
+
 // Each effect's start (the registry's EffectSpec::start, effect.h): nullopt with *why when the
 // record shows nothing to start from (no bump, no spike, no grid).
 std::optional<EffectInstance> BandwidthStart(const EstimateInputs& in, std::string* why);

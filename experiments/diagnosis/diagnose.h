@@ -187,6 +187,9 @@ struct DiagnosisSummary {
   // When a harmonic and a resonance both close the gap: the share of the line's power in the
   // whole record's periodogram main lobe (line_shape.h), which chose between them; NaN otherwise.
   double line_lobe_share = std::numeric_limits<double>::quiet_NaN();
+  // When an output quantizer won the verdict because the samples sit on its value grid: the grid's
+  // step (rad/s); NaN otherwise.
+  double value_grid_rad_per_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A record of rate samples (rad/s) on its sample clock. Returns summary->ok (false: bad options, a

@@ -444,6 +444,32 @@ int ResolveLineShape(const Context& ctx, DiagnosisSummary* s, int best) {
   return best;
 }
 
+// A record whose samples sit on a value grid is quantized, whatever else it shows: when a
+// quantizer of that step closes the gap by itself, it names the record over another single effect
+// that closes it too, whatever their scores (an independent angle quantizer whose 242093 samples
+// took 16 values had been named a band-limit that scored 19 higher over 130 points).
+int ResolveValueGrid(const Context& ctx, DiagnosisSummary* s, int best) {
+  const CandidateResult& chosen = s->candidates[best];
+  if (!ctx.have_record || chosen.effects.size() != 1) return best;
+  const auto is_quantizer = [](Effect e) { return e == Effect::kAngleQuantization || e == Effect::kRateQuantization; };
+  if (is_quantizer(chosen.effects[0].effect)) return best;
+  const std::optional<double> grid = RecordValueGrid(ctx.rate);
+  if (!grid) return best;
+  const double tau0 = ctx.curve.sample_clock.period_s();
+  for (std::size_t i = 0; i < s->candidates.size(); ++i) {
+    const CandidateResult& c = s->candidates[i];
+    if (c.effects.size() != 1 || !is_quantizer(c.effects[0].effect) || !Acceptable(ctx, c)) continue;
+    const EffectInstance& q = c.effects[0];
+    const double step = q.effect == Effect::kAngleQuantization ? q.params.at("lsb_rad") / tau0 : q.params.at("lsb_rad_per_s");
+    if (!(std::abs(step - *grid) <= 1e-6 * *grid)) continue;
+    s->value_grid_rad_per_s = *grid;
+    s->notes.push_back("quantized: the samples sit on a value grid of " + SignificantDigits(*grid, 4) +
+                       " rad/s, which " + c.id() + " makes and " + chosen.id() + " does not; both close the gap");
+    return static_cast<int>(i);
+  }
+  return best;
+}
+
 // Also consistent with the verdict: effects with the same Allan signature (unless a view has told
 // them apart) and any other acceptable candidate whose penalised score is within ScoreTie of it.
 void ListAlsoConsistent(const Context& ctx, DiagnosisSummary* s) {
@@ -542,6 +568,9 @@ std::string WhyNotVerdict(const Context& ctx, const DiagnosisSummary& s, const C
     return "closes the gap too; the line's shape in the whole record's periodogram names " + v.id() +
            " (see the notes)";
   }
+  if (c.effects.size() == 1 && std::isfinite(s.value_grid_rad_per_s)) {
+    return "closes the gap too; the samples sit on the value grid " + v.id() + " makes (see the notes)";
+  }
   if (v.full_score - score > ScoreTie(s)) {
     return "closes the gap too, with a penalised score " + Num(v.full_score - score) + " below " + v.id() + "'s (" +
            Num(score) + " against " + Num(v.full_score) + ")";
@@ -588,7 +617,7 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
       }
     }
   } else {
-    s->verdict_candidate = ResolveLineShape(ctx, s, ResolveEquivalents(ctx, *s, best));
+    s->verdict_candidate = ResolveValueGrid(ctx, s, ResolveLineShape(ctx, s, ResolveEquivalents(ctx, *s, best)));
     s->verdict = s->candidates[s->verdict_candidate].id();
     ListAlsoConsistent(ctx, s);
   }

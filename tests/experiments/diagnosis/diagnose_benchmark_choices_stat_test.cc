@@ -18,6 +18,9 @@
 //     24 s beside a large K, whose model the kurtosis view rejected (|z| 8.6); unexplained. A
 //     telegraph whose two levels the record shows is now read off the record and held there
 //     (effect.h, HeldAtItsStart).
+//   #235, an angle quantizer whose 242093 samples take 16 values: named a band-limit that scored 19
+//     above the quantizer over 130 points (beyond the tie; both closed the gap). A quantizer whose
+//     step is the record's value grid now names it (verdict.cc, ResolveValueGrid).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -72,6 +75,17 @@ TEST(DiagnoseBenchmarkChoicesStatTest, ATelegraphWhoseLevelsShowIsNamed) {
   ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
       << s.message;
   EXPECT_EQ(s.verdict, "random_telegraph") << testing::DescribeVerdict(s);
+}
+
+TEST(DiagnoseBenchmarkChoicesStatTest, SamplesOnAValueGridNameTheQuantizer) {
+  IndependentCase c;
+  const std::vector<double> record = testing::IndependentBenchmarkRecord(testing::CommittedBenchmarkDraw(), 5, 235, &c);
+  ASSERT_EQ(c.num_samples, 242093);
+  ASSERT_EQ(c.effect_id, "angle_quantization");
+  DiagnosisSummary s;
+  ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
+      << s.message;
+  EXPECT_EQ(s.verdict, "angle_quantization") << testing::DescribeVerdict(s);
 }
 
 }  // namespace
