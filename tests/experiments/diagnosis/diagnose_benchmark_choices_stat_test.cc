@@ -33,59 +33,38 @@
 namespace allanlab::experiments {
 namespace {
 
+// Record `index` of the committed draw with `seed`, which must have the benchmark's `samples` and
+// truth `effect`, diagnosed with `--model N,B,K` and `trials` Monte Carlo records: its verdict.
+void ExpectVerdict(std::uint64_t seed, int index, std::int64_t samples, const char* effect, int trials,
+                   const char* verdict) {
+  IndependentCase c;
+  const std::vector<double> record = testing::IndependentBenchmarkRecord(testing::CommittedBenchmarkDraw(), seed, index, &c);
+  ASSERT_EQ(c.num_samples, samples) << "#" << index;
+  ASSERT_EQ(c.effect_id, effect) << "#" << index;
+  DiagnoseOptions options = testing::UserModelNBK();
+  options.trials = trials;
+  DiagnosisSummary s;
+  ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(c.recipe.rate_hz), &s)) << s.message;
+  EXPECT_EQ(s.verdict, verdict) << "#" << index << ": " << testing::DescribeVerdict(s);
+}
+
+// The benchmark's 30 Monte Carlo trials (with the tests' 12 the quantizer's Monte Carlo views left
+// it at max |z| 4.0, past the threshold).
 TEST(DiagnoseBenchmarkChoicesStatTest, AStepAndAnAngleQuantizerWinTheirVerdicts) {
-  const IndependentDrawOptions o = testing::CommittedBenchmarkDraw();
-  struct Expected {
-    int index;
-    std::int64_t samples;  // the benchmark's, which the redraw must match
-    const char* verdict;
-  };
-  for (const Expected& e : {Expected{67, 193120, "bias_step"}, Expected{160, 250304, "angle_quantization"}}) {
-    IndependentCase c;
-    const std::vector<double> record = testing::IndependentBenchmarkRecord(o, 4, e.index, &c);
-    ASSERT_EQ(c.num_samples, e.samples) << "#" << e.index;
-    // The benchmark's 30 Monte Carlo trials (with the tests' 12 the quantizer's Monte Carlo
-    // views left it at max |z| 4.0, past the threshold).
-    DiagnoseOptions options = testing::UserModelNBK();
-    options.trials = 30;
-    DiagnosisSummary s;
-    ASSERT_TRUE(DiagnoseRecord(options, record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
-        << s.message;
-    EXPECT_EQ(s.verdict, e.verdict) << "#" << e.index << ": " << testing::DescribeVerdict(s);
-  }
+  ExpectVerdict(4, 67, 193120, "bias_step", 30, "bias_step");
+  ExpectVerdict(4, 160, 250304, "angle_quantization", 30, "angle_quantization");
 }
 
 TEST(DiagnoseBenchmarkChoicesStatTest, APointSampledFilterAboveNyquistIsABandLimit) {
-  IndependentCase c;
-  const std::vector<double> record = testing::IndependentBenchmarkRecord(testing::CommittedBenchmarkDraw(), 5, 150, &c);
-  ASSERT_EQ(c.num_samples, 234006);
-  ASSERT_EQ(c.design, "lp2_impulse_invariant_point_L8");
-  DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
-      << s.message;
-  EXPECT_EQ(s.verdict, "bandwidth") << testing::DescribeVerdict(s);
+  ExpectVerdict(5, 150, 234006, "bandwidth", testing::UserModelNBK().trials, "bandwidth");
 }
 
 TEST(DiagnoseBenchmarkChoicesStatTest, ATelegraphWhoseLevelsShowIsNamed) {
-  IndependentCase c;
-  const std::vector<double> record = testing::IndependentBenchmarkRecord(testing::CommittedBenchmarkDraw(), 5, 355, &c);
-  ASSERT_EQ(c.num_samples, 278186);
-  ASSERT_EQ(c.effect_id, "random_telegraph");
-  DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
-      << s.message;
-  EXPECT_EQ(s.verdict, "random_telegraph") << testing::DescribeVerdict(s);
+  ExpectVerdict(5, 355, 278186, "random_telegraph", testing::UserModelNBK().trials, "random_telegraph");
 }
 
 TEST(DiagnoseBenchmarkChoicesStatTest, SamplesOnAValueGridNameTheQuantizer) {
-  IndependentCase c;
-  const std::vector<double> record = testing::IndependentBenchmarkRecord(testing::CommittedBenchmarkDraw(), 5, 235, &c);
-  ASSERT_EQ(c.num_samples, 242093);
-  ASSERT_EQ(c.effect_id, "angle_quantization");
-  DiagnosisSummary s;
-  ASSERT_TRUE(DiagnoseRecord(testing::UserModelNBK(), record, SampleClock::FromRateHz(c.recipe.rate_hz), &s))
-      << s.message;
-  EXPECT_EQ(s.verdict, "angle_quantization") << testing::DescribeVerdict(s);
+  ExpectVerdict(5, 235, 242093, "angle_quantization", testing::UserModelNBK().trials, "angle_quantization");
 }
 
 }  // namespace
