@@ -69,7 +69,7 @@ inline constexpr std::string_view kLevelSeparationParam = "level_separation_sd";
 // An effect whose start the record measures better than the Allan curve can: held at it in the
 // joint fit of its refits, as a step is, instead of freed. So far a telegraph whose two levels the
 // record shows: the Allan curve alone trades its amplitude and dwell for B and K (an independent
-// 145 deg/h telegraph of 35 s dwell fitted as 93 deg/h and 19 s beside K = 1172 deg/h/sqrt(h)),
+// 145 deg/h telegraph of 35 s dwell fitted as 109 deg/h and 24 s beside a large K),
 // which the kurtosis view then rejects.
 bool HeldAtItsStart(const EffectInstance& e);
 
