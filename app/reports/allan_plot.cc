@@ -26,6 +26,20 @@
 namespace allanlab::app {
 namespace {
 
+// A log axis from lo to hi within three decades gets 2 and 5 of each decade labelled too: gnuplot
+// labels decades only, and accelerometer curves between 0.2 and 5 mg carried the one label "1".
+std::string ExtraLogTics(const char* axis, double lo, double hi) {
+  if (!(lo > 0) || !(hi < 1000 * lo)) return "";
+  std::string extra;
+  for (int k = static_cast<int>(std::floor(std::log10(lo))); k <= static_cast<int>(std::ceil(std::log10(hi))); ++k) {
+    for (double d : {2.0, 5.0}) {
+      const double v = d * std::pow(10.0, k);
+      if (v >= lo && v <= hi) extra += (extra.empty() ? "" : ", ") + ShortestDecimal(v);
+    }
+  }
+  return extra.empty() ? "" : "set " + std::string(axis) + "tics add (" + extra + ")\n";
+}
+
 
 bool Fail(std::string* why, const std::string& message) {
   if (why) *why = message;
@@ -130,20 +144,10 @@ std::string Body(const AllanPlot& plot) {
      << "set samples 200\n"
      << "set xrange [" << ShortestDecimal(plot.log_x ? x_lo / 1.5 : x_lo - 0.03 * (x_hi - x_lo)) << ":"
      << ShortestDecimal(plot.log_x ? x_hi * 1.5 : x_hi + 0.03 * (x_hi - x_lo)) << "]\n";
+  if (plot.log_x) os << ExtraLogTics("x", x_lo / 1.5, x_hi * 1.5);
   if (plot.log_y) {
     os << "set yrange [" << ShortestDecimal(y_lo / 2) << ":" << ShortestDecimal(y_hi * 2) << "]\n";
-    // Within three decades, 2 and 5 of each decade are labelled too: gnuplot labels decades only,
-    // and accelerometer curves between 0.2 and 5 mg carried the one label "1".
-    if (y_lo > 0 && y_hi * 2 < 1000 * (y_lo / 2)) {
-      std::string extra;
-      for (int k = static_cast<int>(std::floor(std::log10(y_lo / 2))); k <= static_cast<int>(std::ceil(std::log10(y_hi * 2))); ++k) {
-        for (double d : {2.0, 5.0}) {
-          const double v = d * std::pow(10.0, k);
-          if (v >= y_lo / 2 && v <= y_hi * 2) extra += (extra.empty() ? "" : ", ") + ShortestDecimal(v);
-        }
-      }
-      if (!extra.empty()) os << "set ytics add (" << extra << ")\n";
-    }
+    os << ExtraLogTics("y", y_lo / 2, y_hi * 2);
   } else {
     os << "set yrange [" << ShortestDecimal(y_lo - y_pad) << ":" << ShortestDecimal(y_hi + y_pad) << "]\n";
   }
