@@ -135,4 +135,36 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
   return moments;
 }
 
+AvarMoments ExactOhvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
+                                           std::int64_t num_samples) {
+  const std::int64_t count = num_samples - 3 * m + 1;
+  if (m < 1 || count < 1) return {};
+  // Delta f(j) = f(j + m) - 2 f(j) + f(|j - m|), applied three times to V (symmetric in the lag):
+  // the first from V in long double, kept in double as OverlappingLagSum keeps A (its rounding is
+  // relative to the second difference, not to V); the next two in double.
+  const auto size_a = static_cast<std::size_t>(count + 2 * m);
+  std::vector<double> a(size_a), c(static_cast<std::size_t>(count + m));
+  auto v = [&](std::int64_t k) { return variogram[static_cast<std::size_t>(std::llabs(k))]; };
+  for (std::int64_t j = 0; j < static_cast<std::int64_t>(size_a); ++j) {
+    a[static_cast<std::size_t>(j)] = static_cast<double>(v(j + m) - 2.0L * v(j) + v(j - m));
+  }
+  auto second_difference = [m](const std::vector<double>& f, std::int64_t j) {
+    return f[static_cast<std::size_t>(j + m)] - 2.0 * f[static_cast<std::size_t>(j)] +
+           f[static_cast<std::size_t>(std::llabs(j - m))];
+  };
+  for (std::int64_t j = 0; j < count + m; ++j) c[static_cast<std::size_t>(j)] = second_difference(a, j);
+  const double scale = 1.0 / (12.0 * static_cast<double>(m) * static_cast<double>(m));
+  const double c0 = scale * second_difference(c, 0);
+  long double lag_sum = 0.0L;  // sum_{k=1}^{T-1} (T - k) Cov(k)^2, in order: the same bits every run
+  for (std::int64_t k = 1; k < count; ++k) {
+    const double cov = scale * second_difference(c, k);
+    lag_sum += static_cast<long double>(static_cast<double>(count - k) * cov * cov);
+  }
+  AvarMoments moments;
+  moments.mean = c0;
+  const long double t = static_cast<long double>(count);
+  moments.variance = static_cast<double>(2.0L * (t * c0 * c0 + 2.0L * lag_sum) / (t * t));
+  return moments;
+}
+
 }  // namespace allanlab::estimators

@@ -48,4 +48,13 @@ SplitVariogram SplitPhaseVariogram(std::span<const long double> variogram);
 AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, const SplitVariogram& split,
                                           std::int64_t m, const sim::RecordShape& shape);
 
+// Moments of the overlapping Hadamard estimate OHVAR_hat(m) = (1/T) sum_{t<T} H_t^2 on N rate
+// samples, T = N - 3m + 1, H_t the third difference of the phase at step m over m sqrt(6) (the
+// filter of exact_quadratic_moments.h), from the same variogram: Cov(H_s, H_{s+k}) is the third
+// power of the symmetric second difference at step m applied to V, over 12 m^2, so the cost is
+// O(N) per m where the filter form costs O(3m) per lag (docs/theory.md §3.1).
+// Zero moments unless 1 <= m and 3m <= N. Precondition: variogram.size() > N.
+AvarMoments ExactOhvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
+                                           std::int64_t num_samples);
+
 }  // namespace allanlab::estimators

@@ -34,6 +34,22 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
   return moments;
 }
 
+std::vector<AvarMoments> ModelOhvarMoments(const sim::SensorModel& model, std::span<const std::int64_t> ms,
+                                           std::int64_t num_samples) {
+  std::vector<AvarMoments> moments(ms.size());
+  auto computed = [&](std::int64_t m) { return TermCount(Statistic::kHadamardOverlapping, m, num_samples) >= 1; };
+  if (std::none_of(ms.begin(), ms.end(), computed)) {
+    return moments;
+  }
+  const std::vector<long double> variogram = PhaseVariogram(model.GaussianAutocovariance(num_samples + 1), num_samples + 1);
+  const auto count = static_cast<std::int64_t>(ms.size());
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
+  for (std::int64_t i = 0; i < count; ++i) {
+    if (computed(ms[i])) moments[i] = ExactOhvarMomentsFromVariogram(variogram, ms[i], num_samples);
+  }
+  return moments;
+}
+
 std::vector<double> ModelAvarEdf(const sim::SensorModel& model, std::span<const std::int64_t> ms,
                                  const sim::RecordShape& shape) {
   std::vector<double> edf;
@@ -60,6 +76,7 @@ std::vector<AvarMoments> ModelStatisticMoments(const sim::SensorModel& model, St
   }
   std::vector<AvarMoments> moments(ms.size());
   if (!HasExactMoments(s)) return moments;
+  if (s == Statistic::kHadamardOverlapping) return ModelOhvarMoments(model, ms, num_samples);
   const std::int64_t stride_per_m = s == Statistic::kHadamardNonOverlapping ? 1 : 0;
   std::int64_t max_lag = 0;
   for (std::int64_t m : ms) {

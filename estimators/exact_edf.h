@@ -29,6 +29,11 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
 std::vector<double> ModelAvarEdf(const sim::SensorModel& model, std::span<const std::int64_t> ms,
                                  const sim::RecordShape& shape);
 
+// Moments of OHVAR_hat(m) on num_samples rate samples, from the model's Gaussian part as above,
+// O(N) per m (ExactOhvarMomentsFromVariogram); zero for an m OHVAR does not compute on N samples.
+std::vector<AvarMoments> ModelOhvarMoments(const sim::SensorModel& model, std::span<const std::int64_t> ms,
+                                           std::int64_t num_samples);
+
 // True for the statistics ModelStatisticMoments covers: AVAR, OAVAR, MVAR, HVAR and OHVAR (their
 // estimates are averages of squared stationary filters, exact_quadratic_moments.h). TOTVAR's
 // reflected extension and TVAR are not covered.
@@ -37,8 +42,8 @@ bool HasExactMoments(Statistic s);
 // Moments of the statistic's estimate at each m on num_samples rate samples, from the model's
 // Gaussian part as above (the term counts and strides of statistic.h: TermCount, stride m for the
 // non-overlapping AVAR and HVAR, 1 otherwise). Zero moments for an m the statistic does not
-// compute on that record or a statistic without HasExactMoments. AVAR and OAVAR take the O(N)
-// path above; the others cost O(TermCount x 3m) per m (N = 4096: well under a second for an
+// compute on that record or a statistic without HasExactMoments. AVAR, OAVAR and OHVAR take the
+// O(N) paths above; the others cost O(TermCount x 3m) per m (N = 4096: well under a second for an
 // octave grid).
 std::vector<AvarMoments> ModelStatisticMoments(const sim::SensorModel& model, Statistic s,
                                                std::span<const std::int64_t> ms,

@@ -32,12 +32,19 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
   const OavarTheory theory = !wanted.test(static_cast<int>(View::kOavar)) ? OavarTheory{}
                              : known_theory != nullptr                    ? *known_theory
                                                       : ExactOavar(model, layout.oavar_m, layout.num_samples);
-  // The simulated records give the Monte Carlo views only: OAVAR's distribution is exact.
+  // The simulated records give the Monte Carlo views only: OAVAR's distribution is exact, and
+  // for a Gaussian model so are the hadamard and kurtosis views' (gaussian_views.h).
+  const bool beyond_oavar = monte_carlo && trials >= 3;
+  const ViewSet from_theory = ViewSetOf({View::kHadamard, View::kKurtosis});
+  const GaussianViewTheory gaussian =
+      beyond_oavar && (wanted & from_theory).any() ? ExactGaussianViews(model, layout) : GaussianViewTheory{};
   ViewEnvelope envelope;
-  const ViewSet simulated = wanted & MonteCarloViews();
-  const bool have_envelope = monte_carlo && trials >= 3 && simulated.any() &&
+  ViewSet simulated = wanted & MonteCarloViews();
+  if (!gaussian.empty()) simulated &= ~from_theory;
+  const bool have_envelope = beyond_oavar && simulated.any() &&
                              SimulateEnvelope(model, layout, trials, seed, &envelope, note, simulated, shared_flicker);
-  std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr, wanted);
+  std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr, wanted,
+                                             gaussian.empty() ? nullptr : &gaussian);
   const bool block_means = wanted.test(static_cast<int>(View::kChangePoint)) || wanted.test(static_cast<int>(View::kTrend));
   if (block_means && !layout.block_counts.empty() && static_cast<std::int64_t>(rate.size()) == layout.num_samples) {
     ViewResiduals change_point, trend;

@@ -89,7 +89,7 @@ bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, i
 
 std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues& observed,
                                      const OavarTheory& theory, const ViewEnvelope* envelope,
-                                     const ViewSet& wanted) {
+                                     const ViewSet& wanted, const GaussianViewTheory* gaussian) {
   std::vector<ViewResiduals> out;
   for (View view : kAllViews) {
     const int v = static_cast<int>(view);
@@ -99,12 +99,22 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
     r.view = view;
     r.x = layout.Axis(view);
     const bool log_scale = view == View::kOavar || view == View::kHadamard || view == View::kPsd;
-    if (view == View::kOavar) {
+    const bool from_theory = gaussian != nullptr && (view == View::kHadamard || view == View::kKurtosis);
+    if (view == View::kOavar || (from_theory && view == View::kHadamard)) {
+      const std::vector<double>& mean = view == View::kOavar ? theory.mean : gaussian->hadamard_mean;
+      const std::vector<double>& edf = view == View::kOavar ? theory.edf : gaussian->hadamard_edf;
       for (std::size_t i = 0; i < r.x.size(); ++i) {
         const double obs = std::exp(observed[v][i]);
         r.observed.push_back(obs);
-        r.expected.push_back(theory.mean[i]);
-        r.z.push_back(ZFromChiSquare(obs, theory.mean[i], theory.edf[i]));
+        r.expected.push_back(mean[i]);
+        r.z.push_back(ZFromChiSquare(obs, mean[i], edf[i]));
+      }
+    } else if (from_theory) {
+      for (std::size_t i = 0; i < r.x.size(); ++i) {
+        const double n_eff = gaussian->kurtosis_effective_count[i];
+        r.observed.push_back(observed[v][i]);
+        r.expected.push_back(-6.0 / (n_eff + 1.0));
+        r.z.push_back(ZFromKurtosis(observed[v][i], n_eff));
       }
     } else {
       if (envelope == nullptr || envelope->trials < 3 || r.x.empty()) continue;
@@ -113,8 +123,12 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
         const double mean = envelope->mean[v][i];
         r.observed.push_back(log_scale ? std::exp(obs) : obs);
         r.expected.push_back(log_scale ? std::exp(mean) : mean);
-        r.z.push_back(view == View::kHalves ? ZFromLogRatioEnvelope(obs, mean, envelope->sd[v][i], envelope->trials)
-                                            : ZFromEnvelope(obs, mean, envelope->sd[v][i], envelope->trials));
+        const double sd = envelope->sd[v][i];
+        const int trials = envelope->trials;
+        r.z.push_back(view == View::kHalves     ? ZFromLogRatioEnvelope(obs, mean, sd, trials)
+                      : view == View::kKurtosis ? ZFromKurtosisEnvelope(obs, mean, sd, trials)
+                      : log_scale               ? ZFromLogVarianceEnvelope(obs, mean, sd, trials)
+                                                : ZFromEnvelope(obs, mean, sd, trials));
       }
     }
     out.push_back(std::move(r));

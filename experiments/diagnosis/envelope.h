@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "experiments/diagnosis/gap.h"
+#include "experiments/diagnosis/gaussian_views.h"
 #include "experiments/diagnosis/record_views.h"
 #include "sim/sensor_model.h"
 
@@ -47,10 +48,11 @@ bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, i
                       const ViewSet& wanted = EveryView(), const SharedFlicker* shared_flicker = nullptr);
 
 // Residuals of `observed` (ComputeViews of the record) against the model: the OAVAR view from
-// `theory`, the others from `envelope` (views absent from the envelope, or with fewer than 3
-// trials, are left out), the views in `wanted` only, in View order.
+// `theory`, the hadamard and kurtosis views from `gaussian` when given (gaussian_views.h), the
+// others from `envelope` (views absent from the envelope, or with fewer than 3 trials, are left
+// out), the views in `wanted` only, in View order.
 std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues& observed,
                                      const OavarTheory& theory, const ViewEnvelope* envelope,
-                                     const ViewSet& wanted = EveryView());
+                                     const ViewSet& wanted = EveryView(), const GaussianViewTheory* gaussian = nullptr);
 
 }  // namespace allanlab::experiments

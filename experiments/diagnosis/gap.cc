@@ -6,6 +6,7 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/special_functions/digamma.hpp>
 #include <boost/math/special_functions/trigamma.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
@@ -40,25 +41,99 @@ double ZFromEnvelope(double observed, double mean, double sd, int trials) {
   return ZFromTails(boost::math::cdf(dist, t), boost::math::cdf(boost::math::complement(dist, t)));
 }
 
+namespace {
+
+// The degrees of freedom nu at which `log_variance(nu)` (decreasing in nu) equals s^2, bisected
+// in ln nu over [0.05, 1e7]: 0.05 when even that is narrower; NaN when even 1e7 is wider than s
+// (a spread no such law gives: the caller falls back to the Student reading).
+template <class LogVariance>
+double MatchDegreesOfFreedom(double s, const LogVariance& log_variance) {
+  double lo = std::log(0.05), hi = std::log(1e7);
+  if (log_variance(std::exp(hi)) >= s * s) return kNaN;
+  if (log_variance(std::exp(lo)) <= s * s) return std::exp(lo);
+  for (int it = 0; it < 60 && hi - lo > 1e-6; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (log_variance(std::exp(mid)) > s * s) lo = mid; else hi = mid;
+  }
+  return std::exp(0.5 * (lo + hi));
+}
+
+// The Student reading carries the uncertainty of an sd from few trials, the law's reading the
+// statistic's own tails: the smaller |z| of the two honours both.
+double SmallerInMagnitude(double z_law, double z_student) {
+  return std::abs(z_law) < std::abs(z_student) ? z_law : z_student;
+}
+
+}  // namespace
+
 double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials) {
   if (!std::isfinite(observed) || !std::isfinite(mean) || !(sd > 0.0) || trials < 3) return kNaN;
   const double s = sd * std::sqrt(1.0 + 1.0 / trials);
-  // Var ln F(nu, nu) = 2 psi'(nu / 2), decreasing in nu: bisection in ln nu.
-  double lo = std::log(0.05), hi = std::log(1e7);
-  if (2.0 * boost::math::trigamma(0.5 * std::exp(hi)) >= s * s) return ZFromEnvelope(observed, mean, sd, trials);
-  if (2.0 * boost::math::trigamma(0.5 * std::exp(lo)) <= s * s) lo = hi = std::log(0.05);
-  for (int it = 0; it < 60 && hi - lo > 1e-6; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if (2.0 * boost::math::trigamma(0.5 * std::exp(mid)) > s * s) lo = mid; else hi = mid;
-  }
-  const double nu = std::exp(0.5 * (lo + hi));
+  // Var ln F(nu, nu) = 2 psi'(nu / 2).
+  const double nu = MatchDegreesOfFreedom(s, [](double n) { return 2.0 * boost::math::trigamma(0.5 * n); });
+  const double z_t = ZFromEnvelope(observed, mean, sd, trials);
+  if (!std::isfinite(nu)) return z_t;
   const boost::math::fisher_f f(nu, nu);
   const double x = std::exp(observed - mean);
-  const double z_f = ZFromTails(boost::math::cdf(f, x), boost::math::cdf(boost::math::complement(f, x)));
-  // The Student reading carries the uncertainty of an sd from few trials, the F reading the
-  // statistic's own tails: the smaller |z| of the two honours both.
+  return SmallerInMagnitude(ZFromTails(boost::math::cdf(f, x), boost::math::cdf(boost::math::complement(f, x))), z_t);
+}
+
+double ZFromLogVarianceEnvelope(double observed, double mean, double sd, int trials) {
+  if (!std::isfinite(observed) || !std::isfinite(mean) || !(sd > 0.0) || trials < 3) return kNaN;
+  const double s = sd * std::sqrt(1.0 + 1.0 / trials);
+  // ln(chi2_nu / nu): variance psi'(nu / 2), mean psi(nu / 2) - ln(nu / 2).
+  const double nu = MatchDegreesOfFreedom(s, [](double n) { return boost::math::trigamma(0.5 * n); });
   const double z_t = ZFromEnvelope(observed, mean, sd, trials);
-  return std::abs(z_f) < std::abs(z_t) ? z_f : z_t;
+  if (!std::isfinite(nu)) return z_t;
+  const double log_mean = boost::math::digamma(0.5 * nu) - std::log(0.5 * nu);
+  const double x = nu * std::exp(observed - mean + log_mean);  // ~ chi2_nu under the model
+  const boost::math::chi_squared chi2(nu);
+  return SmallerInMagnitude(ZFromTails(boost::math::cdf(chi2, x), boost::math::cdf(boost::math::complement(chi2, x))), z_t);
+}
+
+namespace {
+
+// Anscombe & Glynn (1983): the kurtosis b2 of n independent normal values mapped to an
+// approximately standard normal z, by the moments of b2 and a Wilson-Hilferty cube.
+double AnscombeGlynnZ(double b2, double n) {
+  const double mean = 3.0 * (n - 1.0) / (n + 1.0);
+  const double variance = 24.0 * n * (n - 2.0) * (n - 3.0) / ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0));
+  const double x = (b2 - mean) / std::sqrt(variance);
+  const double skew = 6.0 * (n * n - 5.0 * n + 2.0) / ((n + 7.0) * (n + 9.0)) *
+                      std::sqrt(6.0 * (n + 3.0) * (n + 5.0) / (n * (n - 2.0) * (n - 3.0)));
+  const double a = 6.0 + 8.0 / skew * (2.0 / skew + std::sqrt(1.0 + 4.0 / (skew * skew)));
+  const double denominator = 1.0 + x * std::sqrt(2.0 / (a - 4.0));
+  if (!(denominator > 0.0)) return -kMaxZ;  // below the law's lower end
+  const double z = ((1.0 - 2.0 / (9.0 * a)) - std::cbrt((1.0 - 2.0 / a) / denominator)) / std::sqrt(2.0 / (9.0 * a));
+  return std::clamp(z, -kMaxZ, kMaxZ);
+}
+
+double AnscombeGlynnVariance(double n) {
+  return 24.0 * n * (n - 2.0) * (n - 3.0) / ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0));
+}
+
+}  // namespace
+
+double ZFromKurtosis(double excess_kurtosis, double effective_count) {
+  if (!std::isfinite(excess_kurtosis) || !(effective_count > 8.0)) return kNaN;
+  return AnscombeGlynnZ(excess_kurtosis + 3.0, effective_count);
+}
+
+double ZFromKurtosisEnvelope(double observed, double mean, double sd, int trials) {
+  if (!std::isfinite(observed) || !std::isfinite(mean) || !(sd > 0.0) || trials < 3) return kNaN;
+  const double s = sd * std::sqrt(1.0 + 1.0 / trials);
+  const double z_t = ZFromEnvelope(observed, mean, sd, trials);
+  // The effective n whose b2 variance matches the envelope's, bisected in ln n over [8, 1e12]
+  // (the variance falls with n there).
+  double lo = std::log(8.0), hi = std::log(1e12);
+  if (AnscombeGlynnVariance(std::exp(lo)) <= s * s || AnscombeGlynnVariance(std::exp(hi)) >= s * s) return z_t;
+  for (int it = 0; it < 80 && hi - lo > 1e-9; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (AnscombeGlynnVariance(std::exp(mid)) > s * s) lo = mid; else hi = mid;
+  }
+  const double n = std::exp(0.5 * (lo + hi));
+  const double b2 = observed - mean + 3.0 * (n - 1.0) / (n + 1.0);
+  return SmallerInMagnitude(AnscombeGlynnZ(b2, n), z_t);
 }
 
 double BonferroniThreshold(double alpha, int points) {

@@ -30,6 +30,26 @@ double ZFromEnvelope(double observed, double mean, double sd, int trials);
 // sqrt(1 + 1/trials) for the prediction of one more draw), and z comes from the F tails, or from
 // ZFromEnvelope (Student: the sd's own uncertainty at few trials) when that is smaller in |z|.
 double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials);
+// The views of a variance estimate's log (hadamard: ln OHVAR; psd: ln of a band of the Welch
+// PSD): each estimate is ~ E chi2_nu / nu, whose log has a long lower tail at few EDF (the last
+// hadamard taus, nu ~ 2-5: at nu = 2 the normal reading's threshold z = -3.5 is crossed by 1
+// record in 160, not the 1 in 4300 it stands for, and records drawn from the baseline were
+// flagged there, the record below the model). nu is the one whose
+// ln chi2 variance psi'(nu/2) matches the envelope's sd (inflated as above), the envelope's mean
+// is taken as E ln(chi2_nu / nu), and z comes from the chi-square tails or from ZFromEnvelope,
+// whichever is smaller in |z|.
+double ZFromLogVarianceEnvelope(double observed, double mean, double sd, int trials);
+// The kurtosis view (excess kurtosis of the block means' increments): for Gaussian noise the
+// sample kurtosis of n values is skewed to the right (skewness 0.87 at n = 256, where the normal
+// reading of the envelope put records drawn apart from sim/ above the model at its longest tau,
+// the fewest blocks). Its law is read as that of n_eff independent normal values, n_eff the one
+// whose kurtosis variance matches the envelope's sd (inflated as above; the increments are
+// correlated, so n_eff is below the count), centred on the envelope's mean, and z comes from
+// the Anscombe-Glynn transform or from ZFromEnvelope, whichever is smaller in |z|.
+double ZFromKurtosisEnvelope(double observed, double mean, double sd, int trials);
+// The same law without an envelope: the excess kurtosis of n_eff independent normal values
+// (gaussian_views.h), by the Anscombe-Glynn transform. NaN for n_eff <= 8.
+double ZFromKurtosis(double excess_kurtosis, double effective_count);
 // Phi^{-1}(1 - alpha / (2 points)).
 double BonferroniThreshold(double alpha, int points);
 

@@ -1,6 +1,8 @@
 // The z of the halves view (gap.h ZFromLogRatioEnvelope): ln(OAVAR_first / OAVAR_second) at 2
 // EDF per half is ln F(2, 2), the standard logistic distribution (sd pi / sqrt(3)), whose tail
-// P(X > x) = 1 / (1 + e^x) is known in closed form.
+// P(X > x) = 1 / (1 + e^x) is known in closed form. The z of a log-variance view
+// (ZFromLogVarianceEnvelope) at 2 EDF: chi2_2 / 2 is Exp(1), so ln of it has mean -gamma, sd
+// pi / sqrt(6) and lower tail P(X < x) = 1 - exp(-e^x).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,6 +31,30 @@ TEST(DiagnosisGapTest, HalvesZIsNormalAtManyDegreesOfFreedom) {
   const double sd = std::sqrt(4.0 / 2000.0);
   EXPECT_NEAR(ZFromLogRatioEnvelope(3.0 * sd, 0.0, sd, 100000), 3.0, 0.1);
   EXPECT_TRUE(std::isnan(ZFromLogRatioEnvelope(1.0, 0.0, 0.0, 30)));
+}
+
+TEST(DiagnosisGapTest, LogVarianceZUsesTheChiSquareLowerTailAtFewDegreesOfFreedom) {
+  const double euler_gamma = 0.5772156649015329;
+  const double sd = M_PI / std::sqrt(6.0);
+  const int trials = 100000;
+  const double mean = 1.0;  // the envelope's centre: ln E + E ln(chi2_2 / 2), any E
+  // A record whose chi2_2 / 2 is 2.5e-4: the exact lower tail 2.5e-4, z = -3.48.
+  const double x = std::log(2.5e-4);
+  const double observed = mean + euler_gamma + x;
+  const double expected = boost::math::quantile(boost::math::normal(), -std::expm1(-std::exp(x)));
+  EXPECT_NEAR(ZFromLogVarianceEnvelope(observed, mean, sd, trials), expected, 0.02);
+  // The normal reading puts the same record at z ~ -6: a false alarm at any Bonferroni level.
+  EXPECT_LT(ZFromEnvelope(observed, mean, sd, trials), expected - 2.0);
+  // Above the model the chi-square tail is lighter than the normal's, and the smaller |z| (the
+  // Student reading) is kept.
+  EXPECT_DOUBLE_EQ(ZFromLogVarianceEnvelope(mean + 3.0 * sd, mean, sd, trials),
+                   ZFromEnvelope(mean + 3.0 * sd, mean, sd, trials));
+}
+
+TEST(DiagnosisGapTest, LogVarianceZIsNormalAtManyDegreesOfFreedom) {
+  const double sd = std::sqrt(2.0 / 5000.0);  // ln chi2_nu / nu at nu = 5000
+  EXPECT_NEAR(ZFromLogVarianceEnvelope(-3.0 * sd, 0.0, sd, 100000), -3.0, 0.1);
+  EXPECT_TRUE(std::isnan(ZFromLogVarianceEnvelope(1.0, 0.0, 0.0, 30)));
 }
 
 }  // namespace
