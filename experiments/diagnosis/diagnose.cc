@@ -33,14 +33,14 @@ std::vector<ViewResiduals> RecordResiduals(std::span<const double> rate, const V
                              : known_theory != nullptr                    ? *known_theory
                                                       : ExactOavar(model, layout.oavar_m, layout.num_samples);
   // The simulated records give the Monte Carlo views only: OAVAR's distribution is exact, and
-  // for a Gaussian model so are the hadamard and kurtosis views' (gaussian_views.h).
+  // for a Gaussian model the others' come from theory too (gaussian_views.h).
   const bool beyond_oavar = monte_carlo && trials >= 3;
-  const ViewSet from_theory = ViewSetOf({View::kHadamard, View::kKurtosis});
-  const GaussianViewTheory gaussian =
-      beyond_oavar && (wanted & from_theory).any() ? ExactGaussianViews(model, layout) : GaussianViewTheory{};
+  const GaussianViewTheory gaussian = beyond_oavar && (wanted & MonteCarloViews()).any()
+                                          ? ExactGaussianViews(model, layout)
+                                          : GaussianViewTheory{};
   ViewEnvelope envelope;
   ViewSet simulated = wanted & MonteCarloViews();
-  if (!gaussian.empty()) simulated &= ~from_theory;
+  if (!gaussian.empty()) simulated.reset();
   const bool have_envelope = beyond_oavar && simulated.any() &&
                              SimulateEnvelope(model, layout, trials, seed, &envelope, note, simulated, shared_flicker);
   std::vector<ViewResiduals> out = Residuals(layout, observed, theory, have_envelope ? &envelope : nullptr, wanted,

@@ -1,11 +1,16 @@
 #include "experiments/diagnosis/envelope.h"
 
 #include <cmath>
+#include <limits>
+
+#include <boost/math/special_functions/trigamma.hpp>
 
 #include "estimators/exact_edf.h"
 
 namespace allanlab::experiments {
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Only the law of the simulated records matters to an envelope: the band-limited white noise is
 // drawn per output period where that is exact (sim/first_order_period.h), and the flicker record
@@ -99,10 +104,15 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
     r.view = view;
     r.x = layout.Axis(view);
     const bool log_scale = view == View::kOavar || view == View::kHadamard || view == View::kPsd;
-    const bool from_theory = gaussian != nullptr && (view == View::kHadamard || view == View::kKurtosis);
-    if (view == View::kOavar || (from_theory && view == View::kHadamard)) {
-      const std::vector<double>& mean = view == View::kOavar ? theory.mean : gaussian->hadamard_mean;
-      const std::vector<double>& edf = view == View::kOavar ? theory.edf : gaussian->hadamard_edf;
+    const bool from_theory = gaussian != nullptr && view != View::kOavar;
+    if (from_theory && r.x.empty()) continue;
+    if (view == View::kOavar || (from_theory && (view == View::kHadamard || view == View::kPsd))) {
+      const std::vector<double>& mean = view == View::kOavar      ? theory.mean
+                                        : view == View::kHadamard ? gaussian->hadamard_mean
+                                                                  : gaussian->psd_mean;
+      const std::vector<double>& edf = view == View::kOavar      ? theory.edf
+                                       : view == View::kHadamard ? gaussian->hadamard_edf
+                                                                 : gaussian->psd_edf;
       for (std::size_t i = 0; i < r.x.size(); ++i) {
         const double obs = std::exp(observed[v][i]);
         r.observed.push_back(obs);
@@ -111,10 +121,20 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
       }
     } else if (from_theory) {
       for (std::size_t i = 0; i < r.x.size(); ++i) {
-        const double n_eff = gaussian->kurtosis_effective_count[i];
-        r.observed.push_back(observed[v][i]);
-        r.expected.push_back(-6.0 / (n_eff + 1.0));
-        r.z.push_back(ZFromKurtosis(observed[v][i], n_eff));
+        const double obs = observed[v][i];
+        r.observed.push_back(obs);
+        if (view == View::kKurtosis) {
+          const double n_eff = gaussian->kurtosis_effective_count[i];
+          r.expected.push_back(-6.0 / (n_eff + 1.0));
+          r.z.push_back(ZFromKurtosis(obs, n_eff));
+        } else if (view == View::kHalves) {
+          r.expected.push_back(0.0);
+          r.z.push_back(ZFromLogRatio(obs, gaussian->halves_edf[i]));
+        } else {  // dynamic: the typical range, 2.847 sd of ln(chi2_nu / nu) (8 normal values)
+          const double edf = gaussian->dynamic_edf[i];
+          r.expected.push_back(edf > 0.0 ? 2.847 * std::sqrt(boost::math::trigamma(0.5 * edf)) : kNaN);
+          r.z.push_back(ZFromLogRange(obs, edf, kDynamicWindows));
+        }
       }
     } else {
       if (envelope == nullptr || envelope->trials < 3 || r.x.empty()) continue;

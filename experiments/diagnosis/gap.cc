@@ -66,6 +66,13 @@ double SmallerInMagnitude(double z_law, double z_student) {
 
 }  // namespace
 
+double ZFromLogRatio(double observed, double edf) {
+  if (!std::isfinite(observed) || !(edf > 0.0)) return kNaN;
+  const boost::math::fisher_f f(edf, edf);
+  const double x = std::exp(observed);
+  return ZFromTails(boost::math::cdf(f, x), boost::math::cdf(boost::math::complement(f, x)));
+}
+
 double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials) {
   if (!std::isfinite(observed) || !std::isfinite(mean) || !(sd > 0.0) || trials < 3) return kNaN;
   const double s = sd * std::sqrt(1.0 + 1.0 / trials);
@@ -73,9 +80,40 @@ double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials
   const double nu = MatchDegreesOfFreedom(s, [](double n) { return 2.0 * boost::math::trigamma(0.5 * n); });
   const double z_t = ZFromEnvelope(observed, mean, sd, trials);
   if (!std::isfinite(nu)) return z_t;
-  const boost::math::fisher_f f(nu, nu);
-  const double x = std::exp(observed - mean);
-  return SmallerInMagnitude(ZFromTails(boost::math::cdf(f, x), boost::math::cdf(boost::math::complement(f, x))), z_t);
+  return SmallerInMagnitude(ZFromLogRatio(observed - mean, nu), z_t);
+}
+
+double ZFromLogRange(double observed, double edf, int count) {
+  if (!std::isfinite(observed) || !(observed >= 0.0) || !(edf > 0.0) || count < 2) return kNaN;
+  // Y = ln(chi2_nu / nu), G its distribution function, g its density. The range R of `count`
+  // independent Y has P(R <= r) = count int g(y) (G(y + r) - G(y))^(count - 1) dy, and
+  // P(R > r) = count int g(y) ((1 - G(y))^(count - 1) - (G(y + r) - G(y))^(count - 1)) dy, the
+  // difference a^(n-1) - b^(n-1) = (a - b) sum a^j b^(n-2-j) taken with a - b = 1 - G(y + r)
+  // from the complement, so the far upper tail keeps its digits. Simpson's rule in y between
+  // the 1e-15 quantiles of Y.
+  const boost::math::chi_squared chi2(edf);
+  const double y_lo = std::log(boost::math::quantile(chi2, 1e-15) / edf);
+  const double y_hi = std::log(boost::math::quantile(boost::math::complement(chi2, 1e-15)) / edf);
+  constexpr int kIntervals = 800;  // even
+  const double h = (y_hi - y_lo) / kIntervals;
+  double below = 0.0, above = 0.0;
+  for (int i = 0; i <= kIntervals; ++i) {
+    const double y = y_lo + h * i;
+    const double x = edf * std::exp(y);
+    const double density = boost::math::pdf(chi2, x) * x;
+    const double upper_y = boost::math::cdf(boost::math::complement(chi2, x));  // 1 - G(y)
+    const double x_r = edf * std::exp(y + observed);
+    const double upper_yr = boost::math::cdf(boost::math::complement(chi2, x_r));  // 1 - G(y + r)
+    const double a = upper_y, b = std::max(0.0, upper_y - upper_yr);
+    double powers = 0.0;  // sum_{j=0}^{count-2} a^j b^(count-2-j)
+    for (int j = 0; j <= count - 2; ++j) powers += std::pow(a, j) * std::pow(b, count - 2 - j);
+    const double weight = (i == 0 || i == kIntervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    below += weight * density * std::pow(b, count - 1);
+    above += weight * density * upper_yr * powers;
+  }
+  below *= count * h / 3.0;
+  above *= count * h / 3.0;
+  return ZFromTails(below, above);
 }
 
 double ZFromLogVarianceEnvelope(double observed, double mean, double sd, int trials) {

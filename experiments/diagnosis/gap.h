@@ -30,6 +30,12 @@ double ZFromEnvelope(double observed, double mean, double sd, int trials);
 // sqrt(1 + 1/trials) for the prediction of one more draw), and z comes from the F tails, or from
 // ZFromEnvelope (Student: the sd's own uncertainty at few trials) when that is smaller in |z|.
 double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials);
+// The same law without an envelope: ln F(edf, edf) (two independent estimates of one variance,
+// each ~ chi2_edf / edf; gaussian_views.h).
+double ZFromLogRatio(double observed, double edf);
+// The dynamic view without an envelope: ln(max / min) of `count` independent estimates of one
+// variance, each ~ chi2_edf / edf (gaussian_views.h); z from the range's own tails.
+double ZFromLogRange(double observed, double edf, int count);
 // The views of a variance estimate's log (hadamard: ln OHVAR; psd: ln of a band of the Welch
 // PSD): each estimate is ~ E chi2_nu / nu, whose log has a long lower tail at few EDF (the last
 // hadamard taus, nu ~ 2-5: at nu = 2 the normal reading's threshold z = -3.5 is crossed by 1

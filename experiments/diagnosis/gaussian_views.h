@@ -1,5 +1,5 @@
 #pragma once
-// The hadamard and kurtosis views' distributions under a Gaussian model, from theory instead of
+// The distributions of the views beyond OAVAR under a Gaussian model, from theory instead of
 // the Monte Carlo envelope (envelope.h), as the OAVAR view's is (docs/theory.md §6.1).
 //   hadamard: exact. E[OHVAR_hat(m)] and its EDF 2 E^2 / Var (Isserlis) from the model's phase
 //     variogram (estimators::ExactOhvarMomentsFromVariogram, O(N) per m); z from the chi-square,
@@ -10,6 +10,19 @@
 //     Hermite polynomial of the standardised values, whose covariance at lag h is 24 rho(h)^4
 //     (Mehler): Var = (24 / n) sum_{|h|<n} (1 - |h|/n) rho(h)^4, the variance of n_eff =
 //     n / sum(...) independent values. z from the Anscombe-Glynn transform at n_eff (gap.h).
+//   halves: ln(OAVAR_first / OAVAR_second) ~ ln F(nu, nu), nu the exact EDF of OAVAR(m) on N/2
+//     samples (the halves taken as independent: for a random walk or flicker they are positively
+//     correlated at long m, which narrows the ratio, so this reading is conservative there).
+//   dynamic: ln(max / min) over 8 windows, the range of 8 independent ln(chi2_nu / nu), nu the
+//     exact EDF of OAVAR(m) on N/8 samples (gap.h ZFromLogRange; conservative likewise).
+//   psd: the mean of each band of the Welch PSD exactly (each bin's E|X_b|^2 = sum_l R(l)
+//     Gamma_b(l), Gamma_b the autocorrelation of the demeaned Hann window at bin b), its EDF
+//     by Welch's rule for a locally flat spectrum: 2 K b_n / (f_seg f_bin) for K segments of
+//     50 % overlap (f_seg = 1 + 2 (1/36)(K-1)/K: overlapping Hann segments correlate 1/6 in
+//     amplitude) and b_n bins per band (f_bin = 1 + 2 (4/9)(b_n-1)/b_n + 2 (1/36)(b_n-2)/b_n:
+//     Hann's neighbouring bins correlate 2/3, the next 1/6); the first band (bin 1 alone, where
+//     the spectrum is steepest and the segment mean reaches) has its exact EDF, the segments'
+//     correlation and X's non-circularity included.
 // A Gaussian model: every term Gaussian (white, flicker, random walk, Gauss-Markov, resonance, Q)
 // or cancelled by both views (the rate ramp: OHVAR's third difference and the increments' own
 // mean remove it), band-limit included, no quantizer. Harmonics, telegraphs, steps, drifts and
@@ -34,6 +47,9 @@ struct GaussianViewTheory {
   std::vector<double> hadamard_mean;  // E[OHVAR_hat(m)] (rad/s)^2, per layout.hadamard_m
   std::vector<double> hadamard_edf;
   std::vector<double> kurtosis_effective_count;  // n_eff, per layout.kurtosis_m (NaN: no blocks)
+  std::vector<double> halves_edf;                // per layout.halves_m
+  std::vector<double> dynamic_edf;               // per layout.dynamic_m
+  std::vector<double> psd_mean, psd_edf;         // per layout.psd_bands: (rad/s)^2/Hz, EDF
   bool empty() const { return hadamard_mean.empty(); }
 };
 

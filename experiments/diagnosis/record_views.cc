@@ -61,14 +61,13 @@ void HalvesView(const ViewLayout& layout, std::span<const double> rate, std::vec
 // ln(max / min) of OAVAR(m) over 8 consecutive windows, at layout.dynamic_m.
 void DynamicView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* dynamic) {
   using estimators::Statistic;
-  constexpr int kWindows = 8;
   const double tau0 = layout.sample_clock.period_s();
-  const std::size_t window = rate.size() / kWindows;
+  const std::size_t window = rate.size() / kDynamicWindows;
   dynamic->assign(layout.dynamic_m.size(), kNaN);
   if (layout.dynamic_m.empty()) return;
   std::vector<double> lo(layout.dynamic_m.size(), std::numeric_limits<double>::infinity());
   std::vector<double> hi(layout.dynamic_m.size(), -std::numeric_limits<double>::infinity());
-  for (int w = 0; w < kWindows; ++w) {
+  for (int w = 0; w < kDynamicWindows; ++w) {
     const auto a = StatisticAt(Statistic::kAllanOverlapping, tau0, layout.dynamic_m, rate.subspan(w * window, window));
     for (std::size_t i = 0; i < a.size(); ++i) {
       lo[i] = std::min(lo[i], SafeLog(a[i]));

@@ -58,6 +58,9 @@ std::string_view ViewId(View v);
 // "tau_s", "frequency_hz" or (block-mean views) "block_s".
 std::string_view ViewAxisName(View v);
 
+// The dynamic view's windows.
+inline constexpr int kDynamicWindows = 8;
+
 // Where each view is evaluated for a record of N samples at tau0 (the same for real and
 // simulated records).
 struct ViewLayout {
