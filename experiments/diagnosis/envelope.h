@@ -4,7 +4,8 @@
 //   OAVAR: exact. Mean from sim::SensorModel::ExpectedAvar (every term, deterministic ones
 //     included), EDF 2 E^2 / Var with Var of the Gaussian part by Isserlis
 //     (estimators/exact_edf.h): cheap, O(N) per tau.
-//   Other views: Monte Carlo of the model (fixed seed, `trials` records, OpenMP across trials;
+//   Other views: for a Gaussian model from theory (gaussian_views.h); else Monte Carlo of the
+//     model (fixed seed, `trials` records, OpenMP across trials;
 //     deterministic for any thread count: trial t always uses (seed, t) and the moments are summed
 //     in trial order). The records are drawn with sim::GenerateOptions that keep their law and
 //     cut their cost (white noise behind a first-order band-limit per output period; one flicker
