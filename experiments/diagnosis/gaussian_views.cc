@@ -170,10 +170,16 @@ GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewL
     t.hadamard_edf.push_back(moments.edf());
   }
   for (std::int64_t m : layout.kurtosis_m) t.kurtosis_effective_count.push_back(KurtosisEffectiveCount(variogram, m, n));
+  // The split variogram: the same bits as the long doubles, about twice as fast (exact_avar_variance.h).
+  const estimators::SplitVariogram split = estimators::SplitPhaseVariogram(variogram);
   const sim::RecordShape half{n / 2, sim::AvarEstimatorKind::kOverlapping};
-  for (std::int64_t m : layout.halves_m) t.halves_edf.push_back(estimators::ExactAvarMomentsFromVariogram(variogram, m, half).edf());
+  for (std::int64_t m : layout.halves_m) {
+    t.halves_edf.push_back(estimators::ExactAvarMomentsFromVariogram(variogram, split, m, half).edf());
+  }
   const sim::RecordShape window{n / kDynamicWindows, sim::AvarEstimatorKind::kOverlapping};
-  for (std::int64_t m : layout.dynamic_m) t.dynamic_edf.push_back(estimators::ExactAvarMomentsFromVariogram(variogram, m, window).edf());
+  for (std::int64_t m : layout.dynamic_m) {
+    t.dynamic_edf.push_back(estimators::ExactAvarMomentsFromVariogram(variogram, split, m, window).edf());
+  }
   PsdTheory(layout, r, &t);
   return t;
 }
