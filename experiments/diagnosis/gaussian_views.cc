@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <utility>
 #include <cstdlib>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <variant>
 
 #include "estimators/exact_avar_variance.h"
@@ -158,8 +158,8 @@ bool IsGaussianModel(const sim::SensorModel& model) {
 GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewLayout& layout) {
   if (!IsGaussianModel(model)) return {};
   const std::int64_t n = layout.num_samples;
-  // Every lag either view reads is at most N (OHVAR: (T - 1) + 3m = N; the increments:
-  // (blocks - 1) m + m <= N).
+  // Every lag a view reads is at most N (OHVAR: (T - 1) + 3m = N; the increments:
+  // (blocks - 1) m + m <= N; the halves, windows and PSD segments are shorter).
   const std::vector<double> r = model.GaussianAutocovariance(n + 1);
   const std::vector<long double> variogram = estimators::PhaseVariogram(r, n + 1);
   GaussianViewTheory t;
