@@ -220,6 +220,18 @@ void WriteValidation(std::ostream& os, const Json& v, bool markdown) {
 
 }  // namespace
 
+// The diagnosis's notes, then the value grid's step (when the samples sit on one) in the
+// report's units and the record's.
+std::vector<std::string> ReportNotes(const DiagnosisSummary& s, const DiagnoseUnits& unit) {
+  std::vector<std::string> notes = s.notes;
+  if (std::isfinite(s.value_grid_rad_per_s)) {
+    const ReportedRate r = ReportRate(unit, s.value_grid_rad_per_s);
+    notes.push_back("value grid step: " + SignificantDigits(r.value, 4) + " " + r.unit +
+                    (r.record_value ? " (" + SignificantDigits(*r.record_value, 4) + " " + r.record_unit + ")" : ""));
+  }
+  return notes;
+}
+
 Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
                    const DiagnoseUnits& unit) {
   Json j;
@@ -293,7 +305,7 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline, unit)}, {"band_limit", band_limit},
                    {"fit", {{"chi2", s.baseline.gof_chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
   if (!validation.is_null()) j["validation"] = validation;
-  j["notes"] = s.notes;
+  j["notes"] = ReportNotes(s, unit);
   j["provenance"] = ProvenanceJson(p);
   return j;
 }
@@ -422,7 +434,7 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
     }
   }
   for (const auto& k : s.skipped) os << (markdown ? "- " : "  ") << "not tried: " << EffectId(k.effect) << " (" << k.reason << ")\n";
-  for (const auto& n : s.notes) os << (markdown ? "- " : "  ") << "note: " << n << "\n";
+  for (const auto& n : ReportNotes(s, unit)) os << (markdown ? "- " : "  ") << "note: " << n << "\n";
 }
 
 }  // namespace

@@ -11,7 +11,6 @@
 #include "experiments/diagnosis/candidate_estimate.h"
 #include "experiments/diagnosis/heldout.h"
 #include "experiments/diagnosis/line_shape.h"
-#include "sim/units.h"
 
 namespace allanlab::experiments::detail {
 namespace {
@@ -464,8 +463,10 @@ int ResolveValueGrid(const Context& ctx, DiagnosisSummary* s, int best) {
     const double step = q.effect == Effect::kAngleQuantization ? q.params.at("lsb_rad") / tau0 : q.params.at("lsb_rad_per_s");
     if (!(std::abs(step - *grid) <= 1e-6 * *grid)) continue;
     s->value_grid_rad_per_s = *grid;
-    s->notes.push_back("quantized: the samples sit on a value grid of " +
-                       SignificantDigits(*grid / units::DegPerHour(1.0), 4) + " deg/h, which " + c.id() + " makes and " + chosen.id() + " does not; both close the gap");
+    // The grid's step is reported in the record's own terms by the caller (a gyro's deg/h, an
+    // accelerometer's mg): value_grid_rad_per_s.
+    s->notes.push_back("quantized: the samples sit on a value grid, which " + c.id() + " makes and " + chosen.id() +
+                       " does not; both close the gap");
     return static_cast<int>(i);
   }
   return best;
