@@ -8,11 +8,14 @@
 namespace allanlab::estimators {
 
 std::vector<long double> PhaseVariogram(std::span<const double> autocovariance, std::int64_t lags) {
-  std::vector<long double> variogram(static_cast<std::size_t>(std::max<std::int64_t>(lags, 1)), 0.0L);
+  // Appended, not zeroed then overwritten: one pass over a record-sized array instead of two.
+  std::vector<long double> variogram;
+  variogram.reserve(static_cast<std::size_t>(std::max<std::int64_t>(lags, 1)));
+  variogram.push_back(0.0L);
   long double increment = autocovariance[0];  // V(k+1) - V(k) = R(0) + 2 sum_{j=1}^{k} R(j)
   for (std::int64_t k = 0; k + 1 < lags; ++k) {
     if (k > 0) increment += 2.0L * autocovariance[k];
-    variogram[k + 1] = variogram[k] + increment;
+    variogram.push_back(variogram.back() + increment);
   }
   return variogram;
 }
@@ -41,18 +44,20 @@ constexpr std::size_t kMaxSplitLags = std::size_t{1} << 24;
 
 // `v(j)` is V(j) as a long double (read from the variogram or from its split: the same value).
 template <class Variogram>
-long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count) {
+long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count, std::vector<double>* scratch) {
   const std::int64_t last = count - 1 + m;  // A is read up to k + m
-  // Every A(0..last) is written before it is read: a buffer kept per thread, not a zeroed
-  // record-sized vector per m (zeroing it was about a sixth of ModelAvarMoments). Beyond
-  // kMaxKeptLags (32 MB) the buffer is the call's own, so long records keep no memory.
+  // Every A(0..last) is written before it is read: the caller's scratch, else a buffer kept per
+  // thread, not a zeroed record-sized vector per m (zeroing it was about a sixth of
+  // ModelAvarMoments). Beyond kMaxKeptLags (32 MB) without scratch the buffer is the call's own,
+  // so long records keep no memory.
   const auto size = static_cast<std::size_t>(last + 1);
   thread_local std::vector<double> kept;
   std::unique_ptr<double[]> own;
   double* a = nullptr;
-  if (size <= kMaxKeptLags) {
-    if (kept.size() < size) kept.resize(size);
-    a = kept.data();
+  if (scratch != nullptr || size <= kMaxKeptLags) {
+    std::vector<double>& buffer = scratch != nullptr ? *scratch : kept;
+    if (buffer.size() < size) buffer.resize(size);
+    a = buffer.data();
   } else {
     own = std::make_unique_for_overwrite<double[]>(size);
     a = own.get();
@@ -82,14 +87,14 @@ long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t c
 SplitVariogram SplitPhaseVariogram(std::span<const long double> variogram) {
   if (variogram.size() > kMaxSplitLags) return {};
   SplitVariogram split;
-  split.hi.resize(variogram.size());
-  split.lo.resize(variogram.size());
-  for (std::size_t j = 0; j < variogram.size(); ++j) {
-    const double hi = static_cast<double>(variogram[j]);
-    const double lo = static_cast<double>(variogram[j] - hi);
-    if (!(static_cast<long double>(hi) + lo == variogram[j])) return {};
-    split.hi[j] = hi;
-    split.lo[j] = lo;
+  split.hi.reserve(variogram.size());
+  split.lo.reserve(variogram.size());
+  for (const long double v : variogram) {
+    const double hi = static_cast<double>(v);
+    const double lo = static_cast<double>(v - hi);
+    if (!(static_cast<long double>(hi) + lo == v)) return {};
+    split.hi.push_back(hi);
+    split.lo.push_back(lo);
   }
   return split;
 }
@@ -100,7 +105,7 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
 }
 
 AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, const SplitVariogram& split,
-                                          std::int64_t m, const sim::RecordShape& shape) {
+                                          std::int64_t m, const sim::RecordShape& shape, MomentScratch* scratch) {
   const sim::AllanStarts starts = sim::AllanDifferenceStarts(m, shape);
   if (starts.count == 0) return {};
   auto v = [&](std::int64_t k) { return variogram[static_cast<std::size_t>(std::llabs(k))]; };
@@ -112,15 +117,16 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
   long double sum = starts.count * c0 * c0;
   if (starts.stride == 1) {
     const std::int64_t last = starts.count - 1 + 2 * m;  // the largest lag the sum reads
+    std::vector<double>* buffer = scratch != nullptr ? &scratch->first : nullptr;
     long double lag_sum;
     if (static_cast<std::int64_t>(split.hi.size()) > last) {
       const double* hi = split.hi.data();
       const double* lo = split.lo.data();
       lag_sum = OverlappingLagSum([&](std::int64_t j) { return static_cast<long double>(hi[j]) + lo[j]; }, m,
-                                  starts.count);
+                                  starts.count, buffer);
     } else {
       lag_sum = OverlappingLagSum(
-          [&](std::int64_t j) { return variogram[static_cast<std::size_t>(j)]; }, m, starts.count);
+          [&](std::int64_t j) { return variogram[static_cast<std::size_t>(j)]; }, m, starts.count, buffer);
     }
     sum += 2.0L * scale * scale * lag_sum;
   } else {
@@ -136,14 +142,20 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
 }
 
 AvarMoments ExactOhvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
-                                           std::int64_t num_samples) {
+                                           std::int64_t num_samples, MomentScratch* scratch) {
   const std::int64_t count = num_samples - 3 * m + 1;
   if (m < 1 || count < 1) return {};
   // Delta f(j) = f(j + m) - 2 f(j) + f(|j - m|), applied three times to V (symmetric in the lag):
   // the first from V in long double, kept in double as OverlappingLagSum keeps A (its rounding is
-  // relative to the second difference, not to V); the next two in double.
+  // relative to the second difference, not to V); the next two in double. Every element of a and
+  // c is written before it is read, so reused scratch needs no clearing.
   const auto size_a = static_cast<std::size_t>(count + 2 * m);
-  std::vector<double> a(size_a), c(static_cast<std::size_t>(count + m));
+  MomentScratch own;
+  MomentScratch& work = scratch != nullptr ? *scratch : own;
+  if (work.first.size() < size_a) work.first.resize(size_a);
+  if (work.second.size() < static_cast<std::size_t>(count + m)) work.second.resize(static_cast<std::size_t>(count + m));
+  std::vector<double>& a = work.first;
+  std::vector<double>& c = work.second;
   auto v = [&](std::int64_t k) { return variogram[static_cast<std::size_t>(std::llabs(k))]; };
   for (std::int64_t j = 0; j < static_cast<std::int64_t>(size_a); ++j) {
     a[static_cast<std::size_t>(j)] = static_cast<double>(v(j + m) - 2.0L * v(j) + v(j - m));

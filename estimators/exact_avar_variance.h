@@ -43,18 +43,29 @@ struct SplitVariogram {
 };
 SplitVariogram SplitPhaseVariogram(std::span<const long double> variogram);
 
+// Working memory of the O(N) moment sums, reused across the m of one grid. A loop over m that
+// passes one per thread touches its pages once: allocating the record-sized buffers afresh for
+// each m (zeroed, and faulted in page by page) was over half of the exact theory's time at 1e7
+// samples. Without one, a buffer up to 2^22 lags is kept per thread and a longer one is the
+// call's own.
+struct MomentScratch {
+  std::vector<double> first, second;
+};
+
 // The same moments, reading V from `split` (SplitPhaseVariogram(variogram), or empty) where it
-// can: the bits of the overload above.
+// can: the bits of the overload above, with or without `scratch`.
 AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, const SplitVariogram& split,
-                                          std::int64_t m, const sim::RecordShape& shape);
+                                          std::int64_t m, const sim::RecordShape& shape,
+                                          MomentScratch* scratch = nullptr);
 
 // Moments of the overlapping Hadamard estimate OHVAR_hat(m) = (1/T) sum_{t<T} H_t^2 on N rate
 // samples, T = N - 3m + 1, H_t the third difference of the phase at step m over m sqrt(6) (the
 // filter of exact_quadratic_moments.h), from the same variogram: Cov(H_s, H_{s+k}) is the third
 // power of the symmetric second difference at step m applied to V, over 12 m^2, so the cost is
 // O(N) per m where the filter form costs O(3m) per lag (docs/theory.md §3.1).
-// Zero moments unless 1 <= m and 3m <= N. Precondition: variogram.size() > N.
+// Zero moments unless 1 <= m and 3m <= N. Precondition: variogram.size() > N. The same bits with
+// or without `scratch`.
 AvarMoments ExactOhvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
-                                           std::int64_t num_samples);
+                                           std::int64_t num_samples, MomentScratch* scratch = nullptr);
 
 }  // namespace allanlab::estimators

@@ -25,10 +25,14 @@ std::vector<AvarMoments> ModelAvarMoments(const sim::SensorModel& model,
   // a parallel region this runs in the caller's thread alone). Each m's value lands in its own
   // slot, so the result is the same bits for any thread count.
   const auto count = static_cast<std::int64_t>(ms.size());
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (std::int64_t i = 0; i < count; ++i) {
-    if (sim::IsValidAveragingFactor(ms[i], shape, nullptr)) {
-      moments[i] = ExactAvarMomentsFromVariogram(variogram, split, ms[i], shape);
+#pragma omp parallel if (count > 1)
+  {
+    MomentScratch scratch;  // one per thread, for all its m (exact_avar_variance.h)
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < count; ++i) {
+      if (sim::IsValidAveragingFactor(ms[i], shape, nullptr)) {
+        moments[i] = ExactAvarMomentsFromVariogram(variogram, split, ms[i], shape, &scratch);
+      }
     }
   }
   return moments;
@@ -43,9 +47,13 @@ std::vector<AvarMoments> ModelOhvarMoments(const sim::SensorModel& model, std::s
   }
   const std::vector<long double> variogram = PhaseVariogram(model.GaussianAutocovariance(num_samples + 1), num_samples + 1);
   const auto count = static_cast<std::int64_t>(ms.size());
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (std::int64_t i = 0; i < count; ++i) {
-    if (computed(ms[i])) moments[i] = ExactOhvarMomentsFromVariogram(variogram, ms[i], num_samples);
+#pragma omp parallel if (count > 1)
+  {
+    MomentScratch scratch;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < count; ++i) {
+      if (computed(ms[i])) moments[i] = ExactOhvarMomentsFromVariogram(variogram, ms[i], num_samples, &scratch);
+    }
   }
   return moments;
 }

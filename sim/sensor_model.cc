@@ -475,12 +475,15 @@ std::vector<double> SensorModel::SignalAutocovariance(std::int64_t lags) const {
   std::vector<double> total(static_cast<std::size_t>(lags), 0.0);
   std::shared_ptr<const BandLimitChain> chain;
   if (band_limit.enabled()) chain = SharedBandLimitChain(band_limit, sample_clock.rate_hz());
+  // One term's autocovariance at a time, in a buffer shared by the terms (each fill writes every
+  // lag): a fresh record-sized vector per term cost a zeroing pass and its page faults each.
+  std::vector<double> r;
   for (const NoiseTerm& term : terms) {
     std::visit(
         [&](const auto& t) {
           using T = std::decay_t<decltype(t)>;
           if constexpr (HasAutocovariance<T>) {
-            std::vector<double> r(static_cast<std::size_t>(lags));
+            r.resize(static_cast<std::size_t>(lags));
             if (!chain || T::kPath == SignalPath::kDigital) {
               t.FillAutocovariance(tau0, r);
             } else if constexpr (std::is_same_v<T, WhiteRateNoise>) {

@@ -163,22 +163,48 @@ GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewL
   const std::vector<double> r = model.GaussianAutocovariance(n + 1);
   const std::vector<long double> variogram = estimators::PhaseVariogram(r, n + 1);
   GaussianViewTheory t;
-  for (std::int64_t m : layout.hadamard_m) {
-    const estimators::AvarMoments moments = estimators::ExactOhvarMomentsFromVariogram(variogram, m, n);
-    if (!(moments.mean > 0.0) || !(moments.variance > 0.0)) return {};
-    t.hadamard_mean.push_back(moments.mean);
-    t.hadamard_edf.push_back(moments.edf());
-  }
-  for (std::int64_t m : layout.kurtosis_m) t.kurtosis_effective_count.push_back(KurtosisEffectiveCount(variogram, m, n));
   // The split variogram: the same bits as the long doubles, about twice as fast (exact_avar_variance.h).
   const estimators::SplitVariogram split = estimators::SplitPhaseVariogram(variogram);
   const sim::RecordShape half{n / 2, sim::AvarEstimatorKind::kOverlapping};
-  for (std::int64_t m : layout.halves_m) {
-    t.halves_edf.push_back(estimators::ExactAvarMomentsFromVariogram(variogram, split, m, half).edf());
-  }
   const sim::RecordShape window{n / kDynamicWindows, sim::AvarEstimatorKind::kOverlapping};
-  for (std::int64_t m : layout.dynamic_m) {
-    t.dynamic_edf.push_back(estimators::ExactAvarMomentsFromVariogram(variogram, split, m, window).edf());
+  // Every (view, m) is an independent O(N) sum into its own slot: spread over the threads when
+  // the caller runs none (the same bits for any thread count), each thread's scratch reused for
+  // all its sums.
+  const auto hadamard_count = static_cast<std::int64_t>(layout.hadamard_m.size());
+  const auto halves_count = static_cast<std::int64_t>(layout.halves_m.size());
+  const auto dynamic_count = static_cast<std::int64_t>(layout.dynamic_m.size());
+  const std::int64_t sums = hadamard_count + halves_count + dynamic_count;
+  std::vector<estimators::AvarMoments> moments(static_cast<std::size_t>(sums));
+#pragma omp parallel if (sums > 1)
+  {
+    estimators::MomentScratch scratch;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t i = 0; i < sums; ++i) {
+      const auto at = static_cast<std::size_t>(i);
+      if (i < hadamard_count) {
+        moments[at] = estimators::ExactOhvarMomentsFromVariogram(variogram, layout.hadamard_m[at], n, &scratch);
+      } else if (i < hadamard_count + halves_count) {
+        moments[at] = estimators::ExactAvarMomentsFromVariogram(
+            variogram, split, layout.halves_m[static_cast<std::size_t>(i - hadamard_count)], half, &scratch);
+      } else {
+        moments[at] = estimators::ExactAvarMomentsFromVariogram(
+            variogram, split, layout.dynamic_m[static_cast<std::size_t>(i - hadamard_count - halves_count)], window,
+            &scratch);
+      }
+    }
+  }
+  for (std::int64_t i = 0; i < hadamard_count; ++i) {
+    const estimators::AvarMoments& h = moments[static_cast<std::size_t>(i)];
+    if (!(h.mean > 0.0) || !(h.variance > 0.0)) return {};
+    t.hadamard_mean.push_back(h.mean);
+    t.hadamard_edf.push_back(h.edf());
+  }
+  for (std::int64_t m : layout.kurtosis_m) t.kurtosis_effective_count.push_back(KurtosisEffectiveCount(variogram, m, n));
+  for (std::int64_t i = 0; i < halves_count; ++i) {
+    t.halves_edf.push_back(moments[static_cast<std::size_t>(hadamard_count + i)].edf());
+  }
+  for (std::int64_t i = 0; i < dynamic_count; ++i) {
+    t.dynamic_edf.push_back(moments[static_cast<std::size_t>(hadamard_count + halves_count + i)].edf());
   }
   PsdTheory(layout, r, &t);
   return t;

@@ -1,5 +1,6 @@
 // The overlapping AVAR moments read the phase variogram as exact double pairs (SplitVariogram):
-// the same long doubles, so the same bits as reading the long doubles themselves.
+// the same long doubles, so the same bits as reading the long doubles themselves. Scratch memory
+// reused across m (MomentScratch) changes no bit either.
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -50,6 +51,36 @@ TEST(SplitVariogram, SameMomentsBitsAsTheLongDoubles) {
       const AvarMoments plain = ExactAvarMomentsFromVariogram(v, ms[i], shape);
       EXPECT_EQ(shared[i].mean, plain.mean) << "n " << n << " m " << ms[i];
       EXPECT_EQ(shared[i].variance, plain.variance) << "n " << n << " m " << ms[i];
+    }
+  }
+}
+
+// One scratch through a grid of m, largest first (a later, shorter sum then finds the longer
+// sums' values in the buffers: it must write every element it reads) and smallest first, against
+// each m with no scratch: OAVAR (whole record and a half, as the halves view) and OHVAR.
+TEST(SplitVariogram, ReusedScratchGivesTheSameBitsInAnyOrder) {
+  const std::int64_t n = 50001;
+  const std::vector<double> r = MixedModel().GaussianAutocovariance(n + 1);
+  const std::vector<long double> v = PhaseVariogram(r, n + 1);
+  const SplitVariogram split = SplitPhaseVariogram(v);
+  std::vector<std::int64_t> ms;
+  for (std::int64_t m = 1; 3 * m <= n; m = m * 3 / 2 + 1) ms.push_back(m);
+  for (const bool largest_first : {true, false}) {
+    MomentScratch scratch;
+    for (std::size_t k = 0; k < ms.size(); ++k) {
+      const std::int64_t m = largest_first ? ms[ms.size() - 1 - k] : ms[k];
+      for (const std::int64_t length : {n, n / 2}) {
+        const sim::RecordShape shape{length, sim::AvarEstimatorKind::kOverlapping};
+        if (2 * m > length) continue;
+        const AvarMoments reused = ExactAvarMomentsFromVariogram(v, split, m, shape, &scratch);
+        const AvarMoments fresh = ExactAvarMomentsFromVariogram(v, split, m, shape);
+        EXPECT_EQ(reused.mean, fresh.mean) << "m " << m << " N " << length;
+        EXPECT_EQ(reused.variance, fresh.variance) << "m " << m << " N " << length;
+      }
+      const AvarMoments reused = ExactOhvarMomentsFromVariogram(v, m, n, &scratch);
+      const AvarMoments fresh = ExactOhvarMomentsFromVariogram(v, m, n);
+      EXPECT_EQ(reused.mean, fresh.mean) << "OHVAR m " << m;
+      EXPECT_EQ(reused.variance, fresh.variance) << "OHVAR m " << m;
     }
   }
 }
