@@ -261,10 +261,16 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   if (s.verdict_candidate >= 0) {
     Json steps = Json::array();
     for (const auto& st : s.candidates[s.verdict_candidate].steps) {
-      steps.push_back({{"added", std::string(EffectId(st.added))},
-                       {"heldout_chi2_before", st.heldout_before.chi2},
-                       {"heldout_chi2_after", st.heldout_after.chi2},
-                       {"heldout_points", st.heldout_after.points}});
+      Json step = {{"added", std::string(EffectId(st.added))},
+                   {"heldout_chi2_before", st.heldout_before.chi2},
+                   {"heldout_chi2_after", st.heldout_after.chi2},
+                   {"heldout_points", st.heldout_after.points}};
+      if (st.own_views_after.points > 0) {
+        step["heldout_chi2_own_views_before"] = st.own_views_before.chi2;
+        step["heldout_chi2_own_views_after"] = st.own_views_after.chi2;
+        step["heldout_own_views_points"] = st.own_views_after.points;
+      }
+      steps.push_back(step);
     }
     verdict["steps"] = steps;
     verdict["remaining"] = RegionsJson(s.remaining);
@@ -364,7 +370,12 @@ void WriteText(std::ostream& os, const DiagnosisSummary& s, bool markdown, const
     if (c.steps.size() > 1 || (s.verdict != "unexplained" && !c.steps.empty())) {
       for (const auto& st : c.steps) {
         os << (markdown ? "- " : "  ") << "adds " << EffectId(st.added) << ": held-out chi2 " << SignificantDigits(st.heldout_before.chi2, 4)
-           << " -> " << SignificantDigits(st.heldout_after.chi2, 4) << " (" << st.heldout_after.points << " points)\n";
+           << " -> " << SignificantDigits(st.heldout_after.chi2, 4) << " (" << st.heldout_after.points << " points)";
+        if (st.own_views_after.points > 0) {
+          os << "; in the views it shows in " << SignificantDigits(st.own_views_before.chi2, 4) << " -> "
+             << SignificantDigits(st.own_views_after.chi2, 4) << " (" << st.own_views_after.points << " points)";
+        }
+        os << "\n";
       }
     }
     for (const GapRegion& r : s.remaining) {

@@ -112,6 +112,7 @@ struct CandidateResult {
   int heldout_half = 1;            // 0: first half scored, 1: second
   sim::SensorModel heldout_model;  // the model scored on that half
   bool heldout_in_gap_views = false;
+  std::vector<ViewResiduals> heldout_residuals;  // per view of after.heldout, when heldout_in_gap_views
   double score = 0.0;            // OAVAR chi2 improvement - 2 k
   double full_score = 0.0;       // all assessed views: chi2 improvement - 2 k
   bool full_views = false;       // Monte Carlo views assessed
@@ -125,6 +126,9 @@ struct CandidateResult {
   struct Step {
     Effect added;
     GapMetrics heldout_before, heldout_after;
+    // The same in the held-out views the added effect shows in (the registry's views), where a
+    // later member was judged there (points 0: not read; verdict.cc EarnsItsPlace).
+    GapMetrics own_views_before, own_views_after;
   };
   std::vector<Step> steps;
   // Why it is not the verdict, in words with its numbers (empty for the verdict; for

@@ -11,16 +11,6 @@ namespace allanlab::experiments::detail {
 namespace {
 
 
-// The views of `views` pooled.
-GapMetrics MetricsOf(const std::vector<ViewResiduals>& residuals, const std::vector<View>& views) {
-  std::vector<ViewResiduals> kept;
-  for (const ViewResiduals& r : residuals) {
-    if (std::find(views.begin(), views.end(), r.view) != views.end()) kept.push_back(r);
-  }
-  return Metrics(kept);
-}
-
-
 // The held-out half against the other half's baseline, every view, and the views in which it
 // departs from that baseline beyond `threshold` (computed once per half).
 const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold) {
@@ -43,6 +33,13 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
 
 }  // namespace
 
+GapMetrics MetricsOf(const std::vector<ViewResiduals>& residuals, const std::vector<View>& views) {
+  std::vector<ViewResiduals> kept;
+  for (const ViewResiduals& r : residuals) {
+    if (std::find(views.begin(), views.end(), r.view) != views.end()) kept.push_back(r);
+  }
+  return Metrics(kept);
+}
 
 // The half a candidate is scored on: the one that holds its one-off event (a warm-up drift acts
 // in the first half; a step in the half of its time), else the second (fit on the first).
@@ -106,24 +103,25 @@ void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std:
   std::string ignored;
   const SharedFlicker flicker = RecordFlicker(ctx, h);
   c->heldout_before = MetricsOf(before.residuals, before.gap_views);
-  c->after.heldout = MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, c->heldout_model, true,
-                                               ctx.options->trials, seed, &ignored, ViewSetOf(before.gap_views),
-                                               &flicker,
-                                               c->heldout_theory.mean.empty() ? nullptr : &c->heldout_theory),
-                               before.gap_views);
+  c->heldout_residuals = RecordResiduals(scored.rate, scored.layout, scored.observed, c->heldout_model, true,
+                                         ctx.options->trials, seed, &ignored, ViewSetOf(before.gap_views), &flicker,
+                                         c->heldout_theory.mean.empty() ? nullptr : &c->heldout_theory);
+  c->after.heldout = MetricsOf(c->heldout_residuals, before.gap_views);
   c->heldout_in_gap_views = true;
 }
 
 GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorModel& model, int h, bool gap_views,
-                        std::uint64_t seed) {
+                        std::uint64_t seed, std::vector<ViewResiduals>* residuals) {
   const HalfRecord& scored = ctx.halves[h];
   if (!gap_views) return CurveMetrics(model, scored.curve);
   std::string ignored;
   const std::vector<View>& gap = HeldoutBaseline(ctx, h, threshold).gap_views;
   const SharedFlicker flicker = RecordFlicker(ctx, h);
-  return MetricsOf(RecordResiduals(scored.rate, scored.layout, scored.observed, model, true, ctx.options->trials, seed,
-                                   &ignored, ViewSetOf(gap), &flicker),
-                   gap);
+  std::vector<ViewResiduals> views = RecordResiduals(scored.rate, scored.layout, scored.observed, model, true,
+                                                     ctx.options->trials, seed, &ignored, ViewSetOf(gap), &flicker);
+  const GapMetrics metrics = MetricsOf(views, gap);
+  if (residuals != nullptr) *residuals = std::move(views);
+  return metrics;
 }
 
 }  // namespace allanlab::experiments::detail

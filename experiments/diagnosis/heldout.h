@@ -20,8 +20,12 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
 void HeldoutViews(const Context& ctx, double threshold, CandidateResult* c, std::uint64_t seed);
 
 // `model` scored on half `h`: on the views in which that half departs from the other half's
-// baseline (`gap_views`, as HeldoutViews) or on OAVAR.
+// baseline (`gap_views`, as HeldoutViews) or on OAVAR. With `residuals`, the per-view residuals
+// of the gap views (left empty on OAVAR).
 GapMetrics HeldoutScore(const Context& ctx, double threshold, const sim::SensorModel& model, int h, bool gap_views,
-                        std::uint64_t seed);
+                        std::uint64_t seed, std::vector<ViewResiduals>* residuals = nullptr);
+
+// The residuals of the views of `views` pooled.
+GapMetrics MetricsOf(const std::vector<ViewResiduals>& residuals, const std::vector<View>& views);
 
 }  // namespace allanlab::experiments::detail
