@@ -4,9 +4,9 @@
 // phase variogram and moment sums, and each simulated record of a Monte Carlo view (8 bytes x 1e7
 // samples = 80 MB a block). A fresh block is faulted in 4 KiB page by page, and on 1e7 samples
 // those page faults were about a quarter of the run's CPU (perf; the kernel's fault path, not the
-// arithmetic). With the blocks on 2 MiB pages the Gauss-Markov gap record of
-// results/benchmarks/diagnose.md took 46 s instead of 72 s, the model's exact OAVAR moments 0.6 s
-// instead of 2.3 s. Where the kernel's transparent huge pages are in madvise mode (Debian's
+// arithmetic). With the blocks on 2 MiB pages the 1e7-sample Gauss-Markov gap record of
+// results/benchmarks/diagnose.md took 49 s instead of 72 s, one model's exact OAVAR moments
+// 1.1-1.4 s instead of 2.3 s and its Gaussian views 1.5 s instead of 3.4 s (two threads). Where the kernel's transparent huge pages are in madvise mode (Debian's
 // default) a block goes on huge pages only when asked, so every block of at least kLargeBlock is
 // aligned to a huge page and advised (a block of that size is fresh memory from the kernel,
 // not yet written). Under "always" the advice changes nothing; under "never" it

@@ -11,6 +11,7 @@
 #include "experiments/diagnosis/candidate_estimate.h"
 #include "experiments/diagnosis/heldout.h"
 #include "experiments/diagnosis/line_shape.h"
+#include "experiments/diagnosis/set_rules.h"
 
 namespace allanlab::experiments::detail {
 namespace {
@@ -250,117 +251,6 @@ GapMetrics HeldoutOnSameFooting(const Context& ctx, double threshold, const Cand
   return HeldoutScore(ctx, threshold, model, next.heldout_half, next.heldout_in_gap_views, seed, residuals);
 }
 
-// Whether `next` (current plus one effect) earns its place: the held-out chi2 falls by the
-// margin and by the added effect's AIC penalty, over the held-out views or over those of them the
-// added effect shows in (the registry's views); on some view the added effect shows in where the
-// record departs from the baseline and the current set still departs, the record's chi2 falls by
-// the margin (the effect explains part of the record's gap by something it is known by, not a
-// departure the other members' refit made: a quantizer's refit that moves the trend view over
-// the threshold does not call for a warm-up drift); and no view within the threshold before
-// leaves it (docs/theory.md §6.4).
-// Why the held-out fall may be read in the added effect's own views: a member already in the set
-// can leave a held-out chi2 that no later member could lower, and that swamps the added one's. On
-// the MTi-G record, spikes whose count differs between the halves left 726 in the held-out
-// kurtosis, halves and dynamic views; a Gauss-Markov process added to them took every view of the
-// whole record within |z| 2, yet the held-out total fell only to 611, short of the margin.
-bool EarnsItsPlace(const Context& ctx, double threshold, const ModelGap& baseline, const CandidateResult& current,
-                   const CandidateResult& next, const GapMetrics& heldout_before,
-                   const std::vector<ViewResiduals>& heldout_before_residuals, CandidateResult::Step* step,
-                   std::string* why) {
-  const double margin = ctx.options->set_margin;
-  const EffectInstance& added = next.effects.back();
-  const double penalty = 2.0 * static_cast<double>(EffectParameterNames(added.effect).size());
-  const auto& shows = SpecOf(added.effect).views;
-  auto falls = [&](const GapMetrics& before, const GapMetrics& after) {
-    return after.chi2 <= (1.0 - margin) * before.chi2 - penalty;
-  };
-  std::vector<View> own_views;
-  for (const ViewResiduals& r : next.heldout_residuals) {
-    if (std::find(shows.begin(), shows.end(), r.view) != shows.end()) own_views.push_back(r.view);
-  }
-  const GapMetrics own_before = MetricsOf(heldout_before_residuals, own_views);
-  const GapMetrics own_after = MetricsOf(next.heldout_residuals, own_views);
-  const bool own_falls = !heldout_before_residuals.empty() && own_before.points > 0 && own_after.points > 0 &&
-                         falls(own_before, own_after);
-  *step = {added.effect, heldout_before, next.after.heldout, {}, {}};
-  if (own_falls && !falls(heldout_before, next.after.heldout)) {
-    step->own_views_before = own_before;
-    step->own_views_after = own_after;
-  }
-  if (!next.after.has_heldout || !(falls(heldout_before, next.after.heldout) || own_falls)) {
-    *why = "held-out chi2 " + SignificantDigits(heldout_before.chi2, 4) + " -> " + SignificantDigits(next.after.heldout.chi2, 4);
-    if (own_before.points > 0 && own_after.points > 0) {
-      *why += "; in its own views " + SignificantDigits(own_before.chi2, 4) + " -> " + SignificantDigits(own_after.chi2, 4);
-    }
-    return false;
-  }
-  bool explains = false;
-  std::string unexplained;
-  for (const ViewResiduals& r : next.after.views) {
-    const GapMetrics was = current.after.View(r.view), now = Metrics(r.z);
-    if (was.points == 0) continue;
-    if (was.max_abs_z > threshold && baseline.View(r.view).max_abs_z > threshold &&
-        std::find(shows.begin(), shows.end(), r.view) != shows.end()) {
-      if (now.chi2 <= (1.0 - margin) * was.chi2) {
-        explains = true;
-      } else if (unexplained.empty()) {
-        unexplained = std::string(ViewId(r.view)) + " chi2 " + SignificantDigits(was.chi2, 4) + " -> " + SignificantDigits(now.chi2, 4);
-      }
-    }
-    if (was.max_abs_z <= threshold && now.max_abs_z > threshold) {
-      *why = std::string(ViewId(r.view)) + " leaves the threshold";
-      return false;
-    }
-  }
-  if (!explains) *why = unexplained.empty() ? "no view of the effect holds a gap the set leaves" : unexplained;
-  return explains;
-}
-
-bool Clashes(const std::vector<EffectInstance>& members, Effect e) {
-  for (const EffectInstance& member : members) {
-    if (member.effect == e) return true;
-    for (const auto& eq : AllanEquivalents(member.effect)) {
-      if (eq.other == e) return true;
-    }
-  }
-  return false;
-}
-
-// A single's standing for a set: the better of its penalised scores on the exact views and on
-// every view (an effect seen outside the exact views, as spikes in the kurtosis, takes part; one
-// the Monte Carlo views' noise hides, as a step beside spikes, too).
-double PoolScore(const CandidateResult& c) { return std::max(c.score, c.full_score); }
-
-// The single candidates a set may add: a positive PoolScore, the best kPoolSize effects, each with
-// its Allan-equivalent (both members of a pair, in one slot; a set takes at most one of them).
-// Why both: alone, the pair's scores differ for reasons a set's other members take over. On the
-// MTi-G record a telegraph outscored the Gauss-Markov process (6912 against 568) by absorbing some
-// of the spikes; beside the spikes' own member the Gauss-Markov process closed every view
-// (|z| <= 2.0) and the telegraph did not earn its place.
-std::vector<std::size_t> SetPool(const DiagnosisSummary& s) {
-  constexpr std::size_t kPoolSize = 5;
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < s.candidates.size(); ++i) {
-    const CandidateResult& c = s.candidates[i];
-    if (c.effects.size() == 1 && PoolScore(c) > 0.0) order.push_back(i);
-  }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return PoolScore(s.candidates[a]) > PoolScore(s.candidates[b]); });
-  std::vector<std::size_t> pool;
-  std::vector<EffectInstance> taken;
-  std::size_t slots = 0;
-  for (std::size_t i : order) {
-    const Effect e = s.candidates[i].effects[0].effect;
-    const bool pooled = std::any_of(taken.begin(), taken.end(), [e](const EffectInstance& t) { return t.effect == e; });
-    const bool joins_its_equivalent = Clashes(taken, e);
-    if (pooled || (!joins_its_equivalent && slots == kPoolSize)) continue;
-    pool.push_back(i);
-    taken.push_back(s.candidates[i].effects[0]);
-    if (!joins_its_equivalent) ++slots;
-  }
-  return pool;
-}
-
 // Forward selection when no single effect closes the gap: from the single with the largest
 // held-out shrink (positive score, all views assessed), each round joins every pool effect
 // (SetPool, not already a member nor Allan-equivalent to one) to the set, refits, and takes, of
@@ -422,7 +312,8 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
                                                      ctx.options->seed + 3000 + 10 * round + t, &before_residuals);
       std::string why;
       CandidateResult::Step step;
-      if (!EarnsItsPlace(ctx, s->threshold, s->before, current, next, before, before_residuals, &step, &why)) {
+      if (!EarnsItsPlace(ctx.options->set_margin, s->threshold, s->before, current, next, before, before_residuals,
+                         &step, &why)) {
         s->notes.push_back("set: " + next.id() + " not kept over " + current.id() + " (" + why + ")");
         continue;
       }
