@@ -127,7 +127,7 @@ struct CandidateResult {
     Effect added;
     GapMetrics heldout_before, heldout_after;
     // The same in the held-out views the added effect shows in (the registry's views), where a
-    // later member was judged there (points 0: not read; verdict.cc EarnsItsPlace).
+    // later member was judged there (points 0: not read; set_rules.h EarnsItsPlace).
     GapMetrics own_views_before, own_views_after;
   };
   std::vector<Step> steps;
