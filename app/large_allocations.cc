@@ -2,16 +2,16 @@
 //
 // `diagnose` writes arrays of the record's length many times over: each model's autocovariance,
 // phase variogram and moment sums, and each simulated record of a Monte Carlo view (8 bytes x 1e7
-// samples = 80 MB a block). A fresh block is faulted in 4 KiB page by page, and on 1e7 samples
-// those page faults were about a quarter of the run's CPU (perf; the kernel's fault path, not the
-// arithmetic). With the blocks on 2 MiB pages the 1e7-sample Gauss-Markov gap record of
-// results/benchmarks/diagnose.md took 49 s instead of 72 s, one model's exact OAVAR moments
-// 1.1-1.4 s instead of 2.3 s and its Gaussian views 1.5 s instead of 3.4 s (two threads). Where the kernel's transparent huge pages are in madvise mode (Debian's
-// default) a block goes on huge pages only when asked, so every block of at least kLargeBlock is
-// aligned to a huge page and advised (a block of that size is fresh memory from the kernel,
-// not yet written). Under "always" the advice changes nothing; under "never" it
-// is ignored (common/huge_pages.h). Smaller blocks are plain malloc. The values computed do not
-// depend on any of this.
+// samples = 80 MB a block). A fresh block is faulted in 4 KiB page by page: on the 1e7-sample
+// Gauss-Markov gap record of results/benchmarks/diagnose.md, perf put 18 % of the run's CPU in
+// the kernel's page-fault path and 9 % in zeroing fresh blocks. With the blocks on 2 MiB pages
+// that record took 49 s instead of 72 s, one model's exact OAVAR moments 1.1-1.4 s instead of
+// 2.3 s and its Gaussian views 1.5 s instead of 3.4 s (two threads). Where the kernel's
+// transparent huge pages are in madvise mode (Debian's default) a block goes on huge pages only
+// when asked, so every block of at least kHugePageAdviceMinBytes is aligned to a huge page and
+// advised (a block of that size is fresh memory from the kernel, not yet written). Under
+// "always" the advice changes nothing; under "never" it is ignored (common/huge_pages.h).
+// Smaller blocks are plain malloc. The values computed do not depend on any of this.
 #include <cstdlib>
 #include <new>
 
@@ -19,13 +19,13 @@
 
 namespace {
 
-constexpr std::size_t kHugePage = std::size_t{2} << 20;
-constexpr std::size_t kLargeBlock = std::size_t{4} << 20;
+using allanlab::kHugePageAdviceMinBytes;
+using allanlab::kHugePageBytes;
 
 void* TryAllocate(std::size_t size) {
-  if (size < kLargeBlock) return std::malloc(size == 0 ? 1 : size);
-  const std::size_t rounded = (size + kHugePage - 1) / kHugePage * kHugePage;
-  void* p = std::aligned_alloc(kHugePage, rounded);
+  if (size < kHugePageAdviceMinBytes) return std::malloc(size == 0 ? 1 : size);
+  const std::size_t rounded = (size + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+  void* p = std::aligned_alloc(kHugePageBytes, rounded);
   allanlab::AdviseHugePages(p, rounded);
   return p;
 }

@@ -25,8 +25,7 @@ namespace {
 
 void AdviseHugePages(void* data, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  static constexpr std::size_t kMinBytes = std::size_t{4} << 20;
-  if (data == nullptr || bytes < kMinBytes) return;
+  if (data == nullptr || bytes < kHugePageAdviceMinBytes) return;
   AdviseWholePages(data, bytes, MADV_HUGEPAGE);
 #else
   (void)data;

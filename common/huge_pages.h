@@ -8,9 +8,14 @@
 
 namespace allanlab {
 
+// The size of a transparent huge page, and the smallest array AdviseHugePages advises: below
+// it at most one huge page would fit, and small blocks are reused from the heap.
+inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
+inline constexpr std::size_t kHugePageAdviceMinBytes = std::size_t{4} << 20;
+
 // Advises the kernel to back the whole 4 KiB pages of [data, data + bytes) with huge pages.
-// Call before the first write to the memory; results never depend on it. Arrays below 4 MiB are
-// left alone (at most one huge page would fit, and small blocks are reused from the heap).
+// Call before the first write to the memory; results never depend on it. Arrays below
+// kHugePageAdviceMinBytes are left alone.
 void AdviseHugePages(void* data, std::size_t bytes);
 
 // Has the kernel fault in the whole 4 KiB pages of [data, data + bytes) for writing (zeroing the

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <memory>
 #include <vector>
 
 namespace allanlab::estimators {
@@ -30,6 +29,10 @@ AvarMoments ExactAvarMoments(std::span<const double> autocovariance, std::int64_
 
 namespace {
 
+// Variograms split into double pairs up to this many lags (the pairs double the variogram's
+// memory: beyond, the long doubles are read, as before).
+constexpr std::size_t kMaxSplitLags = std::size_t{1} << 24;
+
 // sum_{k=1}^{count-1} (count - k) D(k)^2, D(k) = 6V(k) - 4V(k+m) - 4V(|k-m|) + V(k+2m) + V(|k-2m|) the
 // fourth difference of the variogram at step m (the overlapping differences' covariance up to the
 // scale). D is the second difference of A(j) = V(j+m) - 2V(j) + V(|j-m|), itself a second
@@ -37,31 +40,14 @@ namespace {
 // and kept in double, being of the size of the covariances rather than of V; D and the sum then
 // run in double, several times faster than the five long-double terms per k, and no less accurate
 // (A's rounding is relative to A, not to V).
-constexpr std::size_t kMaxKeptLags = std::size_t{1} << 22;
-// Variograms split into double pairs up to this many lags (the pairs double the variogram's
-// memory: beyond, the long doubles are read, as before).
-constexpr std::size_t kMaxSplitLags = std::size_t{1} << 24;
-
 // `v(j)` is V(j) as a long double (read from the variogram or from its split: the same value).
 template <class Variogram>
-long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count, std::vector<double>* scratch) {
+long double OverlappingLagSum(const Variogram& v, std::int64_t m, std::int64_t count, std::vector<double>* buffer) {
   const std::int64_t last = count - 1 + m;  // A is read up to k + m
-  // Every A(0..last) is written before it is read: the caller's scratch, else a buffer kept per
-  // thread, not a zeroed record-sized vector per m (zeroing it was about a sixth of
-  // ModelAvarMoments). Beyond kMaxKeptLags (32 MB) without scratch the buffer is the call's own,
-  // so long records keep no memory.
+  // Every A(0..last) is written before it is read, so a buffer reused across m needs no clearing.
   const auto size = static_cast<std::size_t>(last + 1);
-  thread_local std::vector<double> kept;
-  std::unique_ptr<double[]> own;
-  double* a = nullptr;
-  if (scratch != nullptr || size <= kMaxKeptLags) {
-    std::vector<double>& buffer = scratch != nullptr ? *scratch : kept;
-    if (buffer.size() < size) buffer.resize(size);
-    a = buffer.data();
-  } else {
-    own = std::make_unique_for_overwrite<double[]>(size);
-    a = own.get();
-  }
+  if (buffer->size() < size) buffer->resize(size);
+  double* a = buffer->data();
   for (std::int64_t j = 0; j <= last; ++j) {
     a[static_cast<std::size_t>(j)] = static_cast<double>(v(j + m) - 2.0L * v(j) + v(std::llabs(j - m)));
   }
@@ -117,7 +103,8 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
   long double sum = starts.count * c0 * c0;
   if (starts.stride == 1) {
     const std::int64_t last = starts.count - 1 + 2 * m;  // the largest lag the sum reads
-    std::vector<double>* buffer = scratch != nullptr ? &scratch->first : nullptr;
+    MomentScratch own;
+    std::vector<double>* buffer = scratch != nullptr ? &scratch->first : &own.first;
     long double lag_sum;
     if (static_cast<std::int64_t>(split.hi.size()) > last) {
       const double* hi = split.hi.data();

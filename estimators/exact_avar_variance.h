@@ -46,8 +46,7 @@ SplitVariogram SplitPhaseVariogram(std::span<const long double> variogram);
 // Working memory of the O(N) moment sums, reused across the m of one grid. A loop over m that
 // passes one per thread touches its pages once: allocating the record-sized buffers afresh for
 // each m (zeroed, and faulted in page by page) was over half of the exact theory's time at 1e7
-// samples. Without one, the OAVAR sum keeps a buffer of up to 2^22 lags per thread (a longer
-// one is the call's own) and the OHVAR sum allocates its own.
+// samples. Without one, each call allocates its own.
 struct MomentScratch {
   std::vector<double> first, second;
 };

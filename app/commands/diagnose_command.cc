@@ -218,8 +218,6 @@ void WriteValidation(std::ostream& os, const Json& v, bool markdown) {
   }
 }
 
-}  // namespace
-
 // The diagnosis's notes, then the value grid's step (when the samples sit on one) in the
 // report's units and the record's.
 std::vector<std::string> ReportNotes(const DiagnosisSummary& s, const DiagnoseUnits& unit) {
@@ -231,6 +229,8 @@ std::vector<std::string> ReportNotes(const DiagnosisSummary& s, const DiagnoseUn
   }
   return notes;
 }
+
+}  // namespace
 
 Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& validation,
                    const DiagnoseUnits& unit) {
