@@ -1,6 +1,7 @@
 #include "sim/sensor_model.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -13,7 +14,7 @@
 #include <boost/random/uniform_real_distribution.hpp>
 
 #include "sim/band_limited_avar.h"
-#include "sim/first_order_period.h"
+#include "sim/section_period.h"
 #include "sim/kasdin_finite_record.h"
 
 namespace allanlab::sim {
@@ -310,19 +311,19 @@ std::vector<double> SensorModel::Generate(std::uint64_t seed, std::uint64_t tria
     for (double w : boxes) cascade.emplace_back(w);
     constexpr std::int64_t kChunk = 4096;
     const bool average = band_limit.sampling == OutputSampling::kAverage;
-    const bool per_period = options.white_per_output_period && first_order && boxes.empty() && harmonics.empty();
+    const bool per_period = options.white_per_output_period && boxes.empty() && harmonics.empty();
     if (per_period) {
       double internal_variance = 0.0;
       for (const WhiteRateNoise* w : whites) {
         internal_variance += w->arw_rad_per_sqrt_s * w->arw_rad_per_sqrt_s / tau_internal;
       }
-      FirstOrderPeriod period(filter, l, internal_variance, average);
+      SectionPeriod period(filter, l, internal_variance, average);
       boost::random::normal_distribution<double> normal(0.0, 1.0);
       Engine* engine = wide_engines.empty() ? nullptr : &wide_engines.front();
+      std::array<double, 3> z{};
       for (std::int64_t k = 0; k < total; ++k) {
-        const double z1 = period.draws() > 0 ? normal(*engine) : 0.0;
-        const double z2 = period.draws() > 1 ? normal(*engine) : 0.0;
-        const double y = period.Step(out[k], z1, z2);
+        for (int d = 0; d < period.draws(); ++d) z[static_cast<std::size_t>(d)] = normal(*engine);
+        const double y = period.Step(out[k], z);
         if (k >= burn_in) out[k - burn_in] = y;
       }
     }

@@ -30,10 +30,10 @@ enum class FlickerBandLimit {
 
 // Choices in how Generate draws a record that change its random stream but not its law.
 struct GenerateOptions {
-  // White rate noise behind an impulse-invariant first-order band-limit without harmonics: drawn
-  // one output period at a time (first_order_period.h), 2 Gaussian draws per output sample instead
-  // of the oversampling L. Exact in distribution; for Monte Carlo envelopes, where only the law
-  // matters.
+  // White rate noise behind an IIR band-limit (first- or second-order section, not the box kinds)
+  // without harmonics: drawn one output period at a time (section_period.h), at most 3 Gaussian
+  // draws per output sample instead of the oversampling L. Exact in distribution; for Monte Carlo
+  // envelopes, where only the law matters.
   bool white_per_output_period = false;
   // With a cache: the first Kasdin flicker term draws from stream kSharedFlickerStream of
   // (flicker_seed, trial) instead of its own stream of (seed, trial), so the models generated with

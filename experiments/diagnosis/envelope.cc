@@ -13,7 +13,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Only the law of the simulated records matters to an envelope: the band-limited white noise is
-// drawn per output period where that is exact (sim/first_order_period.h), and the flicker record
+// drawn per output period where that is exact (sim/section_period.h), and the flicker record
 // is shared when asked (docs/theory.md §6.1).
 sim::GenerateOptions EnvelopeGeneration(const SharedFlicker* shared_flicker) {
   sim::GenerateOptions options{.white_per_output_period = true};
