@@ -99,13 +99,17 @@ void Resonance::FillAutocovariance(double tau0_s, std::span<double> r, std::int6
   }
 }
 
+Resonance::GeometricForm Resonance::Geometric(double tau0_s) const {
+  const Poles p = PolesOf(*this);
+  return {sigma_rad_per_s * sigma_rad_per_s * std::complex<double>(1.0, -p.sin_gain),
+          std::complex<double>(-p.decay_per_s, p.wd_rad_s) * tau0_s};
+}
+
 double Resonance::ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape&) const {
   if (sigma_rad_per_s == 0.0) return 0.0;
-  const Poles p = PolesOf(*this);
   // cos(wd t) + g sin(wd t) = Re[(1 - i g) e^{i wd t}].
-  const std::complex<double> z = std::exp(std::complex<double>(-p.decay_per_s, p.wd_rad_s) * tau0_s);
-  const std::complex<double> c = sigma_rad_per_s * sigma_rad_per_s * std::complex<double>(1.0, -p.sin_gain);
-  return GeometricAvar(m, z, c);
+  const GeometricForm g = Geometric(tau0_s);
+  return GeometricAvar(m, std::exp(g.log_pole), g.weight);
 }
 
 double Resonance::AsymptoticAvar(double tau_s) const {

@@ -36,6 +36,12 @@ struct Resonance {
   // Allan quadratic form of a geometric autocovariance sums in closed form (the AR(1) form with
   // a complex pole); O(1) per m, the lag sum where the closed form would cancel (m |1 - z| small).
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape) const;
+  // R(k) = Re[weight e^{k log_pole}] for k >= 0: weight = sigma^2 (1 - i zeta / sqrt(1 - zeta^2)),
+  // log_pole = (-zeta w0 + i wd) tau0 (what sums over lags of R need in closed form).
+  struct GeometricForm {
+    std::complex<double> weight, log_pole;
+  };
+  GeometricForm Geometric(double tau0_s) const;
   // Continuous-time AVAR: the Gauss-Markov form with a complex pole l = zeta w0 - i wd,
   //   Re[c (2 l tau - 3 + 4 e^{-l tau} - e^{-2 l tau}) / (l tau)^2], c = sigma^2 (1 - i zeta/sqrt(1-zeta^2)).
   double AsymptoticAvar(double tau_s) const;
