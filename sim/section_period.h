@@ -35,6 +35,7 @@ class SectionPeriod {
   std::array<double, 3> held_map_{};
   std::array<std::array<double, 3>, 3> noise_factor_{};  // lower-triangular, columns beyond draws_ zero
   int draws_ = 0;
+  bool first_order_ = false;  // b1 = b2 = a2 = 0: z2 stays 0, its row and column are skipped
   double z1_ = 0.0, z2_ = 0.0;
 };
 
