@@ -14,8 +14,8 @@
 #include <boost/random/uniform_real_distribution.hpp>
 
 #include "sim/band_limited_avar.h"
-#include "sim/section_period.h"
 #include "sim/kasdin_finite_record.h"
+#include "sim/section_period.h"
 
 namespace allanlab::sim {
 namespace {
