@@ -80,7 +80,8 @@ bool HeldoutModel(const Context& ctx, const std::vector<EffectInstance>& effects
   estimators::FitSummary fit = fit_half.baseline;
   if (!stationary.empty()) {
     sim::SensorModel ignored_model;
-    if (!BestRefit(ctx.spec, fit_half.curve, fit_half.edf, fit_half.baseline, &stationary, &fit, &ignored_model, why)) {
+    if (!BestRefit(ctx.spec, fit_half.curve, fit_half.edf, fit_half.baseline, &stationary, &fit, &ignored_model, why,
+                   {}, /*profile_ranges=*/false)) {
       return false;
     }
   }

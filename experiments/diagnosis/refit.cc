@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #include "estimators/fit/parametric_fit.h"
@@ -17,15 +18,21 @@ namespace {
 
 using estimators::Coefficient;
 
+// Adds a kept fit's profile ranges (its values unchanged): the refits form them only for the
+// option BestRefit keeps, and only when asked.
+using RangesLater = std::function<bool(estimators::FitSummary* fit)>;
+
 
 // The linear terms refitted with `effects` in the model, three passes: the curve divided by the
 // model's E[linear + effects] / E[linear] (exact for an additive effect at the solution, and the
 // right correction for a band-limit, which scales rather than adds), or for quantizers (whose
 // error is uncorrelated with the signal: additive) the curve minus E[linear + effects] -
-// E[linear].
+// E[linear]. `ranges` (may be null): receives how to add the fit's profile ranges, which are
+// left unset (RangesLater).
 bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                     const estimators::FitSummary& start, const std::vector<EffectInstance>& effects,
-                    estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
+                    estimators::FitSummary* fit, sim::SensorModel* model, std::string* why,
+                    RangesLater* ranges) {
   const sim::RecordShape shape{curve.num_samples, curve.estimator};
   estimators::FitSummary current = start;
   const bool subtract = std::all_of(effects.begin(), effects.end(), [](const EffectInstance& e) {
@@ -51,12 +58,18 @@ bool FitWithEffects(const BaselineSpec& spec, const estimators::AvarCurve& curve
       if (subtract) adjusted.avar[i] = std::max(curve.avar[i] - (e_full[i] - e_lin[i]), 0.1 * adjusted.avar[i]);
     }
     estimators::FitSummary next;
-    // The passes before the last are read for their values only (the next pass's ratio).
-    if (!FitLinear(spec, adjusted, &next, nullptr, /*profile_ranges=*/pass == 2)) {
+    // Every pass is read for its values only (the next pass's ratio; the last one's ranges, when
+    // asked, are added by `ranges` from the same curve).
+    if (!FitLinear(spec, adjusted, &next, nullptr, /*profile_ranges=*/false)) {
       *why = "refit failed: " + next.message;
       return false;
     }
     current = next;
+    if (pass == 2 && ranges != nullptr) {
+      *ranges = [&spec, adjusted](estimators::FitSummary* f) {
+        return FitLinear(spec, adjusted, f, nullptr, /*profile_ranges=*/true);
+      };
+    }
   }
   *fit = current;
   return WithEffects(spec.Model(current, curve.sample_clock), effects, model, why);
@@ -165,7 +178,8 @@ bool FittedEffectsPossible(const std::vector<EffectInstance>& effects, const std
 // effect is not a library term (the caller then uses the ratio refit).
 bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                    const estimators::FitSummary& baseline, std::vector<EffectInstance>* effects,
-                   estimators::FitSummary* fit, sim::SensorModel* model, std::string* why) {
+                   estimators::FitSummary* fit, sim::SensorModel* model, std::string* why,
+                   RangesLater* ranges) {
   // Every coefficient held (a sensor model as given, nothing floated): the fit library needs a
   // linear term to solve for (an empty design crashes its QR), so the effects keep their starts.
   if (spec.terms.empty()) return false;
@@ -282,13 +296,17 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     }
   }
   if (!any) return false;
-  // The kept fit again with its profile ranges: the same options give the same fit (ranges do not
+  // The kept fit's profile ranges, when asked: the same options give the same fit (ranges do not
   // move it), and one more fit costs less than the ranges of every fit tried (up to six: 40 % of
   // their time went to ranges nobody read).
-  best_options.profile_ranges = true;
-  if (!estimators::FitAvarModelWithTerms(best_options, fit_curve, &best)) {
-    *why = best.base.message;
-    return false;
+  if (ranges != nullptr) {
+    *ranges = [options = best_options, fit_curve](estimators::FitSummary* f) mutable {
+      options.profile_ranges = true;
+      estimators::ParametricFitSummary again;
+      if (!estimators::FitAvarModelWithTerms(options, fit_curve, &again)) return false;
+      *f = again.base;
+      return true;
+    };
   }
   std::vector<EffectInstance> fitted = *effects;
   for (std::size_t i = 0; i < fitted.size(); ++i) {
@@ -324,7 +342,7 @@ bool FitParametric(const BaselineSpec& spec, const estimators::AvarCurve& curve,
 bool RefitOnClearedRecord(const BaselineSpec& spec, SampleClock sample_clock, std::span<const double> rate,
                           const std::vector<EffectInstance>& events, std::vector<EffectInstance> rest,
                           std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
-                          sim::SensorModel* model, std::string* why) {
+                          sim::SensorModel* model, std::string* why, bool profile_ranges) {
   sim::SensorModel event_model;
   event_model.sample_clock = sample_clock;
   for (const EffectInstance& e : events) {
@@ -336,14 +354,17 @@ bool RefitOnClearedRecord(const BaselineSpec& spec, SampleClock sample_clock, st
   estimators::AvarCurve cleared_curve;
   if (!RecordCurve(cleared, sample_clock, &cleared_curve, why)) return false;
   estimators::FitSummary cleared_fit;
-  if (!FitLinear(spec, cleared_curve, &cleared_fit, nullptr)) {
+  if (!FitLinear(spec, cleared_curve, &cleared_fit, nullptr, profile_ranges)) {
     *why = "refit on the record less the events failed: " + cleared_fit.message;
     return false;
   }
   sim::SensorModel rest_model = spec.Model(cleared_fit, sample_clock);
   if (!rest.empty()) {
     const OavarTheory theory = ExactOavar(rest_model, cleared_curve.m, cleared_curve.num_samples);
-    if (!BestRefit(spec, cleared_curve, theory.edf, cleared_fit, &rest, &cleared_fit, &rest_model, why)) return false;
+    if (!BestRefit(spec, cleared_curve, theory.edf, cleared_fit, &rest, &cleared_fit, &rest_model, why, {},
+                   profile_ranges)) {
+      return false;
+    }
   }
   *fit = cleared_fit;
   // The effects in their asked order, those refitted with their fitted parameters.
@@ -384,13 +405,14 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                std::span<const double> edf,
                const estimators::FitSummary& start, std::vector<EffectInstance>* effects,
                estimators::FitSummary* fit, sim::SensorModel* model, std::string* why,
-               std::span<const double> record_rate) {
+               std::span<const double> record_rate, bool profile_ranges) {
   if (!record_rate.empty()) {
     std::vector<EffectInstance> events, rest;
     // The one-off events (effect.h) are the effects with a deterministic path.
     for (const EffectInstance& e : *effects) (IsOneOffEvent(e.effect) ? events : rest).push_back(e);
     if (!events.empty()) {
-      return RefitOnClearedRecord(spec, curve.sample_clock, record_rate, events, rest, effects, fit, model, why);
+      return RefitOnClearedRecord(spec, curve.sample_clock, record_rate, events, rest, effects, fit, model, why,
+                                  profile_ranges);
     }
   }
   struct Option {
@@ -398,13 +420,14 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
     estimators::FitSummary fit;
     sim::SensorModel model;
     double chi2 = 0.0;  // then AIC
+    RangesLater ranges;  // empty: fit already has its ranges (the start's)
   };
   std::vector<Option> options_tried;
   std::string ignored;
   std::vector<std::vector<EffectInstance>> starts = {*effects};
   {
-    Option o{*effects, {}, {}, 0.0};
-    if (FitParametric(spec, curve, start, &o.effects, &o.fit, &o.model, &ignored)) {
+    Option o{*effects, {}, {}, 0.0, {}};
+    if (FitParametric(spec, curve, start, &o.effects, &o.fit, &o.model, &ignored, &o.ranges)) {
       starts.push_back(o.effects);
       // A linear term the effect has made insignificant (a bias step's variance left to a rate
       // random walk within its sigma of zero) still shapes the other views, where it is wrong:
@@ -418,17 +441,19 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
           dropped = true;
         }
       }
-      Option r{*effects, {}, {}, 0.0};
-      if (dropped && FitParametric(spec, curve, reduced, &r.effects, &r.fit, &r.model, &ignored)) {
+      Option r{*effects, {}, {}, 0.0, {}};
+      if (dropped && FitParametric(spec, curve, reduced, &r.effects, &r.fit, &r.model, &ignored, &r.ranges)) {
         options_tried.push_back(std::move(r));
       }
       options_tried.push_back(std::move(o));
     }
   }
   for (const auto& from : starts) {
-    Option o{from, {}, {}, 0.0};
-    if (FitWithEffects(spec, curve, start, o.effects, &o.fit, &o.model, why)) options_tried.push_back(std::move(o));
-    Option held{from, start, {}, 0.0};
+    Option o{from, {}, {}, 0.0, {}};
+    if (FitWithEffects(spec, curve, start, o.effects, &o.fit, &o.model, why, &o.ranges)) {
+      options_tried.push_back(std::move(o));
+    }
+    Option held{from, start, {}, 0.0, {}};
     if (WithEffects(spec.Model(start, curve.sample_clock), held.effects, &held.model, &ignored)) options_tried.push_back(std::move(held));
   }
   if (options_tried.empty()) return false;
@@ -451,9 +476,15 @@ bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
       best_possible = p;
     }
   }
-  *effects = std::move(options_tried[best].effects);
-  *fit = std::move(options_tried[best].fit);
-  *model = std::move(options_tried[best].model);
+  // Only the kept option's ranges are formed (a refit's ranges cost more than the refit).
+  Option& kept = options_tried[best];
+  if (profile_ranges && kept.ranges && !kept.ranges(&kept.fit)) {
+    *why = "the refit's profile ranges failed: " + kept.fit.message;
+    return false;
+  }
+  *effects = std::move(kept.effects);
+  *fit = std::move(kept.fit);
+  *model = std::move(kept.model);
   return true;
 }
 

@@ -24,10 +24,13 @@ bool WithEffects(sim::SensorModel model, const std::vector<EffectInstance>& effe
 // parameters. `record_rate`: the record `curve` was computed from [rad/s] (empty in curve mode);
 // when given and an effect places a deterministic path (a bias step, a warm-up drift, held at its
 // estimate), the terms and the other effects are fitted to the curve of the record less that
-// path instead (docs/theory.md §6.4).
+// path instead (docs/theory.md §6.4). `profile_ranges` false: the refit's coefficient intervals
+// and upper limits are left unset (for models of which only the values are read: the held-out
+// half's).
 bool BestRefit(const BaselineSpec& spec, const estimators::AvarCurve& curve,
                std::span<const double> edf, const estimators::FitSummary& start,
                std::vector<EffectInstance>* effects, estimators::FitSummary* fit,
-               sim::SensorModel* model, std::string* why, std::span<const double> record_rate = {});
+               sim::SensorModel* model, std::string* why, std::span<const double> record_rate = {},
+               bool profile_ranges = true);
 
 }  // namespace allanlab::experiments::detail
