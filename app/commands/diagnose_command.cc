@@ -311,6 +311,20 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
   j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline, unit)}, {"band_limit", band_limit},
                    {"fit", {{"chi2", s.baseline.gof_chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
   if (!validation.is_null()) j["validation"] = validation;
+  if (s.line_drift) {
+    const LineDrift& d = *s.line_drift;
+    j["line_drift"] = {{"line_hz", s.line_drift_frequency_hz},
+                       {"blocks", kLineDriftBlocks},
+                       {"block_s", d.block_s},
+                       {"frequency_first_hz", d.frequency_hz.first},
+                       {"frequency_last_hz", d.frequency_hz.last},
+                       {"frequency_t", d.frequency_hz.t},
+                       {"power_first_rad2_per_s2", d.power.first},
+                       {"power_last_rad2_per_s2", d.power.last},
+                       {"power_t", d.power.t},
+                       {"t_threshold", kLineDriftT},
+                       {"drifts", d.FrequencyDrifts() || d.PowerDrifts()}};
+  }
   j["notes"] = ReportNotes(s, unit);
   j["provenance"] = ProvenanceJson(p);
   return j;

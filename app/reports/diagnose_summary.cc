@@ -104,6 +104,24 @@ std::string Where(const GapRegion& r, const DiagnoseUnits& u) {
   return "?";
 }
 
+// A line that moves: its centroid and power at the first and last block, each slope's t.
+std::string LineDriftText(const experiments::LineDrift& d, double line_hz) {
+  const std::string blocks = std::to_string(experiments::kLineDriftBlocks) + " blocks of " + PlainNumber(d.block_s) + " s";
+  const double change = 100.0 * (d.power.last / d.power.first - 1.0);
+  const std::string power = std::string("its power ") + (change >= 0.0 ? "rises " : "falls ") +
+                            PlainNumber(std::abs(change)) + " % from the first block to the last (t = " +
+                            PlainNumber(d.power.t) + (d.PowerDrifts() ? ")" : ", within its noise)");
+  if (d.FrequencyDrifts()) {
+    return "the spectral line near " + PlainNumber(line_hz) + " Hz moves along the record: its centre from " +
+           PlainNumber(d.frequency_hz.first) + " Hz in the first block to " + PlainNumber(d.frequency_hz.last) +
+           " Hz in the last (straight line over " + blocks + ", t = " + PlainNumber(d.frequency_hz.t) + "), " + power +
+           ": a resonance whose frequency drifts (a MEMS mode follows its temperature), which no candidate "
+           "models (each holds its line still)";
+  }
+  return "the spectral line near " + PlainNumber(line_hz) + " Hz keeps its frequency but not its strength: " + power +
+         " over " + blocks + ", which no candidate models (each holds its line's power constant)";
+}
+
 // The regions left, per view: its x range over all of them and the largest |z|.
 std::vector<std::string> Remains(const std::vector<GapRegion>& regions) {
   std::vector<std::string> out;
@@ -228,6 +246,9 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
     if (p.best_tried) p.best_tried_why = c->why_not_verdict;
     p.remains = Remains(s.remaining);
   }
+  if (s.line_drift && (s.line_drift->FrequencyDrifts() || s.line_drift->PowerDrifts())) {
+    p.line_drift = LineDriftText(*s.line_drift, s.line_drift_frequency_hz);
+  }
   for (std::size_t i = 0; i < s.candidates.size(); ++i) {
     const CandidateResult& other = s.candidates[i];
     if (static_cast<int>(i) == s.verdict_candidate || !other.closes_gap) continue;
@@ -288,6 +309,7 @@ std::vector<std::string> PlainLines(const PlainSummary& p) {
   for (const auto& [id, why] : p.also_closes) {
     lines.push_back("not the verdict: " + id + (why.empty() ? "" : " " + why));
   }
+  if (!p.line_drift.empty()) lines.push_back(p.line_drift);
   if (!p.baseline_note.empty()) lines.push_back(p.baseline_note);
   if (!p.shrink.empty()) {
     std::string t = "gap chi2 before -> after " + p.model_label + ": ";
@@ -350,6 +372,7 @@ Json PlainJson(const PlainSummary& p) {
   }
   j["shrink"] = shrink;
   j["remains"] = p.remains;
+  if (!p.line_drift.empty()) j["line_drift"] = p.line_drift;
   Json coefficients = Json::array();
   for (const PlainCoefficient& c : p.coefficients) {
     Json one{{"id", c.id}, {"unit", c.unit},

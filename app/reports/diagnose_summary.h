@@ -69,6 +69,8 @@ struct PlainSummary {
   std::vector<std::pair<std::string, std::string>> also_closes;
   std::string model_label;          // "with bias_step" (empty: baseline only)
   std::string baseline_note;        // the baseline's band-limit, when it has one
+  // A spectral line that moves along the record (frequency or power), when one does.
+  std::string line_drift;
   double threshold_z = 0.0;
   int points = 0;
 };

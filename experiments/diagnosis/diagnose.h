@@ -48,6 +48,7 @@
 #include "experiments/diagnosis/effect.h"
 #include "experiments/diagnosis/envelope.h"
 #include "experiments/diagnosis/gap.h"
+#include "experiments/diagnosis/line_drift.h"
 #include "sim/sensor_model.h"
 
 namespace allanlab::experiments {
@@ -191,6 +192,12 @@ struct DiagnosisSummary {
   // When a harmonic and a resonance both close the gap: the share of the line's power in the
   // whole record's periodogram main lobe (line_shape.h), which chose between them; NaN otherwise.
   double line_lobe_share = std::numeric_limits<double>::quiet_NaN();
+  // The spectral line a resonance or harmonic candidate was fitted to (the verdict's or best
+  // tried model's when it has one, else the best scoring such candidate's), measured along the
+  // record (line_drift.h); nullopt in curve mode, without such a candidate, or where it cannot be
+  // measured.
+  std::optional<LineDrift> line_drift;
+  double line_drift_frequency_hz = std::numeric_limits<double>::quiet_NaN();  // the line measured
   // When an output quantizer won the verdict because the samples sit on its value grid: the grid's
   // step (rad/s); NaN otherwise.
   double value_grid_rad_per_s = std::numeric_limits<double>::quiet_NaN();

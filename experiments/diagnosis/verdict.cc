@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "common/number_text.h"
@@ -10,6 +11,7 @@
 #include "experiments/diagnosis/block_means.h"
 #include "experiments/diagnosis/candidate_estimate.h"
 #include "experiments/diagnosis/heldout.h"
+#include "experiments/diagnosis/line_drift.h"
 #include "experiments/diagnosis/line_shape.h"
 #include "experiments/diagnosis/set_rules.h"
 
@@ -515,6 +517,32 @@ std::string WhyNotVerdict(const Context& ctx, const DiagnosisSummary& s, const C
          " shrinks the held-out chi2 more (" + Num(HeldoutShrink(v)) + "x against " + Num(HeldoutShrink(c)) + "x)";
 }
 
+// The line a resonance or harmonic candidate was fitted to, measured along the record
+// (line_drift.h): the verdict's (or best tried) model's line when it has one, else the line of the
+// best scoring candidate that has one.
+void MeasureCandidateLine(const Context& ctx, DiagnosisSummary* s) {
+  if (!ctx.have_record) return;
+  auto line_of = [](const CandidateResult& c) -> const EffectInstance* {
+    for (const EffectInstance& e : c.effects) {
+      if (e.effect == Effect::kResonance || e.effect == Effect::kHarmonic) return &e;
+    }
+    return nullptr;
+  };
+  const EffectInstance* line = s->verdict_candidate >= 0 ? line_of(s->candidates[s->verdict_candidate]) : nullptr;
+  double best_score = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; line == nullptr && i < s->candidates.size(); ++i) {
+    if (line_of(s->candidates[i]) != nullptr && s->candidates[i].full_score > best_score) best_score = s->candidates[i].full_score;
+  }
+  for (std::size_t i = 0; line == nullptr && i < s->candidates.size(); ++i) {
+    if (line_of(s->candidates[i]) != nullptr && s->candidates[i].full_score == best_score) line = line_of(s->candidates[i]);
+  }
+  if (line == nullptr) return;
+  const double f0 = line->params.at("frequency_hz");
+  const double halfwidth_hz = line->effect == Effect::kResonance ? line->params.at("damping") * f0 : 0.0;
+  s->line_drift = MeasureLineDrift(ctx.rate, ctx.curve.sample_clock.period_s(), f0, halfwidth_hz);
+  if (s->line_drift) s->line_drift_frequency_hz = f0;
+}
+
 }  // namespace
 
 void Finish(const Context& ctx, DiagnosisSummary* s) {
@@ -562,6 +590,7 @@ void Finish(const Context& ctx, DiagnosisSummary* s) {
     }
     s->remaining = FindGapRegions(c.after.views, s->threshold);
   }
+  MeasureCandidateLine(ctx, s);
   for (std::size_t i = 0; i < s->candidates.size(); ++i) {
     if (static_cast<int>(i) == s->verdict_candidate && s->verdict != "unexplained") continue;
     s->candidates[i].why_not_verdict = WhyNotVerdict(ctx, *s, s->candidates[i]);
