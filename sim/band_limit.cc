@@ -1,7 +1,9 @@
 #include "sim/band_limit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <sstream>
 
@@ -224,17 +226,100 @@ std::complex<double> BandLimitChain::WidebandGain(double f_hz) const {
   return sum;
 }
 
+namespace {
+
+using ComplexLd = std::complex<long double>;
+
+// An IIR chain's response ge_n as a sum of geometric terms from `start` on: ge_{start+t} =
+// sum_i c_i p_i^t, p_i the section's poles (the numerator of order <= 2 and the averaging box of
+// L have acted by start = 3 + L - 1). The c_i are solved from ge_start and ge_{start+1} and
+// checked on ge_{start+2}; count 0 where that fails (a box kind, a response too short, repeated
+// poles): the caller sums directly.
+struct GeometricTail {
+  int count = 0;
+  std::array<ComplexLd, 2> pole{}, coef{};
+  std::size_t start = 0;
+};
+
+GeometricTail TailOf(const Biquad& d, const std::vector<double>& g, int l, bool average) {
+  GeometricTail tail;
+  tail.start = 3 + (average ? static_cast<std::size_t>(l - 1) : 0);
+  if (tail.start + 3 > g.size()) return tail;
+  const long double g0 = g[tail.start], g1 = g[tail.start + 1], g2 = g[tail.start + 2];
+  if (d.a2 == 0.0) {
+    tail.count = 1;
+    tail.pole[0] = -static_cast<long double>(d.a1);
+    tail.coef[0] = g0;
+  } else {
+    const ComplexLd disc = std::sqrt(ComplexLd(static_cast<long double>(d.a1) * d.a1 - 4.0L * d.a2));
+    tail.pole[0] = (-static_cast<long double>(d.a1) + disc) / 2.0L;
+    tail.pole[1] = (-static_cast<long double>(d.a1) - disc) / 2.0L;
+    if (std::abs(tail.pole[0] - tail.pole[1]) < 1e-9L) return GeometricTail{};
+    tail.count = 2;
+    tail.coef[0] = (g1 - tail.pole[1] * g0) / (tail.pole[0] - tail.pole[1]);
+    tail.coef[1] = g0 - tail.coef[0];
+  }
+  ComplexLd predicted = 0.0L;
+  for (int i = 0; i < tail.count; ++i) predicted += tail.coef[i] * tail.pole[i] * tail.pole[i];
+  long double peak = 0.0L;
+  for (double v : g) peak = std::max(peak, static_cast<long double>(std::abs(v)));
+  if (std::abs(predicted.real() - g2) > 1e-12L * peak) return GeometricTail{};
+  return tail;
+}
+
+}  // namespace
+
 std::vector<double> BandLimitChain::WhiteOutputAutocovariance(double internal_variance,
                                                               std::int64_t lags) const {
   const auto& g = internal_response_;
   const std::int64_t l = limit_.oversampling;
   std::vector<double> r(static_cast<std::size_t>(lags), 0.0);
-  for (std::int64_t j = 0; j < lags; ++j) {
-    const std::int64_t shift = j * l;
-    if (shift >= static_cast<std::int64_t>(g.size())) break;
+  // The lags whose shift j L lies within the (truncated) response; zero beyond, as its sum is.
+  const std::int64_t support = std::min(lags, (static_cast<std::int64_t>(g.size()) + l - 1) / l);
+  const GeometricTail tail = box_lengths_.empty()
+                                 ? TailOf(design_, g, limit_.oversampling,
+                                          limit_.sampling == OutputSampling::kAverage)
+                                 : GeometricTail{};
+  if (tail.count == 0) {
+    for (std::int64_t j = 0; j < support; ++j) {
+      const auto shift = static_cast<std::size_t>(j * l);
+      long double s = 0.0L;
+      for (std::size_t n = 0; n + shift < g.size(); ++n) s += g[n] * g[n + shift];
+      r[static_cast<std::size_t>(j)] = static_cast<double>(internal_variance * s);
+    }
+    return r;
+  }
+  // sum_n ge_n ge_{n+k} in closed form, O(start) per lag instead of O(len(ge)) (a low cutoff's
+  // response is long, and the baseline's band-limit search builds a chain per cutoff): the head
+  // n < start term by term (ge_{n+k} from the tail once n + k reaches it), and the tail's
+  // sum_{t>=0} ge_{start+t} ge_{start+t+k} = sum_{i,j} c_i c_j p_j^k / (1 - p_i p_j). The tail runs
+  // on past the truncation (by less than 1e-18 of the peak).
+  const std::size_t start = tail.start;
+  std::array<ComplexLd, 2> step{}, power{};  // p_i^L and p_i^k, k = j L
+  for (int i = 0; i < tail.count; ++i) {
+    step[i] = std::pow(tail.pole[i], static_cast<int>(l));
+    power[i] = 1.0L;
+  }
+  auto tail_at = [&](std::size_t m) {  // ge_m for m >= start
+    ComplexLd v = 0.0L;
+    for (int i = 0; i < tail.count; ++i) v += tail.coef[i] * std::pow(tail.pole[i], static_cast<int>(m - start));
+    return v.real();
+  };
+  for (std::int64_t j = 0; j < support; ++j) {
+    const auto k = static_cast<std::size_t>(j * l);
     long double s = 0.0L;
-    for (std::size_t n = 0; n + shift < g.size(); ++n) s += g[n] * g[n + shift];
-    r[j] = static_cast<double>(internal_variance * s);
+    for (std::size_t n = 0; n < start; ++n) {
+      s += static_cast<long double>(g[n]) * (n + k < start ? static_cast<long double>(g[n + k]) : tail_at(n + k));
+    }
+    ComplexLd t = 0.0L;
+    for (int a = 0; a < tail.count; ++a) {
+      for (int b = 0; b < tail.count; ++b) {
+        t += tail.coef[a] * tail.coef[b] * power[b] / (1.0L - tail.pole[a] * tail.pole[b]);
+      }
+    }
+    s += t.real();
+    r[static_cast<std::size_t>(j)] = static_cast<double>(internal_variance * s);
+    for (int i = 0; i < tail.count; ++i) power[i] *= step[i];
   }
   return r;
 }
