@@ -107,10 +107,13 @@ std::string Where(const GapRegion& r, const DiagnoseUnits& u) {
 // A line that moves: its centroid and power at the first and last block, each slope's t.
 std::string LineDriftText(const experiments::LineDrift& d, double line_hz) {
   const std::string blocks = std::to_string(experiments::kLineDriftBlocks) + " blocks of " + PlainNumber(d.block_s) + " s";
+  // A weak line's fitted power can end at or below its floor: then the change as a share is
+  // meaningless, and only its direction is said.
   const double change = 100.0 * (d.power.last / d.power.first - 1.0);
-  const std::string power = std::string("its power ") + (change >= 0.0 ? "rises " : "falls ") +
-                            PlainNumber(std::abs(change)) + " % from the first block to the last (t = " +
-                            PlainNumber(d.power.t) + (d.PowerDrifts() ? ")" : ", within its noise)");
+  const std::string size = d.power.first > 0.0 ? PlainNumber(std::abs(change)) + " % " : "";
+  const std::string power = std::string("its power ") + (d.power.last >= d.power.first ? "rises " : "falls ") + size +
+                            "from the first block to the last (t = " + PlainNumber(d.power.t) +
+                            (d.PowerDrifts() ? ")" : ", within its noise)");
   if (d.FrequencyDrifts()) {
     return "the spectral line near " + PlainNumber(line_hz) + " Hz moves along the record: its centre from " +
            PlainNumber(d.frequency_hz.first) + " Hz in the first block to " + PlainNumber(d.frequency_hz.last) +

@@ -529,12 +529,12 @@ void MeasureCandidateLine(const Context& ctx, DiagnosisSummary* s) {
     return nullptr;
   };
   const EffectInstance* line = s->verdict_candidate >= 0 ? line_of(s->candidates[s->verdict_candidate]) : nullptr;
-  double best_score = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; line == nullptr && i < s->candidates.size(); ++i) {
-    if (line_of(s->candidates[i]) != nullptr && s->candidates[i].full_score > best_score) best_score = s->candidates[i].full_score;
-  }
-  for (std::size_t i = 0; line == nullptr && i < s->candidates.size(); ++i) {
-    if (line_of(s->candidates[i]) != nullptr && s->candidates[i].full_score == best_score) line = line_of(s->candidates[i]);
+  if (line == nullptr) {
+    double best_score = -std::numeric_limits<double>::infinity();
+    for (const CandidateResult& c : s->candidates) {
+      const EffectInstance* e = line_of(c);
+      if (e != nullptr && c.full_score > best_score) best_score = c.full_score, line = e;
+    }
   }
   if (line == nullptr) return;
   const double f0 = line->params.at("frequency_hz");
