@@ -136,10 +136,34 @@ void PsdTheory(const ViewLayout& layout, const std::vector<double>& r, GaussianV
   }
 }
 
+// A sum of independent uniform errors has excess kurtosis down to -1.2 (one error alone), and a
+// statistic whose variance is the share s error keeps at most s^2 of it (cumulants add).
+constexpr double kUniformExcessKurtosis = 1.2;
+// The fine quantizer's bound: its kurtosis shift at most a tenth of the kurtosis view's standard
+// deviation, sqrt(24 / N), on N samples.
+constexpr double kFineQuantizerKurtosisSds = 0.1;
+
 }  // namespace
 
-bool IsGaussianModel(const sim::SensorModel& model) {
-  if (model.angle_quantizer || model.rate_quantizer) return false;
+double QuantizerShareOfDifferences(const sim::SensorModel& model) {
+  if (!model.angle_quantizer && !model.rate_quantizer) return 0.0;
+  sim::SensorModel signal = model;
+  signal.angle_quantizer.reset();
+  signal.rate_quantizer.reset();
+  const std::vector<double> r = model.GaussianAutocovariance(2);
+  const std::vector<double> r_signal = signal.GaussianAutocovariance(2);
+  const double total = 2.0 * (r[0] - r[1]);
+  const double error = total - 2.0 * (r_signal[0] - r_signal[1]);
+  if (!(total > 0.0)) return 1.0;
+  return std::clamp(error / total, 0.0, 1.0);
+}
+
+bool IsGaussianModel(const sim::SensorModel& model, std::int64_t num_samples) {
+  if (model.angle_quantizer || model.rate_quantizer) {
+    const double share = QuantizerShareOfDifferences(model);
+    const double kurtosis_sd = std::sqrt(24.0 / static_cast<double>(std::max<std::int64_t>(num_samples, 1)));
+    if (!(kUniformExcessKurtosis * share * share <= kFineQuantizerKurtosisSds * kurtosis_sd)) return false;
+  }
   for (const sim::NoiseTerm& term : model.terms) {
     const bool gaussian = std::visit(
         [](const auto& t) {
@@ -156,7 +180,7 @@ bool IsGaussianModel(const sim::SensorModel& model) {
 }
 
 GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewLayout& layout) {
-  if (!IsGaussianModel(model)) return {};
+  if (!IsGaussianModel(model, layout.num_samples)) return {};
   const std::int64_t n = layout.num_samples;
   // Every lag a view reads is at most N (OHVAR: (T - 1) + 3m = N; the increments:
   // (blocks - 1) m + m <= N; the halves, windows and PSD segments are shorter).
