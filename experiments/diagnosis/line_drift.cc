@@ -3,40 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <numbers>
 #include <vector>
 
-#include "sim/fft.h"
+#include "experiments/diagnosis/welch_psd.h"
 
 namespace allanlab::experiments {
 namespace {
 
 constexpr std::size_t kMinSegment = 256;
-
-// Welch PSD of `y` (one-sided, (rad/s)^2/Hz): Hann segments of n samples, 50 % overlap, each less
-// its mean.
-std::vector<double> WelchPsd(std::span<const double> y, std::size_t n, double tau0_s) {
-  std::vector<double> window(n);
-  double window_power = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    window[k] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n));
-    window_power += window[k] * window[k];
-  }
-  std::vector<double> psd(n / 2 + 1, 0.0);
-  sim::FftBuffer buffer(n + 2);
-  int segments = 0;
-  for (std::size_t start = 0; start + n <= y.size(); start += n / 2, ++segments) {
-    double mean = 0.0;
-    for (std::size_t k = 0; k < n; ++k) mean += y[start + k];
-    mean /= static_cast<double>(n);
-    for (std::size_t k = 0; k < n; ++k) buffer.data()[k] = (y[start + k] - mean) * window[k];
-    sim::ForwardRealFft(n, buffer.data());
-    for (std::size_t b = 0; b <= n / 2; ++b) psd[b] += std::norm(buffer.complex_data()[b]);
-  }
-  const double scale = 2.0 * tau0_s / (window_power * segments);
-  for (double& p : psd) p *= scale;
-  return psd;
-}
 
 // Least-squares straight line through y against its index; t of the slope from the residuals.
 LineTrend FitTrend(const std::vector<double>& y) {

@@ -7,7 +7,7 @@
 #include "estimators/allan_family.h"
 #include "experiments/diagnosis/block_kurtosis.h"
 #include "experiments/diagnosis/block_means.h"
-#include "sim/fft.h"
+#include "experiments/diagnosis/welch_psd.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -82,36 +82,12 @@ void DynamicView(const ViewLayout& layout, std::span<const double> rate, std::ve
 // ln of the Welch PSD (Hann, 50 % overlap) averaged in the layout's bands.
 void PsdView(const ViewLayout& layout, std::span<const double> rate, std::vector<double>* psd) {
   if (layout.psd_segment <= 0) return;
-  const double tau0 = layout.sample_clock.period_s();
-  const std::size_t seg = static_cast<std::size_t>(layout.psd_segment);
-  std::vector<double> window_fn(seg);
-  double w2 = 0.0;
-  for (std::size_t k = 0; k < seg; ++k) {
-    window_fn[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(seg));
-    w2 += window_fn[k] * window_fn[k];
-  }
-  std::vector<double> periodogram(seg / 2 + 1, 0.0);
-  sim::FftBuffer buffer(seg + 2);
-  int segments = 0;
-  for (std::size_t start = 0; start + seg <= rate.size(); start += seg / 2) {
-    // Four partial sums (seg is a power of two >= 64): a single chain of additions bounded the
-    // view's cost.
-    double lane[4] = {};
-    for (std::size_t k = 0; k < seg; k += 4) {
-      for (std::size_t l = 0; l < 4; ++l) lane[l] += rate[start + k + l];
-    }
-    const double mean = ((lane[0] + lane[1]) + (lane[2] + lane[3])) / static_cast<double>(seg);
-    for (std::size_t k = 0; k < seg; ++k) buffer.data()[k] = (rate[start + k] - mean) * window_fn[k];
-    sim::ForwardRealFft(seg, buffer.data());
-    for (std::size_t b = 0; b <= seg / 2; ++b) periodogram[b] += std::norm(buffer.complex_data()[b]);
-    ++segments;
-  }
-  // One-sided density: 2 |X|^2 tau0 / sum w^2, averaged over segments.
-  const double scale = 2.0 * tau0 / (w2 * segments);
+  const std::vector<double> density =
+      WelchPsd(rate, static_cast<std::size_t>(layout.psd_segment), layout.sample_clock.period_s());
   for (const auto& [b0, b1] : layout.psd_bands) {
     double s = 0.0;
-    for (int b = b0; b < b1; ++b) s += periodogram[b];
-    psd->push_back(SafeLog(s * scale / (b1 - b0)));
+    for (int b = b0; b < b1; ++b) s += density[static_cast<std::size_t>(b)];
+    psd->push_back(SafeLog(s / (b1 - b0)));
   }
 }
 

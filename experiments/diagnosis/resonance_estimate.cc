@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <numbers>
 #include <sstream>
 #include <vector>
 
-#include "sim/fft.h"
+#include "experiments/diagnosis/welch_psd.h"
 
 namespace allanlab::experiments {
 namespace {
@@ -61,25 +60,8 @@ std::optional<EffectInstance> EstimateResonance(std::span<const double> y, doubl
   }
   // Welch: Hann segments with half overlap over at most 2^21 samples, one-sided density.
   const std::size_t n = std::min<std::size_t>(y.size(), std::size_t{1} << 21);
-  std::vector<double> window(kSegment);
-  double w2 = 0.0;
-  for (std::size_t k = 0; k < kSegment; ++k) {
-    window[k] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(k) / kSegment);
-    w2 += window[k] * window[k];
-  }
-  std::vector<double> psd(kSegment / 2 + 1, 0.0);
-  sim::FftBuffer buffer(kSegment + 2);
-  std::size_t segments = 0;
-  for (std::size_t start = 0; start + kSegment <= n; start += kSegment / 2, ++segments) {
-    double mean = 0.0;
-    for (std::size_t k = 0; k < kSegment; ++k) mean += y[start + k];
-    mean /= kSegment;
-    for (std::size_t k = 0; k < kSegment; ++k) buffer.data()[k] = (y[start + k] - mean) * window[k];
-    sim::ForwardRealFft(kSegment, buffer.data());
-    for (std::size_t b = 0; b <= kSegment / 2; ++b) psd[b] += std::norm(buffer.complex_data()[b]);
-  }
+  std::vector<double> psd = WelchPsd(y.first(n), kSegment, tau0);
   const double df = 1.0 / (kSegment * tau0);
-  for (double& p : psd) p *= 2.0 * tau0 / (w2 * static_cast<double>(segments));
   const std::size_t bins = psd.size();
   std::size_t peak = 0;
   std::vector<double> floor;
@@ -114,7 +96,7 @@ std::optional<EffectInstance> EstimateResonance(std::span<const double> y, doubl
     smooth = RunningMean(psd, 4);
     floor = RunningMedian(psd, 192);
     // Adjacent Hann bins correlate (~0.5): 9 smoothed bins carry about 6 bins' worth.
-    const double relative_se = 1.0 / std::sqrt(static_cast<double>(segments) * 6.0);
+    const double relative_se = 1.0 / std::sqrt(static_cast<double>(WelchSegments(n, kSegment)) * 6.0);
     double peak_excess = 0.0;
     for (std::size_t b = 3; b + 2 < bins; ++b) {
       const std::size_t lo = b > 64 ? b - 64 : 1, hi = std::min(bins - 1, b + 64);
