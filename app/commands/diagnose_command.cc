@@ -308,7 +308,12 @@ Json DiagnosisJson(const DiagnosisSummary& s, const Provenance& p, const Json& v
                   {"cutoff_hz", b.cutoff_hz},
                   {"sampling", b.sampling == sim::OutputSampling::kAverage ? "average" : "point"}};
   }
-  j["baseline"] = {{"coefficients", CoefficientsJson(s.baseline, unit)}, {"band_limit", band_limit},
+  // What the baseline is: the IEEE terms fitted ("terms", --model), what allanlab fit reports
+  // ("fit", the default) or the user's sensor model ("sensor", --sensor / --preset).
+  const char* source = s.baseline_source == DiagnoseOptions::Baseline::kSensor ? "sensor"
+                       : s.baseline_source == DiagnoseOptions::Baseline::kFit  ? "fit"
+                                                                                 : "terms";
+  j["baseline"] = {{"source", source}, {"coefficients", CoefficientsJson(s.baseline, unit)}, {"band_limit", band_limit},
                    {"fit", {{"chi2", s.baseline.gof_chi2}, {"dof", s.baseline.dof}, {"converged", s.baseline.converged}}}};
   if (!validation.is_null()) j["validation"] = validation;
   if (s.line_drift) {

@@ -243,6 +243,7 @@ bool DiagnoseRecord(const DiagnoseOptions& options, std::span<const double> rate
     return false;
   }
   std::string fallback;
+  s.baseline_source = options.baseline;
   if (!FitBaseline(options, ctx.curve, &ctx.spec, &s.baseline, &fallback, &s.message)) return false;
   if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
   s.baseline_model = ctx.spec.Model(s.baseline, sample_clock);
@@ -331,6 +332,7 @@ bool DiagnoseCurve(const DiagnoseOptions& options, const estimators::AvarCurve& 
   s.num_samples = curve.num_samples;
   s.sample_clock = curve.sample_clock;
   std::string fallback;
+  s.baseline_source = options.baseline;
   if (!FitBaseline(options, curve, &ctx.spec, &s.baseline, &fallback, &s.message)) return false;
   if (!fallback.empty()) s.notes.push_back("baseline: " + fallback);
   s.baseline_model = ctx.spec.Model(s.baseline, curve.sample_clock);

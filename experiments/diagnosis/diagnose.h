@@ -174,6 +174,7 @@ struct DiagnosisSummary {
   estimators::AvarCurve curve;
   estimators::FitSummary baseline;
   sim::SensorModel baseline_model;
+  DiagnoseOptions::Baseline baseline_source = DiagnoseOptions::Baseline::kTerms;  // options.baseline
   OavarTheory baseline_theory;  // the baseline's exact OAVAR on the record (as theory above)
   ModelGap before;
   int total_points = 0;

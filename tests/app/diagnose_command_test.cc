@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "sim/band_limit.h"
 #include "sim/sensor_model.h"
+#include "sim/white_rate_noise.h"
 #include "tests/support/command_test.h"
 #include "tests/support/read_file.h"
 
@@ -54,6 +56,37 @@ TEST_F(DiagnoseCommandTest, WritesTheJsonContract) {
   EXPECT_TRUE(j["provenance"].is_object());
   EXPECT_EQ(j["gap"]["significant"].get<bool>(), j["verdict"]["effect"] != "none");
   EXPECT_NE(Read("d.md").find("verdict"), std::string::npos);
+}
+
+// The report says where the baseline's band-limit comes from: the user's sensor model (--sensor)
+// or the fit (the default); the JSON's baseline.source says which baseline it is.
+TEST_F(DiagnoseCommandTest, SaysWhoseBandLimitTheBaselineHolds) {
+  const std::string spec =
+      "name: test\nsample_rate: 100 Hz\nterms:\n  - {type: arw, N: 0.3 deg/sqrt(h)}\n"
+      "band_limit: {type: butterworth2, cutoff: 20 Hz, oversampling: 8, sampling: average}\n";
+  std::ofstream(dir_ / "spec.yaml") << spec;
+  sim::SensorModel model;
+  model.sample_clock = SampleClock::FromRateHz(100.0);
+  model.terms = {sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 0.3 * M_PI / 180.0 / 60.0}};
+  model.band_limit = {sim::LowPassKind::kButterworth2, 20.0, 8, sim::OutputSampling::kAverage};
+  {
+    std::ofstream out(dir_ / "rec.csv");
+    out << "rate_rad_per_s\n";
+    for (double v : model.Generate(5, 0, 8192)) out << v << "\n";
+  }
+  std::ostringstream given;
+  given << Path("rec.csv") << " --rate 100 --trials 5 --sensor " << Path("spec.yaml") << " --json " << Path("s.json");
+  ASSERT_EQ(Run(given.str()), 0) << Read("err.txt");
+  EXPECT_NE(Read("out.txt").find("the baseline includes your sensor model's band-limit: a second-order Butterworth "
+                                 "low-pass at 20 Hz"),
+            std::string::npos)
+      << Read("out.txt");
+  EXPECT_EQ(nlohmann::json::parse(Read("s.json"))["baseline"]["source"], "sensor");
+  std::ostringstream fitted;
+  fitted << Path("rec.csv") << " --rate 100 --trials 5 --json " << Path("f.json");
+  ASSERT_EQ(Run(fitted.str()), 0) << Read("err.txt");
+  EXPECT_EQ(Read("out.txt").find("your sensor model"), std::string::npos) << Read("out.txt");
+  EXPECT_EQ(nlohmann::json::parse(Read("f.json"))["baseline"]["source"], "fit");
 }
 
 // stderr is a file here: no progress unless asked; with --progress one line per stage on stderr
