@@ -25,9 +25,9 @@
 //     correlation and X's non-circularity included.
 // A Gaussian model: every term Gaussian (white, flicker, random walk, Gauss-Markov, resonance, Q)
 // or cancelled by both views (the rate ramp: OHVAR's third difference and the increments' own
-// mean remove it), band-limit included, no quantizer but a fine one (IsGaussianModel). Harmonics, telegraphs, steps, drifts and
-// outliers are not Gaussian and a quantizer's error only approximately: their views stay Monte
-// Carlo. Flicker enters with stationary increments, as a sensor running before the record
+// mean remove it), band-limit included, no quantizer but a fine one (IsGaussianModel). Harmonics,
+// telegraphs, steps, drifts and outliers are not Gaussian, nor is a coarse quantizer's error:
+// their views stay Monte Carlo. Flicker enters with stationary increments, as a sensor running before the record
 // started has it (the simulated records start the Kasdin filter from rest, which at the last
 // hadamard taus lowers the mean by a few per cent).
 // Why not the Monte Carlo envelope: at the last points of both views (a few EDF; the fewest
@@ -64,10 +64,9 @@ double QuantizerShareOfDifferences(const sim::SensorModel& model);
 // sample, the error is white, uniform and uncorrelated with the signal (Widrow & Kollar,
 // "Quantization Noise", 2008: its correlation from one sample to the next, exp(-2 pi^2 D / lsb^2)
 // with D the signal's one-sample increment variance, is below 1e-20 there), its second moments
-// are in GaussianAutocovariance, and what is left of its law,
-// the uniform's excess kurtosis -1.2 weighted by s^2, moves the kurtosis view by at most a tenth
-// of its standard deviation sqrt(24 / N) (and the other views' variances by less). A coarse one
-// stays Monte Carlo. (An ADIS16405's 0.05 deg/s LSB on its 0.4 deg/s of white noise per sample
+// are in GaussianAutocovariance, and what is left of its law, the uniform's excess kurtosis -1.2
+// weighted by s^2, moves the kurtosis view by at most a tenth of its standard deviation
+// sqrt(24 / N) (and the other views' variances by less). A coarse one stays Monte Carlo. (An ADIS16405's 0.05 deg/s LSB on its 0.4 deg/s of white noise per sample
 // at 100 Hz is fine: s = 0.002 as a rate quantizer, 0.006 as an angle one.)
 bool IsGaussianModel(const sim::SensorModel& model, std::int64_t num_samples);
 
