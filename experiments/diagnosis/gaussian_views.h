@@ -27,9 +27,9 @@
 // or cancelled by both views (the rate ramp: OHVAR's third difference and the increments' own
 // mean remove it), band-limit included, no quantizer but a fine one (IsGaussianModel). Harmonics,
 // telegraphs, steps, drifts and outliers are not Gaussian, nor is a coarse quantizer's error:
-// their views stay Monte Carlo. Flicker enters with stationary increments, as a sensor running before the record
-// started has it (the simulated records start the Kasdin filter from rest, which at the last
-// hadamard taus lowers the mean by a few per cent).
+// their views stay Monte Carlo. Flicker enters with stationary increments, as a sensor running
+// before the record started has it (the simulated records start the Kasdin filter from rest,
+// which at the last hadamard taus lowers the mean by a few per cent).
 // Why not the Monte Carlo envelope: at the last points of both views (a few EDF; the fewest
 // blocks) 30 simulated records pin neither the statistic's centre nor its spread, and the
 // statistics are skewed. Controls drawn apart from sim/ were flagged there in 6 of 240 (hadamard
