@@ -262,7 +262,8 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
     const double nyquist = s.sample_clock.period_s() > 0.0 ? 0.5 / s.sample_clock.period_s() : 0.0;
     const bool given = s.baseline_source == experiments::DiagnoseOptions::Baseline::kSensor;
     p.baseline_note = std::string("the baseline includes ") +
-                      (given ? "your sensor model's band-limit: a " : "the output chain's band-limit that allanlab fit finds: a ") +
+                      (given ? "your sensor model's band-limit: a "
+                             : "the output chain's band-limit that allanlab fit finds: a ") +
                       (b.kind == sim::LowPassKind::kFirstOrder ? "first-order" : "second-order Butterworth") +
                       " low-pass at " + PlainNumber(b.cutoff_hz) + " Hz" +
                       (b.sampling == sim::OutputSampling::kAverage ? ", averaged to the output rate" : "") + " (held)";

@@ -66,8 +66,9 @@ double QuantizerShareOfDifferences(const sim::SensorModel& model);
 // with D the signal's one-sample increment variance, is below 1e-20 there), its second moments
 // are in GaussianAutocovariance, and what is left of its law, the uniform's excess kurtosis -1.2
 // weighted by s^2, moves the kurtosis view by at most a tenth of its standard deviation
-// sqrt(24 / N) (and the other views' variances by less). A coarse one stays Monte Carlo. (An ADIS16405's 0.05 deg/s LSB on its 0.4 deg/s of white noise per sample
-// at 100 Hz is fine: s = 0.002 as a rate quantizer, 0.006 as an angle one.)
+// sqrt(24 / N) (and the other views' variances by less). A coarse one stays Monte Carlo. (An
+// ADIS16405's 0.05 deg/s LSB on its 0.4 deg/s of white noise per sample at 100 Hz is fine:
+// s = 0.002 as a rate quantizer, 0.006 as an angle one.)
 bool IsGaussianModel(const sim::SensorModel& model, std::int64_t num_samples);
 
 // Empty unless IsGaussianModel(model) and every hadamard point has positive moments.
