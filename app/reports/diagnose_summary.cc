@@ -267,7 +267,9 @@ PlainSummary MakePlainSummary(const DiagnosisSummary& s, const DiagnoseUnits& un
                       (b.kind == sim::LowPassKind::kFirstOrder ? "first-order" : "second-order Butterworth") +
                       " low-pass at " + PlainNumber(b.cutoff_hz) + " Hz" +
                       (b.sampling == sim::OutputSampling::kAverage ? ", averaged to the output rate" : "") + " (held)";
-    if (nyquist > 0.0 && b.cutoff_hz > 0.9 * nyquist) {
+    // A fitted cutoff near Nyquist is loosely determined and could read as a finding; the user's
+    // own filter is not one to dismiss.
+    if (!given && nyquist > 0.0 && b.cutoff_hz > 0.9 * nyquist) {
       p.baseline_note += "; a cutoff at or above the " + PlainNumber(nyquist) +
                          " Hz Nyquist frequency shapes only the shortest taus, not a finding";
     }

@@ -82,6 +82,18 @@ TEST_F(DiagnoseCommandTest, SaysWhoseBandLimitTheBaselineHolds) {
             std::string::npos)
       << Read("out.txt");
   EXPECT_EQ(nlohmann::json::parse(Read("s.json"))["baseline"]["source"], "sensor");
+  // The user's own filter near Nyquist is not a finding to dismiss.
+  std::ofstream(dir_ / "near_nyquist.yaml") << "name: test\nsample_rate: 100 Hz\nterms:\n"
+                                               "  - {type: arw, N: 0.3 deg/sqrt(h)}\n"
+                                               "band_limit: {type: butterworth2, cutoff: 48 Hz, "
+                                               "oversampling: 8, sampling: average}\n";
+  std::ostringstream near_nyquist;
+  near_nyquist << Path("rec.csv") << " --rate 100 --trials 5 --sensor " << Path("near_nyquist.yaml");
+  ASSERT_EQ(Run(near_nyquist.str()), 0) << Read("err.txt");
+  EXPECT_NE(Read("out.txt").find("your sensor model's band-limit: a second-order Butterworth low-pass at 48 Hz"),
+            std::string::npos)
+      << Read("out.txt");
+  EXPECT_EQ(Read("out.txt").find("not a finding"), std::string::npos) << Read("out.txt");
   std::ostringstream fitted;
   fitted << Path("rec.csv") << " --rate 100 --trials 5 --json " << Path("f.json");
   ASSERT_EQ(Run(fitted.str()), 0) << Read("err.txt");
