@@ -533,7 +533,10 @@ void MeasureCandidateLine(const Context& ctx, DiagnosisSummary* s) {
     double best_score = -std::numeric_limits<double>::infinity();
     for (const CandidateResult& c : s->candidates) {
       const EffectInstance* e = line_of(c);
-      if (e != nullptr && c.full_score > best_score) best_score = c.full_score, line = e;
+      if (e != nullptr && c.full_score > best_score) {
+        best_score = c.full_score;
+        line = e;
+      }
     }
   }
   if (line == nullptr) return;
