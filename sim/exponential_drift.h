@@ -29,6 +29,10 @@ struct ExponentialDrift {
   // exponential scaled by sum_j q_j e^{j tau0/tau_w}.
   double ExpectedAvar(std::int64_t m, double tau0_s, const RecordShape& shape,
                       const std::vector<double>& held_response = {}) const;
+  // The drift on the output samples is a' e^{-k tau0 / tau_w} (held: a band-limit's response q
+  // to the exponential is the exponential again): a' = a sum_j q_j e^{j tau0 / tau_w}, a without
+  // `held_response`.
+  double OutputAmplitude(double tau0_s, const std::vector<double>& held_response = {}) const;
 };
 
 }  // namespace allanlab::sim

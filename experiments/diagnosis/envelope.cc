@@ -3,8 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include <boost/math/special_functions/trigamma.hpp>
-
 #include "estimators/exact_edf.h"
 
 namespace allanlab::experiments {
@@ -106,35 +104,19 @@ std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues&
     const bool log_scale = view == View::kOavar || view == View::kHadamard || view == View::kPsd;
     const bool from_theory = gaussian != nullptr && view != View::kOavar;
     if (from_theory && r.x.empty()) continue;
-    if (view == View::kOavar || (from_theory && (view == View::kHadamard || view == View::kPsd))) {
-      const std::vector<double>& mean = view == View::kOavar      ? theory.mean
-                                        : view == View::kHadamard ? gaussian->hadamard_mean
-                                                                  : gaussian->psd_mean;
-      const std::vector<double>& edf = view == View::kOavar      ? theory.edf
-                                       : view == View::kHadamard ? gaussian->hadamard_edf
-                                                                 : gaussian->psd_edf;
+    if (view == View::kOavar) {
       for (std::size_t i = 0; i < r.x.size(); ++i) {
         const double obs = std::exp(observed[v][i]);
         r.observed.push_back(obs);
-        r.expected.push_back(mean[i]);
-        r.z.push_back(ZFromChiSquare(obs, mean[i], edf[i]));
+        r.expected.push_back(theory.mean[i]);
+        r.z.push_back(ZFromChiSquare(obs, theory.mean[i], theory.edf[i]));
       }
     } else if (from_theory) {
       for (std::size_t i = 0; i < r.x.size(); ++i) {
-        const double obs = observed[v][i];
-        r.observed.push_back(obs);
-        if (view == View::kKurtosis) {
-          const double n_eff = gaussian->kurtosis_effective_count[i];
-          r.expected.push_back(-6.0 / (n_eff + 1.0));
-          r.z.push_back(ZFromKurtosis(obs, n_eff));
-        } else if (view == View::kHalves) {
-          r.expected.push_back(0.0);
-          r.z.push_back(ZFromLogRatio(obs, gaussian->halves_edf[i]));
-        } else {  // dynamic: the typical range, 2.847 sd of ln(chi2_nu / nu) (8 normal values)
-          const double edf = gaussian->dynamic_edf[i];
-          r.expected.push_back(edf > 0.0 ? 2.847 * std::sqrt(boost::math::trigamma(0.5 * edf)) : kNaN);
-          r.z.push_back(ZFromLogRange(obs, edf, kDynamicWindows));
-        }
+        double expected = kNaN;
+        r.z.push_back(GaussianViewZ(view, *gaussian, observed[v][i], i, &expected));
+        r.observed.push_back(log_scale ? std::exp(observed[v][i]) : observed[v][i]);
+        r.expected.push_back(expected);
       }
     } else {
       if (envelope == nullptr || envelope->trials < 3 || r.x.empty()) continue;

@@ -4,7 +4,8 @@
 //   OAVAR: exact. Mean from sim::SensorModel::ExpectedAvar (every term, deterministic ones
 //     included), EDF 2 E^2 / Var with Var of the Gaussian part by Isserlis
 //     (estimators/exact_edf.h): cheap, O(N) per tau.
-//   Other views: for a Gaussian model from theory (gaussian_views.h); else Monte Carlo of the
+//   Other views: for a Gaussian model, or one plus a warm-up drift, from theory
+//     (gaussian_views.h, warmup_drift_views.h); else Monte Carlo of the
 //     model (fixed seed, `trials` records, OpenMP across trials;
 //     deterministic for any thread count: trial t always uses (seed, t) and the moments are summed
 //     in trial order). The records are drawn with sim::GenerateOptions that keep their law and
@@ -49,9 +50,9 @@ bool SimulateEnvelope(const sim::SensorModel& model, const ViewLayout& layout, i
                       const ViewSet& wanted = EveryView(), const SharedFlicker* shared_flicker = nullptr);
 
 // Residuals of `observed` (ComputeViews of the record) against the model: the OAVAR view from
-// `theory`, the hadamard and kurtosis views from `gaussian` when given (gaussian_views.h), the
-// others from `envelope` (views absent from the envelope, or with fewer than 3 trials, are left
-// out), the views in `wanted` only, in View order.
+// `theory`, the others from `gaussian` when given (GaussianViewZ), else from `envelope` (views
+// absent from the envelope, or with fewer than 3 trials, are left out), the views in `wanted`
+// only, in View order.
 std::vector<ViewResiduals> Residuals(const ViewLayout& layout, const ViewValues& observed,
                                      const OavarTheory& theory, const ViewEnvelope* envelope,
                                      const ViewSet& wanted = EveryView(), const GaussianViewTheory* gaussian = nullptr);

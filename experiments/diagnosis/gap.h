@@ -14,6 +14,7 @@
 // model is flagged with probability <= alpha whatever the correlation between taus (the taus of
 // one curve are strongly correlated, so the real rate is below alpha).
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,16 @@ double ZFromLogRatioEnvelope(double observed, double mean, double sd, int trials
 // The same law without an envelope: ln F(edf, edf) (two independent estimates of one variance,
 // each ~ chi2_edf / edf; gaussian_views.h).
 double ZFromLogRatio(double observed, double edf);
+// The same with estimates of unequal EDF: `observed` is ln(O_first / O_second) less
+// ln(E_first / E_second), which is ln F(edf_first, edf_second).
+double ZFromLogRatio(double observed, double edf_first, double edf_second);
 // The dynamic view without an envelope: ln(max / min) of `count` independent estimates of one
 // variance, each ~ chi2_edf / edf (gaussian_views.h); z from the range's own tails.
 double ZFromLogRange(double observed, double edf, int count);
+// The same for independent estimates of unequal means and EDF, each ~ E_w chi2_nu_w / nu_w
+// (`log_means`: ln E_w; `edfs`: nu_w; a warm-up drift raises the first windows' means,
+// warmup_drift_views.h).
+double ZFromLogRangeOfUnequal(double observed, std::span<const double> log_means, std::span<const double> edfs);
 // The views of a variance estimate's log (hadamard: ln OHVAR; psd: ln of a band of the Welch
 // PSD): each estimate is ~ E chi2_nu / nu, whose log has a long lower tail at few EDF (the last
 // hadamard taus, nu ~ 2-5: at nu = 2 the normal reading's threshold z = -3.5 is crossed by 1

@@ -5,15 +5,22 @@
 #include <complex>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <utility>
 #include <variant>
 
+#include <boost/math/special_functions/trigamma.hpp>
+
 #include "estimators/exact_avar_variance.h"
+#include "experiments/diagnosis/gap.h"
+#include "experiments/diagnosis/warmup_drift_views.h"
 #include "sim/fft.h"
 
 namespace allanlab::experiments {
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // n / sum_{|h|<n} (1 - |h|/n) rho(h)^4 for the n increments of the block sums of m samples,
 // rho(h) = Cov(D_0, D_h) / Var(D_0) with Cov(D_0, D_h) proportional to the fourth difference of
@@ -179,8 +186,11 @@ bool IsGaussianModel(const sim::SensorModel& model, std::int64_t num_samples) {
   return true;
 }
 
-GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewLayout& layout) {
-  if (!IsGaussianModel(model, layout.num_samples)) return {};
+namespace {
+
+// The theory of a Gaussian model, with a warm-up drift's share added when `drift` is given
+// (then `model` is the Gaussian part).
+GaussianViewTheory GaussianTheory(const sim::SensorModel& model, const ViewLayout& layout, const WarmupDriftPath* drift) {
   const std::int64_t n = layout.num_samples;
   // Every lag a view reads is at most N (OHVAR: (T - 1) + 3m = N; the increments:
   // (blocks - 1) m + m <= N; the halves, windows and PSD segments are shorter).
@@ -231,7 +241,70 @@ GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewL
     t.dynamic_edf.push_back(moments[static_cast<std::size_t>(hadamard_count + halves_count + i)].edf());
   }
   PsdTheory(layout, r, &t);
+  if (drift != nullptr) {
+    GaussianPartMoments parts;
+    parts.hadamard.assign(moments.begin(), moments.begin() + hadamard_count);
+    parts.halves.assign(moments.begin() + hadamard_count, moments.begin() + hadamard_count + halves_count);
+    parts.dynamic.assign(moments.begin() + hadamard_count + halves_count, moments.end());
+    AddWarmupDrift(*drift, layout, variogram, parts, &t);
+  }
   return t;
+}
+
+}  // namespace
+
+GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewLayout& layout) {
+  std::optional<WarmupDriftPath> drift;
+  sim::SensorModel gaussian_part;
+  if (!IsGaussianModel(model, layout.num_samples)) {
+    drift = SplitWarmupDrift(model, layout.num_samples, &gaussian_part);
+    if (!drift) return {};
+  }
+  return GaussianTheory(drift ? gaussian_part : model, layout, drift ? &*drift : nullptr);
+}
+
+double GaussianViewZ(View view, const GaussianViewTheory& t, double observed, std::size_t i, double* expected) {
+  switch (view) {
+    case View::kHadamard:
+    case View::kPsd: {
+      const double mean = view == View::kHadamard ? t.hadamard_mean[i] : t.psd_mean[i];
+      const double edf = view == View::kHadamard ? t.hadamard_edf[i] : t.psd_edf[i];
+      *expected = mean;
+      return ZFromChiSquare(std::exp(observed), mean, edf);
+    }
+    case View::kKurtosis: {
+      const double n_eff = t.kurtosis_effective_count[i];
+      const double gaussian_mean = -6.0 / (n_eff + 1.0);
+      const double shift = t.kurtosis_shift.empty() ? 0.0 : t.kurtosis_shift[i];
+      const double ratio = t.kurtosis_sd_ratio.empty() ? 1.0 : t.kurtosis_sd_ratio[i];
+      *expected = gaussian_mean + shift;
+      // The drift's shift and spread applied about the Gaussian law (warmup_drift_views.h).
+      return ZFromKurtosis(gaussian_mean + (observed - gaussian_mean - shift) / ratio, n_eff);
+    }
+    case View::kHalves: {
+      const double offset = t.halves_log_offset.empty() ? 0.0 : t.halves_log_offset[i];
+      *expected = offset;
+      return ZFromLogRatio(observed - offset, t.halves_edf[i],
+                           t.halves_edf_second.empty() ? t.halves_edf[i] : t.halves_edf_second[i]);
+    }
+    case View::kDynamic: {
+      if (t.dynamic_log_means.empty() || t.dynamic_log_means[i].empty()) {
+        // The typical range, 2.847 sd of ln(chi2_nu / nu) (8 normal values).
+        const double edf = t.dynamic_edf[i];
+        *expected = edf > 0.0 ? 2.847 * std::sqrt(boost::math::trigamma(0.5 * edf)) : kNaN;
+        return ZFromLogRange(observed, edf, kDynamicWindows);
+      }
+      const std::vector<double>& log_means = t.dynamic_log_means[i];
+      const std::vector<double>& edfs = t.dynamic_edfs[i];
+      // The windows' spread of means plus the typical range of the narrowest law.
+      const auto [lo, hi] = std::minmax_element(log_means.begin(), log_means.end());
+      *expected = *hi - *lo + 2.847 * std::sqrt(boost::math::trigamma(0.5 * *std::min_element(edfs.begin(), edfs.end())));
+      return ZFromLogRangeOfUnequal(observed, log_means, edfs);
+    }
+    default:
+      *expected = kNaN;
+      return kNaN;
+  }
 }
 
 }  // namespace allanlab::experiments

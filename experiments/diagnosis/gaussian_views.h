@@ -27,7 +27,8 @@
 // or cancelled by both views (the rate ramp: OHVAR's third difference and the increments' own
 // mean remove it), band-limit included, no quantizer but a fine one (IsGaussianModel). Harmonics,
 // telegraphs, steps, drifts and outliers are not Gaussian, nor is a coarse quantizer's error:
-// their views stay Monte Carlo. Flicker enters with stationary increments, as a sensor running
+// their views stay Monte Carlo, but for one warm-up drift on a Gaussian model, whose path is
+// known (warmup_drift_views.h). Flicker enters with stationary increments, as a sensor running
 // before the record started has it (the simulated records start the Kasdin filter from rest,
 // which at the last hadamard taus lowers the mean by a few per cent).
 // Why not the Monte Carlo envelope: at the last points of both views (a few EDF; the fewest
@@ -50,8 +51,20 @@ struct GaussianViewTheory {
   std::vector<double> halves_edf;                // per layout.halves_m
   std::vector<double> dynamic_edf;               // per layout.dynamic_m
   std::vector<double> psd_mean, psd_edf;         // per layout.psd_bands: (rad/s)^2/Hz, EDF
+  // With a warm-up drift (warmup_drift_views.h); empty without one. Halves: ln(E_first /
+  // E_second) and the second half's EDF (halves_edf is the first's). Dynamic: per point, each
+  // window's ln E and EDF (empty at a point the drift leaves alike). Kurtosis: the shift of the
+  // mean and the ratio of the sds.
+  std::vector<double> halves_log_offset, halves_edf_second;
+  std::vector<std::vector<double>> dynamic_log_means, dynamic_edfs;
+  std::vector<double> kurtosis_shift, kurtosis_sd_ratio;
   bool empty() const { return hadamard_mean.empty(); }
 };
+
+// z of point i of a view beyond OAVAR (not change_point or trend) from its observed value (on the
+// view's scale: logs for hadamard and psd) under theory `t`; *expected: the view's value the
+// model puts there (hadamard and psd: E, not its log).
+double GaussianViewZ(View view, const GaussianViewTheory& t, double observed, std::size_t i, double* expected);
 
 // The share of the output's first differences' variance that its quantizers' errors make
 // (0 without a quantizer), from their exact second moments (sim::SensorModel::
@@ -71,7 +84,8 @@ double QuantizerShareOfDifferences(const sim::SensorModel& model);
 // s = 0.002 as a rate quantizer, 0.006 as an angle one.)
 bool IsGaussianModel(const sim::SensorModel& model, std::int64_t num_samples);
 
-// Empty unless IsGaussianModel(model) and every hadamard point has positive moments.
+// Empty unless IsGaussianModel(model), or the model is a Gaussian one plus one warm-up drift
+// (warmup_drift_views.h), and every hadamard point has positive moments.
 GaussianViewTheory ExactGaussianViews(const sim::SensorModel& model, const ViewLayout& layout);
 
 }  // namespace allanlab::experiments

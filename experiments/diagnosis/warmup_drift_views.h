@@ -1,0 +1,71 @@
+#pragma once
+// The views of a Gaussian model plus one warm-up drift (sim::ExponentialDrift), from theory as a
+// Gaussian model's are (gaussian_views.h), in place of a Monte Carlo envelope (docs/theory.md
+// §6.1 "A warm-up drift").
+//
+// On the output samples the drift is p_k = a' rho^k, rho = e^{-tau0 / tau_w}
+// (sim::ExponentialDrift::OutputAmplitude). A view's quadratic statistic
+// S = (1 / (K T)) sum_{i<T} d_i^2, d_i the n-th difference at step m of the phase Y (the running
+// sum of the rate; Allan: n = 2, K = 2 m^2; Hadamard: n = 3, K = 6 m^2), takes the noise g and the
+// drift p as S(g) + S(p) + (2 / (K T)) sum_i d_i(p) d_i(g):
+//   * d_i(p) = D rho^i with D = a' (1 - rho^m)^n / (1 - rho) up to sign, so
+//     S(p) = D^2 (1 - rho^{2T}) / ((1 - rho^2) K T) exactly;
+//   * the cross term has mean 0 and variance
+//     (4 D^2 / (K T)^2) sum_{|h|<T} C(h) rho^|h| (1 - rho^{2(T-|h|)}) / (1 - rho^2),
+//     C(h) = Cov(d_i(g), d_{i+h}(g)) = -1/2 sum_{|j|<=n} (-1)^j binom(2n, n + j) V(|h + j m|), V
+//     the phase variogram; it is uncorrelated with S(g) (a Gaussian's odd moments vanish), so
+//     the variances add: E = E_g + S(p), Var = Var_g + the cross term's.
+// Hence each hadamard point's mean and EDF 2 E^2 / Var, and each half's and window's: the halves
+// view then reads ln F(nu_1, nu_2) about ln(E_1 / E_2), the dynamic view the range of unequal
+// chi-squares (gap.h). A PSD band adds the drift's own Welch value P to its mean and, its bins
+// being noncentral chi-squares, has EDF nu (E + P)^2 / (E^2 + 2 E P). The kurtosis of the block
+// increments G_i + P_i (P the drift's, centred; s^2 = Var G_i = 4 V(m) - V(2m)) moves by
+// (mu4_P - 3 v_P^2) / (s^2 + v_P)^2, and its sd by the ratio of the delta-method sds with and
+// without P (the increments taken as independent there), both applied to the Gaussian law at
+// n_eff.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "estimators/exact_avar_variance.h"
+#include "experiments/diagnosis/gaussian_views.h"
+#include "experiments/diagnosis/record_views.h"
+#include "sim/sensor_model.h"
+
+namespace allanlab::experiments {
+
+// The drift on the output samples: a' e^{-decay k}, k = 0 .. N-1.
+struct WarmupDriftPath {
+  double output_amplitude_rad_per_s = 0.0;
+  double decay_per_sample = 0.0;  // tau0 / tau_w
+};
+
+// The path of the model's one exponential drift, with the model less that drift in
+// *gaussian_part, when that rest is Gaussian (IsGaussianModel for records of `num_samples`);
+// nullopt when the model has no drift, more than one, or another term that is not Gaussian.
+std::optional<WarmupDriftPath> SplitWarmupDrift(const sim::SensorModel& model, std::int64_t num_samples,
+                                                sim::SensorModel* gaussian_part);
+
+// What the drift adds to one quadratic statistic (the header's S) on a segment of the record
+// whose drift starts at `amplitude_rad_per_s` (a' rho^{first sample}): its own value and the
+// variance of the cross term, both (rad/s)^4 and (rad/s)^2 as S is. `order` n (2: Allan, 3:
+// Hadamard); T = `differences`. With an empty variogram, the own value alone. Precondition:
+// variogram.size() > T - 1 + n m otherwise.
+struct DriftShift {
+  double own = 0.0;
+  double cross_variance = 0.0;
+};
+DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int order, std::int64_t m,
+                                   std::int64_t differences, double amplitude_rad_per_s, double decay_per_sample);
+
+// The Gaussian part's moments that GaussianViewTheory was built from, per layout point.
+struct GaussianPartMoments {
+  std::vector<estimators::AvarMoments> hadamard, halves, dynamic;  // halves: N/2; dynamic: N/8
+};
+
+// The drift's share added to the Gaussian part's theory `t` (gaussian_views.h), in place.
+void AddWarmupDrift(const WarmupDriftPath& drift, const ViewLayout& layout, std::span<const long double> variogram,
+                    const GaussianPartMoments& moments, GaussianViewTheory* t);
+
+}  // namespace allanlab::experiments

@@ -1,0 +1,118 @@
+// What a warm-up drift adds to a view's quadratic statistic (warmup_drift_views.h), checked by
+// other routes: its own value against the estimators' OAVAR and OHVAR of the drift's samples, the
+// cross term's variance against the quadratic form of its weights over the rate samples with the
+// rate's autocovariance (O(N^2), no variogram), and the range law of unequal windows against the
+// equal-window one (gap.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "estimators/allan_family.h"
+#include "estimators/exact_avar_variance.h"
+#include "experiments/diagnosis/gap.h"
+#include "experiments/diagnosis/warmup_drift_views.h"
+#include "sim/gauss_markov.h"
+#include "sim/white_rate_noise.h"
+
+namespace allanlab::experiments {
+namespace {
+
+constexpr double kTau0 = 0.01;
+
+std::vector<double> DriftSamples(double amplitude, double decay, std::int64_t n) {
+  std::vector<double> p(static_cast<std::size_t>(n));
+  for (std::int64_t k = 0; k < n; ++k) p[static_cast<std::size_t>(k)] = amplitude * std::exp(-decay * static_cast<double>(k));
+  return p;
+}
+
+double EstimatedStatistic(estimators::Statistic statistic, const std::vector<double>& rate, std::int64_t m) {
+  estimators::AvarOptions options;
+  options.statistic = statistic;
+  options.sample_clock = SampleClock::FromPeriodS(kTau0);
+  options.confidence_method = estimators::ConfidenceMethod::kNone;
+  options.taus.kind = estimators::TauGridKind::kExplicit;
+  options.taus.explicit_taus_s = {static_cast<double>(m) * kTau0};
+  estimators::AvarSummary summary;
+  EXPECT_TRUE(estimators::ComputeStatisticValues(options, rate, &summary));
+  return summary.points.empty() ? std::nan("") : summary.points.front().value;
+}
+
+TEST(WarmupDriftViewsTest, TheDriftsOwnValueIsTheEstimatorsOnItsSamples) {
+  constexpr std::int64_t kN = 20000;
+  const double amplitude = 3e-4, decay = kTau0 / 40.0;
+  const std::vector<double> p = DriftSamples(amplitude, decay, kN);
+  for (std::int64_t m : {1, 16, 256, 2048}) {
+    const double allan = QuadraticStatisticShift({}, 2, m, kN - 2 * m + 1, amplitude, decay).own;
+    const double hadamard = QuadraticStatisticShift({}, 3, m, kN - 3 * m + 1, amplitude, decay).own;
+    EXPECT_NEAR(allan, EstimatedStatistic(estimators::Statistic::kAllanOverlapping, p, m), 1e-9 * allan) << m;
+    EXPECT_NEAR(hadamard, EstimatedStatistic(estimators::Statistic::kHadamardOverlapping, p, m), 1e-9 * hadamard) << m;
+  }
+}
+
+// Var of (2 / (K T)) sum_i d_i(p) d_i(g) as sum_jl w_j w_l R(|j - l|) over the rate samples g_j,
+// w_j = (2 / (K T)) sum_i d_i(p) sum_k c_k [j < i + k m] (the phase Y_n sums the rate below n).
+double BruteForceCrossVariance(const std::vector<double>& r, int order, std::int64_t m, std::int64_t n,
+                               double amplitude, double decay) {
+  const std::vector<int> c = order == 2 ? std::vector<int>{1, -2, 1} : std::vector<int>{-1, 3, -3, 1};
+  const std::int64_t t = n - order * m + 1;
+  const std::vector<double> p = DriftSamples(amplitude, decay, n);
+  std::vector<double> phase(static_cast<std::size_t>(n + 1), 0.0);
+  for (std::int64_t k = 0; k < n; ++k) phase[static_cast<std::size_t>(k + 1)] = phase[static_cast<std::size_t>(k)] + p[static_cast<std::size_t>(k)];
+  const double k_norm = (order == 2 ? 2.0 : 6.0) * static_cast<double>(m * m);
+  std::vector<double> w(static_cast<std::size_t>(n), 0.0);
+  for (std::int64_t i = 0; i < t; ++i) {
+    double d = 0.0;
+    for (int k = 0; k <= order; ++k) d += c[static_cast<std::size_t>(k)] * phase[static_cast<std::size_t>(i + k * m)];
+    for (int k = 0; k <= order; ++k) {
+      for (std::int64_t j = 0; j < i + k * m; ++j) w[static_cast<std::size_t>(j)] += 2.0 / (k_norm * static_cast<double>(t)) * d * c[static_cast<std::size_t>(k)];
+    }
+  }
+  long double var = 0.0L;
+  for (std::int64_t j = 0; j < n; ++j) {
+    for (std::int64_t l = 0; l < n; ++l) var += static_cast<long double>(w[static_cast<std::size_t>(j)]) * w[static_cast<std::size_t>(l)] * r[static_cast<std::size_t>(std::llabs(j - l))];
+  }
+  return static_cast<double>(var);
+}
+
+TEST(WarmupDriftViewsTest, TheCrossTermsVarianceIsTheQuadraticFormOverTheRate) {
+  constexpr std::int64_t kN = 600;
+  sim::SensorModel noise;
+  noise.sample_clock = SampleClock::FromPeriodS(kTau0);
+  noise.terms.push_back(sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 5e-5});
+  noise.terms.push_back(sim::GaussMarkov{.sigma_rad_per_s = 2e-4, .correlation_time_s = 0.3});
+  const std::vector<double> r = noise.GaussianAutocovariance(kN + 1);
+  const std::vector<long double> variogram = estimators::PhaseVariogram(r, kN + 1);
+  const double amplitude = 1e-3, decay = kTau0 / 2.0;
+  for (int order : {2, 3}) {
+    for (std::int64_t m : {1, 8, 60}) {
+      const std::int64_t t = kN - order * m + 1;
+      const double fast = QuadraticStatisticShift(variogram, order, m, t, amplitude, decay).cross_variance;
+      const double slow = BruteForceCrossVariance(r, order, m, kN, amplitude, decay);
+      EXPECT_GT(slow, 0.0);
+      EXPECT_NEAR(fast, slow, 1e-8 * slow) << "order " << order << ", m " << m;
+    }
+  }
+}
+
+TEST(WarmupDriftViewsTest, EqualWindowsGiveTheEqualWindowRangeLaw) {
+  for (double edf : {2.5, 9.0, 120.0}) {
+    const std::vector<double> log_means(kDynamicWindows, -3.0), edfs(kDynamicWindows, edf);
+    for (double r : {0.05, 0.4, 1.5, 4.0}) {
+      EXPECT_NEAR(ZFromLogRangeOfUnequal(r, log_means, edfs), ZFromLogRange(r, edf, kDynamicWindows), 2e-4)
+          << "edf " << edf << ", range " << r;
+    }
+  }
+  // A window whose mean stands far above the others sets the range: about ln(E_high / E_low)
+  // plus how far the lowest of the other seven falls below its centre (1.35 of their sd
+  // sqrt(psi'(200)) = 0.071), 2.096; a record with that range is unremarkable and one with the
+  // equal windows' typical range is far below the model.
+  std::vector<double> log_means(kDynamicWindows, 0.0), edfs(kDynamicWindows, 400.0);
+  log_means[0] = 2.0;
+  EXPECT_LT(std::abs(ZFromLogRangeOfUnequal(2.096, log_means, edfs)), 0.3);
+  EXPECT_LT(ZFromLogRangeOfUnequal(0.3, log_means, edfs), -8.0);
+}
+
+}  // namespace
+}  // namespace allanlab::experiments
