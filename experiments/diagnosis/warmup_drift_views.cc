@@ -112,21 +112,20 @@ DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int o
     }
     return -0.5L * sum;
   };
+  // Two passes that form C(h) twice rather than keep T long doubles (160 MB at 1e7 samples).
   const long double rho = std::exp(-lambda);
-  std::vector<long double> cs(static_cast<std::size_t>(t));
-  for (std::int64_t h = 0; h < t; ++h) cs[static_cast<std::size_t>(h)] = c(h);
   long double ascending = 0.0L, power = 1.0L;
   for (std::int64_t h = 1; h < t; ++h) {
     power *= rho;
-    ascending += cs[static_cast<std::size_t>(h)] * power;
+    ascending += c(h) * power;
   }
   long double descending = 0.0L;
   power = std::exp(-lambda * static_cast<long double>(t + 1));
   for (std::int64_t h = t - 1; h >= 1; --h) {
-    descending += cs[static_cast<std::size_t>(h)] * power;
+    descending += c(h) * power;
     power *= rho;
   }
-  const long double quadratic = cs[0] * s0 + 2.0L * (ascending - descending) / one_minus_rho2;
+  const long double quadratic = c(0) * s0 + 2.0L * (ascending - descending) / one_minus_rho2;
   const long double scale = 2.0L * d / (k * static_cast<long double>(t));
   s.cross_variance = static_cast<double>(std::max(0.0L, scale * scale * quadratic));
   return s;
