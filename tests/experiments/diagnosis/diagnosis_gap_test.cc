@@ -57,5 +57,22 @@ TEST(DiagnosisGapTest, LogVarianceZIsNormalAtManyDegreesOfFreedom) {
   EXPECT_TRUE(std::isnan(ZFromLogVarianceEnvelope(1.0, 0.0, 0.0, 30)));
 }
 
+// From an envelope of 30 records, the Student reading (t on 29 degrees of freedom) protects a
+// point near a threshold against the envelope sd's own uncertainty; far beyond every threshold it
+// only compresses the departure, and there the law's reading is kept (gap.cc SmallerInMagnitude),
+// the scale a view read from theory has.
+TEST(DiagnosisGapTest, AFarDepartureFromAnEnvelopeReadsOnTheLawsScale) {
+  const double sd = std::sqrt(2.0 / 5000.0);  // ln chi2_nu / nu at nu = 5000: nearly normal
+  const int trials = 30;
+  // 4.5 sd above (t = 4.43, Student z 3.9): the Student reading, the smaller.
+  EXPECT_DOUBLE_EQ(ZFromLogVarianceEnvelope(4.5 * sd, 0.0, sd, trials), ZFromEnvelope(4.5 * sd, 0.0, sd, trials));
+  EXPECT_LT(ZFromEnvelope(4.5 * sd, 0.0, sd, trials), 4.0);
+  // 12 sd above (t = 11.8, Student z about 7): the law's reading, about 11.8.
+  const double student = ZFromEnvelope(12.0 * sd, 0.0, sd, trials);
+  EXPECT_GT(student, 6.0);
+  EXPECT_LT(student, 8.0);
+  EXPECT_NEAR(ZFromLogVarianceEnvelope(12.0 * sd, 0.0, sd, trials), 12.0 / std::sqrt(1.0 + 1.0 / trials), 0.5);
+}
+
 }  // namespace
 }  // namespace allanlab::experiments
