@@ -29,12 +29,9 @@ std::vector<long double> DifferenceAutocorrelation(int order) {
   return a;
 }
 
-// Mean and variance of the one-sample excess kurtosis (m4 / m2^2 - 3) of n independent values
-// u_i + Z_i, Z standard normal and u centred, by the delta method; with u = 0 they are 0 and 24/n.
-struct KurtosisMoments {
-  double shift = 0.0, variance = 0.0;
-};
-KurtosisMoments ShiftedKurtosis(const std::vector<double>& u) {
+}  // namespace
+
+KurtosisMoments ShiftedKurtosis(std::span<const double> u) {
   const double n = static_cast<double>(u.size());
   double v = 0.0, mu4 = 0.0, var_m2 = 0.0, var_m4 = 0.0, cov = 0.0;
   for (double p : u) {
@@ -58,8 +55,6 @@ KurtosisMoments ShiftedKurtosis(const std::vector<double>& u) {
   k.variance = var_m4 / std::pow(m2, 4) - 4.0 * m4 * cov / std::pow(m2, 5) + 4.0 * m4 * m4 * var_m2 / std::pow(m2, 6);
   return k;
 }
-
-}  // namespace
 
 std::optional<WarmupDriftPath> SplitWarmupDrift(const sim::SensorModel& model, std::int64_t num_samples,
                                                 sim::SensorModel* gaussian_part) {
@@ -168,8 +163,8 @@ void AddWarmupDrift(const WarmupDriftPath& drift, const ViewLayout& layout, std:
   for (std::size_t i = 0; i < layout.dynamic_m.size(); ++i) {
     std::vector<double> log_means, edfs;
     bool alike = true;
+    const estimators::AvarMoments& g = moments.dynamic[i];
     for (int w = 0; w < kDynamicWindows; ++w) {
-      const estimators::AvarMoments g = moments.dynamic[i];
       const estimators::AvarMoments s = shifted(g, 2, layout.dynamic_m[i], window, w * window);
       alike = alike && s.mean == g.mean && s.variance == g.variance;
       log_means.push_back(std::log(s.mean));

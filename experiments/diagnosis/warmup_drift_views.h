@@ -59,6 +59,14 @@ struct DriftShift {
 DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int order, std::int64_t m,
                                    std::int64_t differences, double amplitude_rad_per_s, double decay_per_sample);
 
+// The sample excess kurtosis (m4 / m2^2 - 3) of n independent values u_i + Z_i, Z standard normal
+// and u centred (the drift's increments in units of the noise's sd): its shift from the Gaussian
+// value and its variance, by the delta method; 0 and 24/n with u = 0.
+struct KurtosisMoments {
+  double shift = 0.0, variance = 0.0;
+};
+KurtosisMoments ShiftedKurtosis(std::span<const double> u);
+
 // The Gaussian part's moments that GaussianViewTheory was built from, per layout point.
 struct GaussianPartMoments {
   std::vector<estimators::AvarMoments> hadamard, halves, dynamic;  // halves: N/2; dynamic: N/8

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <random>
 #include <vector>
 
 #include "estimators/allan_family.h"
@@ -100,7 +102,8 @@ TEST(WarmupDriftViewsTest, EqualWindowsGiveTheEqualWindowRangeLaw) {
   for (double edf : {2.5, 9.0, 120.0}) {
     const std::vector<double> log_means(kDynamicWindows, -3.0), edfs(kDynamicWindows, edf);
     for (double r : {0.05, 0.4, 1.5, 4.0}) {
-      EXPECT_NEAR(ZFromLogRangeOfUnequal(r, log_means, edfs), ZFromLogRange(r, edf, kDynamicWindows), 2e-4)
+      // The same integral on the same grid, its terms regrouped: rounding apart (measured up to 5e-15).
+      EXPECT_NEAR(ZFromLogRangeOfUnequal(r, log_means, edfs), ZFromLogRange(r, edf, kDynamicWindows), 1e-12)
           << "edf " << edf << ", range " << r;
     }
   }
@@ -112,6 +115,63 @@ TEST(WarmupDriftViewsTest, EqualWindowsGiveTheEqualWindowRangeLaw) {
   log_means[0] = 2.0;
   EXPECT_LT(std::abs(ZFromLogRangeOfUnequal(2.096, log_means, edfs)), 0.3);
   EXPECT_LT(ZFromLogRangeOfUnequal(0.3, log_means, edfs), -8.0);
+}
+
+// The kurtosis view's shift under a drift (ShiftedKurtosis, the delta method) against Monte Carlo
+// with the standard library's normal deviates: 256 increments u_i + Z_i, u a decaying path of
+// 3 rho^i (rho = 0.97: the first increments three noise sds, as a strong warm-up drift at long
+// blocks), centred. The view reads the excess kurtosis about the Gaussian law's mean -6/(n+1)
+// plus the shift, with the Gaussian law's sd times sqrt(variance / (24/n)) (GaussianViewZ).
+TEST(WarmupDriftViewsTest, TheKurtosisShiftMatchesMonteCarlo) {
+  constexpr int kN = 256, kReplicates = 20000;
+  std::vector<double> u(kN);
+  double mean_u = 0.0;
+  for (int i = 0; i < kN; ++i) mean_u += u[static_cast<std::size_t>(i)] = 3.0 * std::pow(0.97, i);
+  mean_u /= kN;
+  for (double& x : u) x -= mean_u;
+  const KurtosisMoments theory = ShiftedKurtosis(u);
+  auto sample_kurtosis = [](const std::vector<double>& y) {
+    double m = 0.0, m2 = 0.0, m4 = 0.0;
+    for (double v : y) m += v;
+    m /= static_cast<double>(y.size());
+    for (double v : y) {
+      m2 += (v - m) * (v - m);
+      m4 += (v - m) * (v - m) * (v - m) * (v - m);
+    }
+    m2 /= static_cast<double>(y.size());
+    m4 /= static_cast<double>(y.size());
+    return m4 / (m2 * m2) - 3.0;
+  };
+  std::mt19937_64 engine(20261129);
+  std::normal_distribution<double> normal;
+  double sum_with = 0.0, sum2_with = 0.0, sum_without = 0.0, sum2_without = 0.0;
+  std::vector<double> with(kN), without(kN);
+  for (int r = 0; r < kReplicates; ++r) {
+    for (int i = 0; i < kN; ++i) {
+      const double z = normal(engine);
+      without[static_cast<std::size_t>(i)] = z;
+      with[static_cast<std::size_t>(i)] = u[static_cast<std::size_t>(i)] + z;
+    }
+    const double kw = sample_kurtosis(with), k0 = sample_kurtosis(without);
+    sum_with += kw;
+    sum2_with += kw * kw;
+    sum_without += k0;
+    sum2_without += k0 * k0;
+  }
+  const double mean_with = sum_with / kReplicates, mean_without = sum_without / kReplicates;
+  const double sd_with = std::sqrt(sum2_with / kReplicates - mean_with * mean_with);
+  const double sd_without = std::sqrt(sum2_without / kReplicates - mean_without * mean_without);
+  const double gaussian_mean = -6.0 / (kN + 1.0);
+  std::printf("shift: theory %.4f, Monte Carlo %.4f +- %.4f; sd ratio: theory %.4f, Monte Carlo %.4f\n", theory.shift,
+              mean_with - gaussian_mean, sd_with / std::sqrt(kReplicates), std::sqrt(theory.variance / (24.0 / kN)),
+              sd_with / sd_without);
+  // Measured: shift 0.3650 against 0.3583 +- 0.0029 (2.3 se), sd ratio 1.3801 against 1.3698.
+  // The shift is over 100 se from 0: without it the test fails.
+  EXPECT_GT(theory.shift, 0.3);
+  EXPECT_NEAR(mean_with, gaussian_mean + theory.shift, 4.0 * sd_with / std::sqrt(kReplicates));
+  // The ratio of two sample sds from 20000 replicates has a relative se of about 1 % (each sd
+  // sqrt((k + 2) / (4 R)) with k, the statistic's own excess kurtosis, near 2); 5 % is 5 of them.
+  EXPECT_NEAR(std::sqrt(theory.variance / (24.0 / kN)) / (sd_with / sd_without), 1.0, 0.05);
 }
 
 }  // namespace
