@@ -326,14 +326,30 @@ std::vector<double> BandLimitChain::WhiteOutputAutocovariance(double internal_va
 
 std::vector<double> BandLimitChain::HeldOutputAutocovariance(const std::vector<double>& r_in,
                                                              std::int64_t lags) const {
+  // Double sums, j in the inner loop so that it vectorises: called once per model with a
+  // record's worth of lags, the scalar long-double loop was 13 % of diagnose's CPU on the
+  // ADIS16405 Z record. Each lag's sum runs in one order, rq[0] x_j first, then d = 1, 2, ...;
+  // it rounds once per tap (tests/sim/held_output_autocovariance_test.cc holds it to that).
   const auto& rq = held_autocorrelation_;
   const std::int64_t taps = static_cast<std::int64_t>(rq.size());
-  auto rx = [&](std::int64_t j) { return r_in[static_cast<std::size_t>(j < 0 ? -j : j)]; };
+  const double* x = r_in.data();
   std::vector<double> r(static_cast<std::size_t>(lags));
-  for (std::int64_t j = 0; j < lags; ++j) {
-    long double s = rq[0] * static_cast<long double>(rx(j));
-    for (std::int64_t d = 1; d < taps; ++d) s += rq[d] * static_cast<long double>(rx(j + d) + rx(j - d));
-    r[j] = static_cast<double>(s);
+  // Lags below taps reach negative j - d: the generalised autocovariance is even.
+  const std::int64_t edge = std::min(lags, taps);
+  for (std::int64_t j = 0; j < edge; ++j) {
+    double s = rq[0] * x[j];
+    for (std::int64_t d = 1; d < taps; ++d) s += rq[d] * (x[j + d] + x[j - d < 0 ? d - j : j - d]);
+    r[static_cast<std::size_t>(j)] = s;
+  }
+  constexpr std::int64_t kBlock = 2048;  // a block of r and its taps' inputs stay in L1/L2
+  for (std::int64_t begin = edge; begin < lags; begin += kBlock) {
+    const std::int64_t end = std::min(lags, begin + kBlock);
+    double* out = r.data();
+    for (std::int64_t j = begin; j < end; ++j) out[j] = rq[0] * x[j];
+    for (std::int64_t d = 1; d < taps; ++d) {
+      const double w = rq[d];
+      for (std::int64_t j = begin; j < end; ++j) out[j] += w * (x[j + d] + x[j - d]);
+    }
   }
   return r;
 }

@@ -12,22 +12,29 @@
 namespace allanlab::sim {
 namespace {
 
-// phi(x), x = 0..len(rq)-1 (header): how far rq smooths the kink of |x|.
+// phi(x), x = 0..len(rq)-1 (header): how far rq smooths the kink of |x|. With rq even,
+// |x + d| + |x - d| is 2x for d <= x and 2d beyond, so phi(x) = x (rq_0 + 2 sum_{1<=d<=x} rq_d)
+// + 2 sum_{d>x} d rq_d - x: O(len(rq)) from running sums (the direct double sum was O(len(rq)^2),
+// redone at every cutoff a band-limit fit visits).
 std::vector<double> KinkKernel(const std::vector<double>& rq) {
   const auto taps = static_cast<std::int64_t>(rq.size());
+  std::vector<long double> beyond(rq.size(), 0.0L);  // sum_{d>x} d rq_d
+  for (std::int64_t d = taps - 1; d >= 1; --d) {
+    beyond[static_cast<std::size_t>(d - 1)] = beyond[static_cast<std::size_t>(d)] + static_cast<long double>(d) * rq[d];
+  }
   std::vector<double> phi(rq.size(), 0.0);
+  long double within = rq[0];  // rq_0 + 2 sum_{1<=d<=x} rq_d
   for (std::int64_t x = 0; x < taps; ++x) {
-    long double s = rq[0] * static_cast<long double>(x);
-    for (std::int64_t d = 1; d < taps; ++d) {
-      s += rq[d] * static_cast<long double>(std::abs(x + d) + std::abs(x - d));
-    }
-    phi[static_cast<std::size_t>(x)] = static_cast<double>(s - x);
+    if (x > 0) within += 2.0L * rq[x];
+    const long double xl = static_cast<long double>(x);
+    const long double s = xl * within + 2.0L * beyond[static_cast<std::size_t>(x)];
+    phi[static_cast<std::size_t>(x)] = static_cast<double>(s - xl);
   }
   return phi;
 }
 
 // KinkKernel of the chain's held autocorrelation, memoised per thread for the last few chains
-// (it is O(len(q)^2), and a fit evaluates every term at the same cutoff several times).
+// (a fit evaluates every term at the same cutoff several times).
 std::shared_ptr<const std::vector<double>> SharedKinkKernel(const BandLimitChain& chain) {
   struct Entry {
     BandLimit limit;
@@ -50,6 +57,23 @@ std::shared_ptr<const std::vector<double>> SharedKinkKernel(const BandLimitChain
   return phi;
 }
 
+// sum_{i=1..k} 1/(2i - 1) in long double, summed in order, k = 0..kDirectOddHarmonics - 1: the
+// running sums the flicker window below starts from (the same bits as summing to k at each call,
+// which was a chain of up to 4096 divisions per tau at every band-limited fit evaluation).
+constexpr std::int64_t kDirectOddHarmonics = 4096;
+const std::vector<long double>& OddHarmonicPrefix() {
+  static const std::vector<long double> prefix = [] {
+    std::vector<long double> h(static_cast<std::size_t>(kDirectOddHarmonics), 0.0L);
+    long double running = 0.0L;
+    for (std::int64_t i = 1; i < kDirectOddHarmonics; ++i) {
+      running += 1.0L / (2.0L * i - 1.0L);
+      h[static_cast<std::size_t>(i)] = running;
+    }
+    return h;
+  }();
+  return prefix;
+}
+
 // R_x at lags lo..lo+n-1 of a held term. Random walk and Kasdin flicker in closed form (their
 // windows sit at lags up to 2m + len(q), which filling from lag 0 would make O(m)); the other
 // terms through their FillAutocovariance.
@@ -66,8 +90,8 @@ std::vector<long double> LagWindow(const T& t, double tau0_s, std::int64_t lo, s
     const long double scale = 2.0L * t.bias_instability_rad_per_s * t.bias_instability_rad_per_s /
                               std::numbers::pi_v<long double>;
     long double h = 0.0L;
-    if (lo < 4096) {
-      for (std::int64_t i = 1; i <= lo; ++i) h += 1.0L / (2.0L * i - 1.0L);
+    if (lo < kDirectOddHarmonics) {
+      h = OddHarmonicPrefix()[static_cast<std::size_t>(lo)];
     } else {
       h = 0.5L * (boost::math::digamma(static_cast<long double>(lo) + 0.5L) -
                   boost::math::digamma(0.5L));
