@@ -33,11 +33,14 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
                                           const sim::RecordShape& shape);
 
 // The variogram as pairs of doubles, hi + lo == V exactly (hi is V rounded to double; V's 64-bit
-// significand leaves lo at most 11 bits). The overlapping estimator's O(N) loop per m was bound by
-// its three 80-bit loads per lag; two double loads and an exact long-double addition give the same
-// long double in about half the time, so the same bits. Empty when some V does not split exactly
-// (not finite, or outside double's range), or beyond 2^24 lags (memory): the long doubles are
-// read then.
+// significand leaves lo at most 11 bits). The O(N) loops per m form the second difference
+// V(j + m) - 2V(j) + V(|j - m|) from the pairs in double-double arithmetic (error-free sums of the
+// his, the los added, one rounding to double), which vectorises, where three 80-bit additions per
+// lag bound the loop; the long doubles round three times at 64 bits before that last rounding, so
+// the two can differ in the last bit of a difference that V's size cancels, and the split's is the
+// closer (in tests/estimators/split_variogram_test.cc's models they agree to the bit). Empty when
+// some V does not split exactly (not finite, or outside double's range), or beyond 2^24 lags
+// (memory): the long doubles are read then.
 struct SplitVariogram {
   std::vector<double> hi, lo;
 };
@@ -52,7 +55,7 @@ struct MomentScratch {
 };
 
 // The same moments, reading V from `split` (SplitPhaseVariogram(variogram), or empty) where it
-// can: the bits of the overload above, with or without `scratch`.
+// can (see SplitVariogram); the same bits with or without `scratch`.
 AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram, const SplitVariogram& split,
                                           std::int64_t m, const sim::RecordShape& shape,
                                           MomentScratch* scratch = nullptr);
@@ -66,5 +69,8 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
 // or without `scratch`.
 AvarMoments ExactOhvarMomentsFromVariogram(std::span<const long double> variogram, std::int64_t m,
                                            std::int64_t num_samples, MomentScratch* scratch = nullptr);
+// The same from `split` (SplitPhaseVariogram(variogram), or empty) where it can.
+AvarMoments ExactOhvarMomentsFromVariogram(std::span<const long double> variogram, const SplitVariogram& split,
+                                           std::int64_t m, std::int64_t num_samples, MomentScratch* scratch = nullptr);
 
 }  // namespace allanlab::estimators

@@ -1,5 +1,6 @@
 #include "sim/gauss_markov.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <unordered_map>
@@ -80,10 +81,19 @@ double Ar1Avar(std::int64_t m, double phi, double variance) {
   return static_cast<double>(variance * sum / (ml * ml));
 }
 
+// Below this argument expm1 is -1 exactly: e^x < 2^-54 (x < -37.4) rounds -1 + e^x to -1.
+constexpr double kExpm1IsMinusOne = -40.0;
+
 void FillAr1Autocovariance(double phi, double variance, std::span<double> r, std::int64_t first_lag) {
   const double log_phi = std::log(phi);
   for (std::size_t j = 0; j < r.size(); ++j) {
-    r[j] = variance * std::expm1(static_cast<double>(first_lag + static_cast<std::int64_t>(j)) * log_phi);
+    const double x = static_cast<double>(first_lag + static_cast<std::int64_t>(j)) * log_phi;
+    if (x < kExpm1IsMinusOne) {
+      // expm1 is -1 exactly from here on (x only falls): the same values without a call per lag.
+      std::fill(r.begin() + static_cast<std::ptrdiff_t>(j), r.end(), -variance);
+      return;
+    }
+    r[j] = variance * std::expm1(x);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "sim/resonance.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -94,8 +96,14 @@ void Resonance::FillAutocovariance(double tau0_s, std::span<double> r, std::int6
   const double var = sigma_rad_per_s * sigma_rad_per_s;
   for (std::size_t i = 0; i < r.size(); ++i) {
     const double t = static_cast<double>(first_lag + static_cast<std::int64_t>(i)) * tau0_s;
-    r[i] = var * std::exp(-p.decay_per_s * t) *
-           (std::cos(p.wd_rad_s * t) + p.sin_gain * std::sin(p.wd_rad_s * t));
+    const double envelope = std::exp(-p.decay_per_s * t);
+    if (envelope == 0.0) {
+      // The envelope has underflowed, and stays at 0 for every later lag: a record-length fill
+      // (the exact theory's) no longer spends a sine and a cosine on each.
+      std::fill(r.begin() + static_cast<std::ptrdiff_t>(i), r.end(), 0.0);
+      return;
+    }
+    r[i] = var * envelope * (std::cos(p.wd_rad_s * t) + p.sin_gain * std::sin(p.wd_rad_s * t));
   }
 }
 

@@ -102,26 +102,55 @@ std::optional<CandidateResult> TryCandidate(const Context& ctx, const DiagnosisS
                                             std::string* why) {
   CandidateResult c;
   c.effects = effects;
-  if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why,
-                 ctx.have_record ? ctx.rate : std::span<const double>())) {
-    return std::nullopt;
-  }
-  if (!PhysicallyPossible(c.effects, ctx.curve.sample_clock,
-                          ctx.curve.sample_clock.period_s() * static_cast<double>(ctx.curve.num_samples), why)) {
-    return std::nullopt;
-  }
-  c.theory = ExactOavar(c.model, ctx.layout.oavar_m, ctx.layout.num_samples);
-  c.after = Assess(ctx, c.model, false, 0, why, &c.theory);
-  const int k = ParameterCount(effects);
-  c.score = ExactChi2(s.before) - ExactChi2(c.after) - 2.0 * k;
+  // The held-out half's fit and exact OAVAR depend on the effects' starts alone, not on the
+  // record's refit: a task beside it. Inside the candidates' parallel loop a thread that has run
+  // out of candidates takes it up (the loop's last candidates left one core idle); outside one it
+  // runs on this thread. Both write their own fields, so the bits are the same either way.
+  struct Heldout {
+    int half = 1;
+    bool fitted = false;
+    sim::SensorModel model;
+    OavarTheory theory;
+    GapMetrics before, after;
+  } heldout;
   if (ctx.have_halves) {
-    c.heldout_half = ScoredHalf(ctx, effects);
-    std::string ignored;
-    if (HeldoutModel(ctx, effects, c.heldout_half, &c.heldout_model, &ignored)) {
-      const HalfRecord& scored = ctx.halves[c.heldout_half];
-      c.heldout_before = scored.against_other_baseline;
-      c.heldout_theory = ExactOavar(c.heldout_model, scored.curve.m, scored.curve.num_samples);
-      c.after.heldout = CurveMetrics(c.heldout_theory, scored.curve);
+#pragma omp task default(none) shared(ctx, effects, heldout)
+    {
+      heldout.half = ScoredHalf(ctx, effects);
+      std::string ignored;
+      if (HeldoutModel(ctx, effects, heldout.half, &heldout.model, &ignored)) {
+        const HalfRecord& scored = ctx.halves[heldout.half];
+        heldout.fitted = true;
+        heldout.before = scored.against_other_baseline;
+        heldout.theory = ExactOavar(heldout.model, scored.curve.m, scored.curve.num_samples);
+        heldout.after = CurveMetrics(heldout.theory, scored.curve);
+      }
+    }
+  }
+  const bool refitted = [&] {
+    if (!BestRefit(ctx.spec, ctx.curve, ctx.curve_edf, s.baseline, &c.effects, &c.fit, &c.model, why,
+                   ctx.have_record ? ctx.rate : std::span<const double>())) {
+      return false;
+    }
+    if (!PhysicallyPossible(c.effects, ctx.curve.sample_clock,
+                            ctx.curve.sample_clock.period_s() * static_cast<double>(ctx.curve.num_samples), why)) {
+      return false;
+    }
+    c.theory = ExactOavar(c.model, ctx.layout.oavar_m, ctx.layout.num_samples);
+    c.after = Assess(ctx, c.model, false, 0, why, &c.theory);
+    const int k = ParameterCount(effects);
+    c.score = ExactChi2(s.before) - ExactChi2(c.after) - 2.0 * k;
+    return true;
+  }();
+#pragma omp taskwait
+  if (!refitted) return std::nullopt;
+  if (ctx.have_halves) {
+    c.heldout_half = heldout.half;
+    if (heldout.fitted) {
+      c.heldout_model = std::move(heldout.model);
+      c.heldout_before = heldout.before;
+      c.heldout_theory = std::move(heldout.theory);
+      c.after.heldout = heldout.after;
       c.after.has_heldout = true;
     }
   }

@@ -2,6 +2,7 @@
 // What the steps of a diagnosis (baseline.h, refit.h, heldout.h, verdict.h) share: the record, its
 // curve and views, its halves, and how a model is assessed against them.
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -54,8 +55,10 @@ struct Context {
   bool have_halves = false;
   HalfRecord halves[2];
   double half_length_s = 0.0;
-  // Each half against the other half's baseline (computed once, when a candidate needs it).
+  // Each half against the other half's baseline (computed once, by the first candidate, on any
+  // thread, that needs it).
   mutable std::optional<HeldoutBefore> heldout_before[2];
+  mutable std::once_flag heldout_before_once[2];
   // The flicker records the envelopes share (RecordFlicker): 480 MB for the whole record and its
   // halves at 1e6 samples and 30 trials; longer records keep what fits.
   mutable sim::FlickerStreamCache flicker_streams{std::size_t{1} << 30};

@@ -216,7 +216,7 @@ GaussianViewTheory GaussianTheory(const sim::SensorModel& model, const ViewLayou
     for (std::int64_t i = 0; i < sums; ++i) {
       const auto at = static_cast<std::size_t>(i);
       if (i < hadamard_count) {
-        moments[at] = estimators::ExactOhvarMomentsFromVariogram(variogram, layout.hadamard_m[at], n, &scratch);
+        moments[at] = estimators::ExactOhvarMomentsFromVariogram(variogram, split, layout.hadamard_m[at], n, &scratch);
       } else if (i < hadamard_count + halves_count) {
         moments[at] = estimators::ExactAvarMomentsFromVariogram(
             variogram, split, layout.halves_m[static_cast<std::size_t>(i - hadamard_count)], half, &scratch);

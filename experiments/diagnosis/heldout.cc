@@ -1,6 +1,7 @@
 #include "experiments/diagnosis/heldout.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "experiments/diagnosis/baseline.h"
 #include "experiments/diagnosis/candidate_estimate.h"
@@ -14,7 +15,7 @@ namespace {
 // The held-out half against the other half's baseline, every view, and the views in which it
 // departs from that baseline beyond `threshold` (computed once per half).
 const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold) {
-  if (!ctx.heldout_before[h]) {
+  std::call_once(ctx.heldout_before_once[h], [&] {
     const HalfRecord& scored = ctx.halves[h];
     HeldoutBefore b;
     std::string ignored;
@@ -27,7 +28,7 @@ const HeldoutBefore& HeldoutBaseline(const Context& ctx, int h, double threshold
       if (std::find(b.gap_views.begin(), b.gap_views.end(), r.view) == b.gap_views.end()) b.gap_views.push_back(r.view);
     }
     ctx.heldout_before[h] = std::move(b);
-  }
+  });
   return *ctx.heldout_before[h];
 }
 

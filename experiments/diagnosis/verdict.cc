@@ -10,10 +10,12 @@
 #include "estimators/fit/noise_coefficient.h"
 #include "experiments/diagnosis/block_means.h"
 #include "experiments/diagnosis/candidate_estimate.h"
+#include "experiments/diagnosis/gaussian_views.h"
 #include "experiments/diagnosis/heldout.h"
 #include "experiments/diagnosis/line_drift.h"
 #include "experiments/diagnosis/line_shape.h"
 #include "experiments/diagnosis/set_rules.h"
+#include "experiments/diagnosis/warmup_drift_views.h"
 
 namespace allanlab::experiments::detail {
 namespace {
@@ -80,14 +82,45 @@ void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* 
   c->full_score = s.before.All().chi2 - c->after.All().chi2 - 2.0 * ParameterCount(c->effects);
 }
 
+// Whether FullAssess finds the candidate's Monte Carlo views from theory (gaussian_views.h) rather
+// than from simulated records.
+bool ViewsFromTheory(const Context& ctx, const CandidateResult& c) {
+  sim::SensorModel gaussian_part;
+  return IsGaussianModel(c.model, ctx.layout.num_samples) ||
+         SplitWarmupDrift(c.model, ctx.layout.num_samples, &gaussian_part).has_value();
+}
+
 // FullAssess of the chosen candidates (each seeded by its index, so the order of the calls does
 // not matter); closes_gap and the score of every candidate not deferred from its assessed views.
 void AssessChosen(const Context& ctx, DiagnosisSummary* s, const std::vector<std::size_t>& chosen) {
-  for (std::size_t j = 0; j < chosen.size(); ++j) {
-    ReportProgress(ctx, "Monte Carlo views", static_cast<int>(j), static_cast<int>(chosen.size()));
-    FullAssess(ctx, *s, &s->candidates[chosen[j]], 1000 + chosen[j]);
+  // A model with its Monte Carlo views from theory (gaussian_views.h) is assessed mostly in serial
+  // steps (autocovariance, variogram, block means): those candidates run in parallel, each on its
+  // own thread, where one after another they left the second core idle for most of this stage.
+  // A model whose views are simulated spends its time in envelopes that use every thread: those
+  // run first, one at a time. Each candidate writes only itself and reads what is shared and fixed
+  // (the held-out halves' baselines are computed once, by whichever thread first needs them), so
+  // the bits are those of any other order.
+  std::vector<std::size_t> simulated, from_theory;
+  for (std::size_t i : chosen) (ViewsFromTheory(ctx, s->candidates[i]) ? from_theory : simulated).push_back(i);
+  const int count = static_cast<int>(chosen.size());
+  std::atomic<int> done{0};
+  if (count > 0) ReportProgress(ctx, "Monte Carlo views", 0, count);
+  auto report = [&] {
+    const int d = done.fetch_add(1) + 1;
+    if (d < count) ReportProgress(ctx, "Monte Carlo views", d, count);
+  };
+  for (std::size_t i : simulated) {
+    FullAssess(ctx, *s, &s->candidates[i], 1000 + i);
+    report();
   }
-  if (!chosen.empty()) ReportProgress(ctx, "Monte Carlo views", static_cast<int>(chosen.size()), static_cast<int>(chosen.size()));
+  const int parallel = static_cast<int>(from_theory.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int j = 0; j < parallel; ++j) {
+    const std::size_t i = from_theory[static_cast<std::size_t>(j)];
+    FullAssess(ctx, *s, &s->candidates[i], 1000 + i);
+    report();
+  }
+  if (count > 0) ReportProgress(ctx, "Monte Carlo views", count, count);
   for (CandidateResult& c : s->candidates) {
     if (!c.full_views) c.full_score = c.score;
     c.closes_gap = ClosesGap(c.after, s->threshold);
@@ -303,15 +336,43 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
       return HeldoutShrink(a) > HeldoutShrink(b);
     });
     if (trials.size() > kTriesPerRound) trials.resize(kTriesPerRound);
+    // Each try's Monte Carlo views and held-out footing depend on it and the current set alone
+    // (seeded by its place): those from theory, mostly serial work, are assessed side by side
+    // beforehand when there are two or more, though a try kept first makes the later ones
+    // unneeded; those simulated, whose envelopes use every thread, when the loop reaches them.
+    struct Assessed {
+      bool done = false;
+      GapMetrics before;
+      std::vector<ViewResiduals> before_residuals;
+    };
+    std::vector<Assessed> assessed(trials.size());
+    auto assess = [&](std::size_t t) {
+      FullAssess(ctx, *s, &trials[t], 2000 + 10 * round + t);
+      trials[t].closes_gap = ClosesGap(trials[t].after, s->threshold);
+      assessed[t].before = HeldoutOnSameFooting(ctx, s->threshold, current, trials[t],
+                                                ctx.options->seed + 3000 + 10 * round + t,
+                                                &assessed[t].before_residuals);
+      assessed[t].done = true;
+    };
+    std::vector<std::size_t> from_theory;
+    for (std::size_t t = 0; t < trials.size(); ++t) {
+      if (ViewsFromTheory(ctx, trials[t])) from_theory.push_back(t);
+    }
+    if (from_theory.size() > 1) {
+      ReportProgress(ctx, stage + ": Monte Carlo views", 0, static_cast<int>(trials.size()));
+      const int count = static_cast<int>(from_theory.size());
+#pragma omp parallel for schedule(dynamic, 1)
+      for (int j = 0; j < count; ++j) assess(from_theory[static_cast<std::size_t>(j)]);
+    }
     bool kept = false;
     for (std::size_t t = 0; t < trials.size() && !kept; ++t) {
       CandidateResult& next = trials[t];
-      ReportProgress(ctx, stage + ": Monte Carlo views", static_cast<int>(t), static_cast<int>(trials.size()));
-      FullAssess(ctx, *s, &next, 2000 + 10 * round + t);
-      next.closes_gap = ClosesGap(next.after, s->threshold);
-      std::vector<ViewResiduals> before_residuals;
-      const GapMetrics before = HeldoutOnSameFooting(ctx, s->threshold, current, next,
-                                                     ctx.options->seed + 3000 + 10 * round + t, &before_residuals);
+      if (!assessed[t].done) {
+        ReportProgress(ctx, stage + ": Monte Carlo views", static_cast<int>(t), static_cast<int>(trials.size()));
+        assess(t);
+      }
+      const GapMetrics& before = assessed[t].before;
+      const std::vector<ViewResiduals>& before_residuals = assessed[t].before_residuals;
       std::string why;
       CandidateResult::Step step;
       if (!EarnsItsPlace(ctx.options->set_margin, s->threshold, s->before, current, next, before, before_residuals,
