@@ -82,9 +82,17 @@ void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* 
   c->full_score = s.before.All().chi2 - c->after.All().chi2 - 2.0 * ParameterCount(c->effects);
 }
 
+// Records up to this many samples have candidates whose views come from theory assessed side by
+// side (AssessChosen, GrowSet). Their serial steps then overlap: ADIS16405 imu1 Gyro_Z (1e6
+// samples) 14.4 -> 12.0 s. On longer records the exact sums dominate and already use every
+// thread, and two candidates' record-sized arrays at once contend for the memory: a 1e7-sample
+// record with a Gauss-Markov gap took 46.8 s side by side against 43.9 s one after another.
+constexpr std::int64_t kSideBySideMaxSamples = std::int64_t{1} << 22;
+
 // Whether FullAssess finds the candidate's Monte Carlo views from theory (gaussian_views.h) rather
-// than from simulated records.
-bool ViewsFromTheory(const Context& ctx, const CandidateResult& c) {
+// than from simulated records, on a record short enough for them to be assessed side by side.
+bool SideBySide(const Context& ctx, const CandidateResult& c) {
+  if (ctx.layout.num_samples > kSideBySideMaxSamples) return false;
   sim::SensorModel gaussian_part;
   return IsGaussianModel(c.model, ctx.layout.num_samples) ||
          SplitWarmupDrift(c.model, ctx.layout.num_samples, &gaussian_part).has_value();
@@ -94,14 +102,15 @@ bool ViewsFromTheory(const Context& ctx, const CandidateResult& c) {
 // not matter); closes_gap and the score of every candidate not deferred from its assessed views.
 void AssessChosen(const Context& ctx, DiagnosisSummary* s, const std::vector<std::size_t>& chosen) {
   // A model with its Monte Carlo views from theory (gaussian_views.h) is assessed mostly in serial
-  // steps (autocovariance, variogram, block means): those candidates run in parallel, each on its
-  // own thread, where one after another they left the second core idle for most of this stage.
-  // A model whose views are simulated spends its time in envelopes that use every thread: those
-  // run first, one at a time. Each candidate writes only itself and reads what is shared and fixed
-  // (the held-out halves' baselines are computed once, by whichever thread first needs them), so
-  // the bits are those of any other order.
-  std::vector<std::size_t> simulated, from_theory;
-  for (std::size_t i : chosen) (ViewsFromTheory(ctx, s->candidates[i]) ? from_theory : simulated).push_back(i);
+  // steps (autocovariance, variogram, block means): on records up to kSideBySideMaxSamples those
+  // candidates run in parallel, each on its own thread, where one after another they left the
+  // second core idle for most of this stage. A model whose views are simulated spends its time in
+  // envelopes that use every thread: those run first, one at a time, as do all on longer records.
+  // Each candidate writes only itself and reads what is shared and fixed (the held-out halves'
+  // baselines are computed once, by whichever thread first needs them), so the bits are those of
+  // any other order.
+  std::vector<std::size_t> one_at_a_time, side_by_side;
+  for (std::size_t i : chosen) (SideBySide(ctx, s->candidates[i]) ? side_by_side : one_at_a_time).push_back(i);
   const int count = static_cast<int>(chosen.size());
   std::atomic<int> done{0};
   if (count > 0) ReportProgress(ctx, "Monte Carlo views", 0, count);
@@ -109,14 +118,14 @@ void AssessChosen(const Context& ctx, DiagnosisSummary* s, const std::vector<std
     const int d = done.fetch_add(1) + 1;
     if (d < count) ReportProgress(ctx, "Monte Carlo views", d, count);
   };
-  for (std::size_t i : simulated) {
+  for (std::size_t i : one_at_a_time) {
     FullAssess(ctx, *s, &s->candidates[i], 1000 + i);
     report();
   }
-  const int parallel = static_cast<int>(from_theory.size());
+  const int parallel = static_cast<int>(side_by_side.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (int j = 0; j < parallel; ++j) {
-    const std::size_t i = from_theory[static_cast<std::size_t>(j)];
+    const std::size_t i = side_by_side[static_cast<std::size_t>(j)];
     FullAssess(ctx, *s, &s->candidates[i], 1000 + i);
     report();
   }
@@ -337,9 +346,9 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
     });
     if (trials.size() > kTriesPerRound) trials.resize(kTriesPerRound);
     // Each try's Monte Carlo views and held-out footing depend on it and the current set alone
-    // (seeded by its place): those from theory, mostly serial work, are assessed side by side
-    // beforehand when there are two or more, though a try kept first makes the later ones
-    // unneeded; those simulated, whose envelopes use every thread, when the loop reaches them.
+    // (seeded by its place): those that SideBySide allows are assessed in parallel beforehand
+    // when there are two or more, though a try kept first makes the later ones unneeded; the
+    // others (simulated views, whose envelopes use every thread) when the loop reaches them.
     struct Assessed {
       bool done = false;
       GapMetrics before;
@@ -354,15 +363,15 @@ void GrowSet(const Context& ctx, DiagnosisSummary* s) {
                                                 &assessed[t].before_residuals);
       assessed[t].done = true;
     };
-    std::vector<std::size_t> from_theory;
+    std::vector<std::size_t> side_by_side;
     for (std::size_t t = 0; t < trials.size(); ++t) {
-      if (ViewsFromTheory(ctx, trials[t])) from_theory.push_back(t);
+      if (SideBySide(ctx, trials[t])) side_by_side.push_back(t);
     }
-    if (from_theory.size() > 1) {
+    if (side_by_side.size() > 1) {
       ReportProgress(ctx, stage + ": Monte Carlo views", 0, static_cast<int>(trials.size()));
-      const int count = static_cast<int>(from_theory.size());
+      const int count = static_cast<int>(side_by_side.size());
 #pragma omp parallel for schedule(dynamic, 1)
-      for (int j = 0; j < count; ++j) assess(from_theory[static_cast<std::size_t>(j)]);
+      for (int j = 0; j < count; ++j) assess(side_by_side[static_cast<std::size_t>(j)]);
     }
     bool kept = false;
     for (std::size_t t = 0; t < trials.size() && !kept; ++t) {
