@@ -56,10 +56,6 @@ constexpr std::size_t kMaxSplitLags = std::size_t{1} << 24;
                                                      double* __restrict a) {
   for (std::int64_t j = begin; j < end; ++j) a[j] = SplitSecondDifference(hi, lo, j, j + m, j - m);
 }
-void BaselineSecondDifferences(const double* hi, const double* lo, std::int64_t m, std::int64_t begin,
-                               std::int64_t end, double* a) {
-  SecondDifferences(hi, lo, m, begin, end, a);
-}
 // The same loop compiled for AVX2 (four lanes; no FMA, so the same operations and bits). On other
 // targets CpuHasAvx2() is false and the baseline loop runs.
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -96,7 +92,7 @@ void VariogramSecondDifference(std::span<const long double> variogram, const Spl
   if (CpuHasAvx2()) {
     Avx2SecondDifferences(hi, lo, m, reflected, count, a);
   } else {
-    BaselineSecondDifferences(hi, lo, m, reflected, count, a);
+    SecondDifferences(hi, lo, m, reflected, count, a);
   }
 }
 
@@ -161,12 +157,10 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
   const long double c0 = cov_d(0);
   long double sum = starts.count * c0 * c0;
   if (starts.stride == 1) {
-    const std::int64_t last = starts.count - 1 + 2 * m;  // the largest lag the sum reads
     MomentScratch own;
     std::vector<double>* buffer = scratch != nullptr ? &scratch->first : &own.first;
-    static const SplitVariogram kNone;
-    const long double lag_sum = OverlappingLagSum(
-        variogram, static_cast<std::int64_t>(split.hi.size()) > last ? split : kNone, m, starts.count, buffer);
+    // VariogramSecondDifference reads the long doubles where the split is too short.
+    const long double lag_sum = OverlappingLagSum(variogram, split, m, starts.count, buffer);
     sum += 2.0L * scale * scale * lag_sum;
   } else {
     for (std::int64_t i = 1; i < starts.count; ++i) {

@@ -37,8 +37,8 @@ AvarMoments ExactAvarMomentsFromVariogram(std::span<const long double> variogram
 // V(j + m) - 2V(j) + V(|j - m|) from the pairs in double-double arithmetic (error-free sums of the
 // his, the los added, one rounding to double), which vectorises, where three 80-bit additions per
 // lag bound the loop; the long doubles round three times at 64 bits before that last rounding, so
-// the two can differ in the last bit of a difference that V's size cancels, and the split's is the
-// closer (in tests/estimators/split_variogram_test.cc's models they agree to the bit). Empty when
+// the two could differ in the last bit of a difference that V's size cancels (in
+// tests/estimators/split_variogram_test.cc's models they agree to the bit). Empty when
 // some V does not split exactly (not finite, or outside double's range), or beyond 2^24 lags
 // (memory): the long doubles are read then.
 struct SplitVariogram {

@@ -84,9 +84,10 @@ void FullAssess(const Context& ctx, const DiagnosisSummary& s, CandidateResult* 
 
 // Records up to this many samples have candidates whose views come from theory assessed side by
 // side (AssessChosen, GrowSet). Their serial steps then overlap: ADIS16405 imu1 Gyro_Z (1e6
-// samples) 14.4 -> 12.0 s. On longer records the exact sums dominate and already use every
-// thread, and two candidates' record-sized arrays at once contend for the memory: a 1e7-sample
-// record with a Gauss-Markov gap took 46.8 s side by side against 43.9 s one after another.
+// samples) 14.4 -> 12.0 s (one run each). On longer records the exact sums dominate and already
+// use every thread, and two candidates' record-sized arrays at once contend for the memory: a
+// 1e7-sample record with a Gauss-Markov gap took 46.8-47.7 s side by side against 43.6-43.9 s one
+// after another (two runs each, interleaved).
 constexpr std::int64_t kSideBySideMaxSamples = std::int64_t{1} << 22;
 
 // Whether FullAssess finds the candidate's Monte Carlo views from theory (gaussian_views.h) rather

@@ -3,8 +3,10 @@
 // held response q: R_y(j) = sum_a sum_b q_a q_b R_x(j + a - b), R_x even. Inputs: a flicker's
 // generalised autocovariance (slowly varying, large at long lags), a random walk's (-|k|, which a
 // unit-gain even filter leaves unchanged beyond its support) and a first-order Gauss-Markov one;
-// lags from 0 across the reflected edge and about each block boundary. The double sum rounds once per tap:
-// the bound is len(rq) x 4.4e-16 of the largest input the lag reads.
+// lags from 0 across the reflected edge and about each block boundary. The double sum rounds
+// twice per tap (a pair's sum and the running sum), each at most 2.2e-16 of a term no larger than
+// the largest input the lag reads (rq sums to 1): the bound is len(rq) x 4.4e-16 of that input
+// (seen: at most 0.26 of it, at 3 taps; 0.01-0.05 at 21-462 taps).
 #include <gtest/gtest.h>
 
 #include <algorithm>
