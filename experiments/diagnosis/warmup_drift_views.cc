@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <tuple>
 #include <type_traits>
 #include <variant>
 
@@ -81,20 +83,12 @@ std::optional<WarmupDriftPath> SplitWarmupDrift(const sim::SensorModel& model, s
   return path;
 }
 
-DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int order, std::int64_t m,
-                                   std::int64_t differences, double amplitude_rad_per_s, double decay_per_sample) {
-  DriftShift s;
+long double DriftCrossSum(std::span<const long double> variogram, int order, std::int64_t m,
+                          std::int64_t differences, double decay_per_sample, std::int64_t keep_up_to) {
   const std::int64_t t = differences;
-  if (t < 1 || amplitude_rad_per_s == 0.0) return s;
   const long double lambda = decay_per_sample;
-  const long double one_minus_rho = -std::expm1(-lambda);
-  const long double one_minus_rho_m = -std::expm1(-lambda * static_cast<long double>(m));
-  const long double d = static_cast<long double>(amplitude_rad_per_s) * std::pow(one_minus_rho_m, order) / one_minus_rho;
   const long double one_minus_rho2 = -std::expm1(-2.0L * lambda);
   const long double s0 = -std::expm1(-2.0L * lambda * static_cast<long double>(t)) / one_minus_rho2;
-  const long double k = (order == 2 ? 2.0L : 6.0L) * static_cast<long double>(m) * static_cast<long double>(m);
-  s.own = static_cast<double>(d * d * s0 / (k * static_cast<long double>(t)));
-  if (variogram.empty()) return s;
   // sum_{|h|<T} C(h) rho^|h| (1 - rho^{2(T-|h|)}) / (1 - rho^2) as C(0) s0 + 2 (A - B) / (1 - rho^2),
   // A = sum_{h>=1} C(h) rho^h (rho^h ascending), B = sum_{h>=1} C(h) rho^{2T-h} (descending from
   // rho^{T+1}), so no power is formed by division.
@@ -107,23 +101,55 @@ DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int o
     }
     return -0.5L * sum;
   };
-  // Two passes that form C(h) twice rather than keep T long doubles (160 MB at 1e7 samples).
+  // C(h) formed once and kept for both passes up to keep_up_to (header); beyond, formed in each
+  // pass. The same values either way.
+  std::vector<long double> kept;
+  if (t <= keep_up_to) {
+    kept.resize(static_cast<std::size_t>(std::max<std::int64_t>(t, 1)));
+    for (std::int64_t h = 1; h < t; ++h) kept[static_cast<std::size_t>(h)] = c(h);
+  }
+  auto c_at = [&](std::int64_t h) { return kept.empty() ? c(h) : kept[static_cast<std::size_t>(h)]; };
   const long double rho = std::exp(-lambda);
   long double ascending = 0.0L, power = 1.0L;
   for (std::int64_t h = 1; h < t; ++h) {
     power *= rho;
-    ascending += c(h) * power;
+    ascending += c_at(h) * power;
   }
   long double descending = 0.0L;
   power = std::exp(-lambda * static_cast<long double>(t + 1));
   for (std::int64_t h = t - 1; h >= 1; --h) {
-    descending += c(h) * power;
+    descending += c_at(h) * power;
     power *= rho;
   }
-  const long double quadratic = c(0) * s0 + 2.0L * (ascending - descending) / one_minus_rho2;
+  return c(0) * s0 + 2.0L * (ascending - descending) / one_minus_rho2;
+}
+
+DriftShift DriftShiftFromCrossSum(const long double* cross_sum, int order, std::int64_t m, std::int64_t differences,
+                                  double amplitude_rad_per_s, double decay_per_sample) {
+  DriftShift s;
+  const std::int64_t t = differences;
+  if (t < 1 || amplitude_rad_per_s == 0.0) return s;
+  const long double lambda = decay_per_sample;
+  const long double one_minus_rho = -std::expm1(-lambda);
+  const long double one_minus_rho_m = -std::expm1(-lambda * static_cast<long double>(m));
+  const long double d = static_cast<long double>(amplitude_rad_per_s) * std::pow(one_minus_rho_m, order) / one_minus_rho;
+  const long double one_minus_rho2 = -std::expm1(-2.0L * lambda);
+  const long double s0 = -std::expm1(-2.0L * lambda * static_cast<long double>(t)) / one_minus_rho2;
+  const long double k = (order == 2 ? 2.0L : 6.0L) * static_cast<long double>(m) * static_cast<long double>(m);
+  s.own = static_cast<double>(d * d * s0 / (k * static_cast<long double>(t)));
+  if (cross_sum == nullptr) return s;
   const long double scale = 2.0L * d / (k * static_cast<long double>(t));
-  s.cross_variance = static_cast<double>(std::max(0.0L, scale * scale * quadratic));
+  s.cross_variance = static_cast<double>(std::max(0.0L, scale * scale * *cross_sum));
   return s;
+}
+
+DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int order, std::int64_t m,
+                                   std::int64_t differences, double amplitude_rad_per_s, double decay_per_sample) {
+  if (variogram.empty() || differences < 1 || amplitude_rad_per_s == 0.0) {
+    return DriftShiftFromCrossSum(nullptr, order, m, differences, amplitude_rad_per_s, decay_per_sample);
+  }
+  const long double cross_sum = DriftCrossSum(variogram, order, m, differences, decay_per_sample);
+  return DriftShiftFromCrossSum(&cross_sum, order, m, differences, amplitude_rad_per_s, decay_per_sample);
 }
 
 void AddWarmupDrift(const WarmupDriftPath& drift, const ViewLayout& layout, std::span<const long double> variogram,
@@ -131,15 +157,22 @@ void AddWarmupDrift(const WarmupDriftPath& drift, const ViewLayout& layout, std:
   const std::int64_t n = layout.num_samples;
   const double a = drift.output_amplitude_rad_per_s, lambda = drift.decay_per_sample;
   auto amplitude_at = [&](std::int64_t first) { return a * std::exp(-lambda * static_cast<double>(first)); };
+  std::map<std::tuple<int, std::int64_t, std::int64_t>, long double> cross_sums;
   // One segment's statistic: the Gaussian part's moments plus the drift's (its own value and the
   // cross term's variance, skipped where the own value is negligible).
   auto shifted = [&](const estimators::AvarMoments& g, int order, std::int64_t m, std::int64_t segment,
                      std::int64_t first) {
     estimators::AvarMoments total = g;
     const std::int64_t differences = segment - order * m + 1;
-    DriftShift own = QuadraticStatisticShift({}, order, m, differences, amplitude_at(first), lambda);
+    const DriftShift own = DriftShiftFromCrossSum(nullptr, order, m, differences, amplitude_at(first), lambda);
     if (!(own.own > kNegligibleShare * g.mean)) return total;
-    const DriftShift s = QuadraticStatisticShift(variogram, order, m, differences, amplitude_at(first), lambda);
+    // Segments of one length share the cross sum (the two halves, the dynamic view's windows).
+    const auto key = std::make_tuple(order, m, differences);
+    auto found = cross_sums.find(key);
+    if (found == cross_sums.end()) {
+      found = cross_sums.emplace(key, DriftCrossSum(variogram, order, m, differences, lambda)).first;
+    }
+    const DriftShift s = DriftShiftFromCrossSum(&found->second, order, m, differences, amplitude_at(first), lambda);
     total.mean += s.own;
     total.variance += s.cross_variance;
     return total;

@@ -59,6 +59,20 @@ struct DriftShift {
 DriftShift QuadraticStatisticShift(std::span<const long double> variogram, int order, std::int64_t m,
                                    std::int64_t differences, double amplitude_rad_per_s, double decay_per_sample);
 
+// The cross term's variance with the amplitude taken out: sum_{|h|<T} C(h) rho^|h|
+// (1 - rho^{2(T-|h|)}) / (1 - rho^2) (header). It depends on a segment only through T, so segments
+// of one length (the two halves, the dynamic view's windows) share it. Preconditions as above.
+// Its T values C(h) are formed once and kept for its two passes when T <= keep_up_to (16 bytes
+// each: 16 MB at the default), else formed in each pass, as a 1e7-sample record's 160 MB would
+// be too much to add; the same bits either way.
+inline constexpr std::int64_t kKeptDifferences = std::int64_t{1} << 20;
+long double DriftCrossSum(std::span<const long double> variogram, int order, std::int64_t m,
+                          std::int64_t differences, double decay_per_sample,
+                          std::int64_t keep_up_to = kKeptDifferences);
+// QuadraticStatisticShift from that sum (the own value alone when cross_sum is null): the same bits.
+DriftShift DriftShiftFromCrossSum(const long double* cross_sum, int order, std::int64_t m, std::int64_t differences,
+                                  double amplitude_rad_per_s, double decay_per_sample);
+
 // The sample excess kurtosis (m4 / m2^2 - 3) of n independent values u_i + Z_i, Z standard normal
 // and u centred (the drift's increments in units of the noise's sd): its shift from the Gaussian
 // value and its variance, by the delta method; 0 and 24/n with u = 0.

@@ -98,6 +98,32 @@ TEST(WarmupDriftViewsTest, TheCrossTermsVarianceIsTheQuadraticFormOverTheRate) {
   }
 }
 
+// The cross sum with C(h) kept between its passes and formed in each: the same bits, and
+// QuadraticStatisticShift is DriftShiftFromCrossSum of it.
+TEST(WarmupDriftViewsTest, TheCrossSumIsTheSameKeptOrFormedTwice) {
+  constexpr std::int64_t kN = 5000;
+  sim::SensorModel noise;
+  noise.sample_clock = SampleClock::FromPeriodS(kTau0);
+  noise.terms.push_back(sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 5e-5});
+  noise.terms.push_back(sim::GaussMarkov{.sigma_rad_per_s = 2e-4, .correlation_time_s = 3.0});
+  const std::vector<long double> variogram = estimators::PhaseVariogram(noise.GaussianAutocovariance(kN + 1), kN + 1);
+  for (int order : {2, 3}) {
+    for (std::int64_t m : {1, 37, 400}) {
+      const std::int64_t t = kN - order * m + 1;
+      for (double decay : {kTau0 / 2.0, kTau0 / 300.0}) {
+        const long double kept = DriftCrossSum(variogram, order, m, t, decay);
+        const long double twice = DriftCrossSum(variogram, order, m, t, decay, 0);
+        EXPECT_EQ(kept, twice) << "order " << order << ", m " << m << ", decay " << decay;
+        const DriftShift via = DriftShiftFromCrossSum(&kept, order, m, t, 1e-3, decay);
+        const DriftShift direct = QuadraticStatisticShift(variogram, order, m, t, 1e-3, decay);
+        EXPECT_EQ(via.own, direct.own);
+        EXPECT_EQ(via.cross_variance, direct.cross_variance);
+        EXPECT_GT(direct.cross_variance, 0.0);
+      }
+    }
+  }
+}
+
 TEST(WarmupDriftViewsTest, EqualWindowsGiveTheEqualWindowRangeLaw) {
   for (double edf : {2.5, 9.0, 120.0}) {
     const std::vector<double> log_means(kDynamicWindows, -3.0), edfs(kDynamicWindows, edf);
