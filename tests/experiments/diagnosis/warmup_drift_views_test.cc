@@ -78,13 +78,18 @@ double BruteForceCrossVariance(const std::vector<double>& r, int order, std::int
   return static_cast<double>(var);
 }
 
-TEST(WarmupDriftViewsTest, TheCrossTermsVarianceIsTheQuadraticFormOverTheRate) {
-  constexpr std::int64_t kN = 600;
+// White rate noise and a Gauss-Markov process of correlation time `tc_s`: the Gaussian part.
+sim::SensorModel WhiteAndGaussMarkov(double tc_s) {
   sim::SensorModel noise;
   noise.sample_clock = SampleClock::FromPeriodS(kTau0);
   noise.terms.push_back(sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 5e-5});
-  noise.terms.push_back(sim::GaussMarkov{.sigma_rad_per_s = 2e-4, .correlation_time_s = 0.3});
-  const std::vector<double> r = noise.GaussianAutocovariance(kN + 1);
+  noise.terms.push_back(sim::GaussMarkov{.sigma_rad_per_s = 2e-4, .correlation_time_s = tc_s});
+  return noise;
+}
+
+TEST(WarmupDriftViewsTest, TheCrossTermsVarianceIsTheQuadraticFormOverTheRate) {
+  constexpr std::int64_t kN = 600;
+  const std::vector<double> r = WhiteAndGaussMarkov(0.3).GaussianAutocovariance(kN + 1);
   const std::vector<long double> variogram = estimators::PhaseVariogram(r, kN + 1);
   const double amplitude = 1e-3, decay = kTau0 / 2.0;
   for (int order : {2, 3}) {
@@ -102,11 +107,8 @@ TEST(WarmupDriftViewsTest, TheCrossTermsVarianceIsTheQuadraticFormOverTheRate) {
 // QuadraticStatisticShift is DriftShiftFromCrossSum of it.
 TEST(WarmupDriftViewsTest, TheCrossSumIsTheSameKeptOrFormedTwice) {
   constexpr std::int64_t kN = 5000;
-  sim::SensorModel noise;
-  noise.sample_clock = SampleClock::FromPeriodS(kTau0);
-  noise.terms.push_back(sim::WhiteRateNoise{.arw_rad_per_sqrt_s = 5e-5});
-  noise.terms.push_back(sim::GaussMarkov{.sigma_rad_per_s = 2e-4, .correlation_time_s = 3.0});
-  const std::vector<long double> variogram = estimators::PhaseVariogram(noise.GaussianAutocovariance(kN + 1), kN + 1);
+  const std::vector<long double> variogram =
+      estimators::PhaseVariogram(WhiteAndGaussMarkov(3.0).GaussianAutocovariance(kN + 1), kN + 1);
   for (int order : {2, 3}) {
     for (std::int64_t m : {1, 37, 400}) {
       const std::int64_t t = kN - order * m + 1;
