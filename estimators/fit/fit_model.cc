@@ -44,7 +44,11 @@ bool FitRoute(const ModelFitOptions& options, const AvarCurve& curve, ModelFitSu
     summary->fit = s.base;
     summary->fit.tau_min_s = curve.tau_s.front();
     summary->fit.tau_max_s = curve.tau_s.back();
-    summary->fit.band_limit = "as listed in the terms";
+    bool band_limit_fitted = false;
+    for (std::size_t i = 0; i < options.extra.size() && i < s.extra.size(); ++i) {
+      band_limit_fitted = band_limit_fitted || (options.extra[i]->modifies_other_terms() && s.extra[i].fitted);
+    }
+    summary->fit.band_limit = band_limit_fitted ? "fitted as listed in the terms" : "none among the fitted terms";
     summary->extra_terms = options.extra;
     summary->extra = s.extra;
     summary->ok = true;

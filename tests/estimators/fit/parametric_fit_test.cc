@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "estimators/fit/fit_model.h"
 #include "estimators/fit/model_avar_residuals.h"
 #include "sim/units.h"
 #include "tests/support/fit_curves.h"
@@ -161,6 +162,26 @@ TEST(ParametricFit, RecoversParametersFromExactCurves) {
       EXPECT_LT(s.base.chi2, 1e-3) << c.term;
     }
   }
+}
+
+// What the fit says of the band-limit when the terms are listed: a listed Gauss-Markov process is
+// not one (the poor-fit route on the MTi-G record had said "as listed in the terms" with none).
+TEST(ParametricFit, SaysWhetherTheListedTermsFittedABandLimit) {
+  const std::int64_t n = 1 << 18;
+  const AvarCurve curve = ExactCurve(Model({sim::WhiteRateNoise{units::DegPerSqrtHour(0.3)},
+                                            sim::GaussMarkov{units::DegPerHour(20.0), 10.0}}),
+                                     n, LogDense(n / 8, 8.0));
+  ModelFitOptions o;
+  o.terms = {Coefficient::kN};
+  o.extra = {std::shared_ptr<const ParametricTerm>(MakeParametricTerm("GM"))};
+  ModelFitSummary m;
+  ASSERT_TRUE(FitModel(o, curve, &m)) << m.fit.message;
+  EXPECT_EQ(m.fit.band_limit, "none among the fitted terms");
+  o.extra.push_back(std::shared_ptr<const ParametricTerm>(MakeParametricTerm("BW")));
+  ASSERT_TRUE(FitModel(o, curve, &m)) << m.fit.message;
+  ASSERT_EQ(m.extra.size(), 2u);
+  ASSERT_TRUE(m.extra[1].fitted) << m.extra[1].note;
+  EXPECT_EQ(m.fit.band_limit, "fitted as listed in the terms");
 }
 
 }  // namespace
