@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -269,19 +270,17 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   return TerminalLines(plot.width_px, plot.height_px, output_path) + Body(plot) + "unset output\n";
 }
 
-// Panels in a grid of `columns`, each with its own axes, labels and objects.
-std::string Script(const std::vector<AllanPlot>& panels, int columns, const std::string& output_path) {
-  columns = std::clamp(columns, 1, static_cast<int>(panels.size()));
-  const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
-  int width = 0, height = 0;
-  for (const AllanPlot& p : panels) {
-    width = std::max(width, p.width_px);
-    height = std::max(height, p.height_px);
+// Rows of a panel's key when it sits below the axes, at two entries a row (the fewest a panel
+// 900 px wide holds): series with a title, and spans with distinct titles. 0: no key below.
+int BelowKeyRows(const AllanPlot& p) {
+  if (p.key.rfind("below", 0) != 0) return 0;
+  std::set<std::string> span_titles;
+  for (const PlotSpan& span : p.spans) {
+    if (!span.title.empty()) span_titles.insert(span.title);
   }
-  std::string out = TerminalLines(width * columns, height * rows, output_path);
-  out += "set multiplot layout " + std::to_string(rows) + "," + std::to_string(columns) + "\n";
-  for (const AllanPlot& p : panels) out += Body(p) + "unset object\nunset label\nunset arrow\n";
-  return out + "unset multiplot\nunset output\n";
+  int entries = static_cast<int>(span_titles.size());
+  for (const PlotSeries& series : p.series) entries += series.title.empty() ? 0 : 1;
+  return (entries + 1) / 2;
 }
 
 bool AnyPlottable(const AllanPlot& plot) {
@@ -296,6 +295,26 @@ bool AnyPlottable(const AllanPlot& plot) {
 }
 
 }  // namespace
+
+std::string AllanPlotGridScript(const std::vector<AllanPlot>& panels, int columns, const std::string& output_path) {
+  columns = std::clamp(columns, 1, static_cast<int>(panels.size()));
+  const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
+  int width = 0, height = 0;
+  for (const AllanPlot& p : panels) {
+    width = std::max(width, p.width_px);
+    height = std::max(height, p.height_px);
+  }
+  std::string out = TerminalLines(width * columns, height * rows, output_path);
+  out += "set multiplot layout " + std::to_string(rows) + "," + std::to_string(columns) + "\n";
+  // In a multiplot gnuplot leaves a key below the axes one row too little room when it wraps,
+  // and the x label then lies over the key's first row: one bottom margin (in character heights:
+  // tic labels and x label, then the key's rows) for every panel, so their axes also line up.
+  int key_rows = 0;
+  for (const AllanPlot& p : panels) key_rows = std::max(key_rows, BelowKeyRows(p));
+  if (key_rows > 0) out += "set bmargin " + ShortestDecimal(2.5 + 1.3 * key_rows) + "\n";
+  for (const AllanPlot& p : panels) out += Body(p) + "unset object\nunset label\nunset arrow\n";
+  return out + "unset multiplot\nunset output\n";
+}
 
 namespace {
 
@@ -320,7 +339,7 @@ bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, Atom
   for (const AllanPlot& p : panels) {
     if (!AnyPlottable(p)) return Fail(why, "nothing to plot in panel '" + p.title + "': no positive, finite point");
   }
-  return RunGnuplotInto(Script(panels, columns, png->temp_path()), png, why);
+  return RunGnuplotInto(AllanPlotGridScript(panels, columns, png->temp_path()), png, why);
 }
 
 bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std::string* why) {

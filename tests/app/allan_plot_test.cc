@@ -127,5 +127,21 @@ TEST_F(AllanPlotTest, NothingDrawableIsAnErrorAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir_ / "plot.png"));
 }
 
+// Panels with their key below the axes get one bottom margin that holds the largest key (at two
+// entries a row): without it gnuplot put the x label of diagnose's block-mean panel (7 entries)
+// over the key's first row. Keys elsewhere leave gnuplot's margins alone.
+TEST(AllanPlotGridScriptTest, KeysBelowTheAxesShareABottomMarginForTheLargest) {
+  AllanPlot small = WhiteNoisePlot(), large = WhiteNoisePlot();
+  small.key = large.key = "below left horizontal";
+  for (int i = 0; i < 5; ++i) large.series.push_back(PlotSeries{"extra " + std::to_string(i), PlotStyle::kLine, {1.0}, {1.0}});
+  large.spans = {PlotSpan{1.0, 2.0, "#d62728", 0.4, "gap"}, PlotSpan{3.0, 4.0, "#d62728", 0.4, "gap"}};
+  // small: 2 entries, 1 row; large: 7 series + 1 span title = 8 entries, 4 rows: 2.5 + 1.3 x 4.
+  const std::string both = AllanPlotGridScript({small, large}, 2, "out.png");
+  EXPECT_NE(both.find("set bmargin 7.7\n"), std::string::npos) << both.substr(0, 400);
+  EXPECT_EQ(both.find("set bmargin", both.find("set bmargin") + 1), std::string::npos);
+  EXPECT_NE(AllanPlotGridScript({small, small}, 2, "out.png").find("set bmargin 3.8\n"), std::string::npos);
+  EXPECT_EQ(AllanPlotGridScript({WhiteNoisePlot(), WhiteNoisePlot()}, 2, "out.png").find("bmargin"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace allanlab::app
