@@ -755,7 +755,7 @@ Subcommand AddDiagnoseCommand(CLI::App* parent) {
   cmd->add_option("--trials", options->trials, "simulated records per Monte Carlo envelope (default 30; 0: OAVAR view only)")->type_name("N");
   cmd->add_option("--seed", options->seed, "seed of the simulated records (default 1)")->type_name("N");
   cmd->add_option("--false-alarm", options->false_alarm, "chance that a record of the model itself is flagged (default 0.05)")->type_name("P");
-  cmd->add_option("--jobs", options->jobs, "threads (default: every core; the output is the same for any N)")->type_name("N");
+  cmd->add_option("--jobs", options->jobs, "threads (0 or unset: every core; the output is the same for any N)")->type_name("N");
   auto* quiet = cmd->add_flag("--quiet", options->quiet, "no progress line on stderr (shown only when stderr is a terminal)");
   cmd->add_flag("--progress", options->progress,
                 "progress on stderr (stage, steps, time so far, time left in the stage) also when it is not a terminal: "
