@@ -71,10 +71,10 @@ bool RenderAllanPlots(const std::vector<AllanPlot>& panels, AtomicFile* png, std
 
 // Panels in a grid of `columns` (rows filled left to right), each `width_px` x `height_px`.
 bool RenderAllanPlotGrid(const std::vector<AllanPlot>& panels, int columns, AtomicFile* png, std::string* why);
-// The gnuplot script RenderAllanPlotGrid runs, writing the image to `output_path`. Panels whose
-// key sits below the axes ("below ...") share one bottom margin that holds the largest such key
-// at two entries a row: gnuplot's own leaves a wrapped key one row short in a multiplot, and the
-// x label then lies over it.
+// The gnuplot script RenderAllanPlotGrid runs for two or more panels, writing the image to
+// `output_path`. Panels whose key sits below the axes ("below ...") share one bottom margin that
+// holds the largest such key at two entries a row: gnuplot's own leaves a wrapped key one row
+// short in a multiplot, and the x label then lies over it.
 std::string AllanPlotGridScript(const std::vector<AllanPlot>& panels, int columns, const std::string& output_path);
 
 // RenderAllanPlot into a file of its own: on any failure, no file at `png_path` is created or
