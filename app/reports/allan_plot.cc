@@ -270,8 +270,9 @@ std::string Script(const AllanPlot& plot, const std::string& output_path) {
   return TerminalLines(plot.width_px, plot.height_px, output_path) + Body(plot) + "unset output\n";
 }
 
-// Rows of a panel's key when it sits below the axes, at two entries a row (the fewest a panel
-// 900 px wide holds): series with a title, and spans with distinct titles. 0: no key below.
+// Rows of a panel's key when it sits below the axes, at two entries a row (what gnuplot put in
+// diagnose's 900 px panels; more a row only leaves room to spare): series with a title, and spans
+// with distinct titles. 0: no key below.
 int BelowKeyRows(const AllanPlot& p) {
   if (p.key.rfind("below", 0) != 0) return 0;
   std::set<std::string> span_titles;
@@ -308,7 +309,8 @@ std::string AllanPlotGridScript(const std::vector<AllanPlot>& panels, int column
   out += "set multiplot layout " + std::to_string(rows) + "," + std::to_string(columns) + "\n";
   // In a multiplot gnuplot leaves a key below the axes one row too little room when it wraps,
   // and the x label then lies over the key's first row: one bottom margin (in character heights:
-  // tic labels and x label, then the key's rows) for every panel, so their axes also line up.
+  // tic labels and x label, then the key's rows; 2.5 and 1.3 set by eye on the simulated drift
+  // record's and imu1 Gyro_X's plots) for every panel, so their axes also line up.
   int key_rows = 0;
   for (const AllanPlot& p : panels) key_rows = std::max(key_rows, BelowKeyRows(p));
   if (key_rows > 0) out += "set bmargin " + ShortestDecimal(2.5 + 1.3 * key_rows) + "\n";

@@ -31,6 +31,12 @@ std::vector<long double> DifferenceAutocorrelation(int order) {
   return a;
 }
 
+// s0 = sum_{i<T} rho^{2i} = (1 - rho^{2T}) / (1 - rho^2), rho = e^{-lambda}: the drift's own
+// value and the cross sum's lag-0 term both carry it.
+long double SquaredPathSum(long double lambda, std::int64_t t) {
+  return -std::expm1(-2.0L * lambda * static_cast<long double>(t)) / -std::expm1(-2.0L * lambda);
+}
+
 }  // namespace
 
 KurtosisMoments ShiftedKurtosis(std::span<const double> u) {
@@ -88,7 +94,7 @@ long double DriftCrossSum(std::span<const long double> variogram, int order, std
   const std::int64_t t = differences;
   const long double lambda = decay_per_sample;
   const long double one_minus_rho2 = -std::expm1(-2.0L * lambda);
-  const long double s0 = -std::expm1(-2.0L * lambda * static_cast<long double>(t)) / one_minus_rho2;
+  const long double s0 = SquaredPathSum(lambda, t);
   // sum_{|h|<T} C(h) rho^|h| (1 - rho^{2(T-|h|)}) / (1 - rho^2) as C(0) s0 + 2 (A - B) / (1 - rho^2),
   // A = sum_{h>=1} C(h) rho^h (rho^h ascending), B = sum_{h>=1} C(h) rho^{2T-h} (descending from
   // rho^{T+1}), so no power is formed by division.
@@ -103,12 +109,13 @@ long double DriftCrossSum(std::span<const long double> variogram, int order, std
   };
   // C(h) formed once and kept for both passes up to keep_up_to (header); beyond, formed in each
   // pass. The same values either way.
+  // kept[h - 1] = C(h), appended rather than sized first (no 16 MB of zeros to write).
   std::vector<long double> kept;
   if (t <= keep_up_to) {
-    kept.resize(static_cast<std::size_t>(std::max<std::int64_t>(t, 1)));
-    for (std::int64_t h = 1; h < t; ++h) kept[static_cast<std::size_t>(h)] = c(h);
+    kept.reserve(static_cast<std::size_t>(std::max<std::int64_t>(t - 1, 0)));
+    for (std::int64_t h = 1; h < t; ++h) kept.push_back(c(h));
   }
-  auto c_at = [&](std::int64_t h) { return kept.empty() ? c(h) : kept[static_cast<std::size_t>(h)]; };
+  auto c_at = [&](std::int64_t h) { return kept.empty() ? c(h) : kept[static_cast<std::size_t>(h - 1)]; };
   const long double rho = std::exp(-lambda);
   long double ascending = 0.0L, power = 1.0L;
   for (std::int64_t h = 1; h < t; ++h) {
@@ -133,8 +140,7 @@ DriftShift DriftShiftFromCrossSum(const long double* cross_sum, int order, std::
   const long double one_minus_rho = -std::expm1(-lambda);
   const long double one_minus_rho_m = -std::expm1(-lambda * static_cast<long double>(m));
   const long double d = static_cast<long double>(amplitude_rad_per_s) * std::pow(one_minus_rho_m, order) / one_minus_rho;
-  const long double one_minus_rho2 = -std::expm1(-2.0L * lambda);
-  const long double s0 = -std::expm1(-2.0L * lambda * static_cast<long double>(t)) / one_minus_rho2;
+  const long double s0 = SquaredPathSum(lambda, t);
   const long double k = (order == 2 ? 2.0L : 6.0L) * static_cast<long double>(m) * static_cast<long double>(m);
   s.own = static_cast<double>(d * d * s0 / (k * static_cast<long double>(t)));
   if (cross_sum == nullptr) return s;

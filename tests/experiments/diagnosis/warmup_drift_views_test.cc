@@ -103,8 +103,8 @@ TEST(WarmupDriftViewsTest, TheCrossTermsVarianceIsTheQuadraticFormOverTheRate) {
   }
 }
 
-// The cross sum with C(h) kept between its passes and formed in each: the same bits, and
-// QuadraticStatisticShift is DriftShiftFromCrossSum of it.
+// The cross sum with C(h) kept between its passes and formed in each: the same bits (an index
+// off by one in the kept values, or a pass reading them in the wrong order, changes them).
 TEST(WarmupDriftViewsTest, TheCrossSumIsTheSameKeptOrFormedTwice) {
   constexpr std::int64_t kN = 5000;
   const std::vector<long double> variogram =
@@ -116,11 +116,7 @@ TEST(WarmupDriftViewsTest, TheCrossSumIsTheSameKeptOrFormedTwice) {
         const long double kept = DriftCrossSum(variogram, order, m, t, decay);
         const long double twice = DriftCrossSum(variogram, order, m, t, decay, 0);
         EXPECT_EQ(kept, twice) << "order " << order << ", m " << m << ", decay " << decay;
-        const DriftShift via = DriftShiftFromCrossSum(&kept, order, m, t, 1e-3, decay);
-        const DriftShift direct = QuadraticStatisticShift(variogram, order, m, t, 1e-3, decay);
-        EXPECT_EQ(via.own, direct.own);
-        EXPECT_EQ(via.cross_variance, direct.cross_variance);
-        EXPECT_GT(direct.cross_variance, 0.0);
+        EXPECT_GT(kept, 0.0L);
       }
     }
   }
